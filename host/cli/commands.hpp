@@ -1,0 +1,37 @@
+#pragma once
+// The subcommands of the vkrt program. Each returns the process exit status and
+// throws for errors the caller reports as "error: <message>" (exit status 1).
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace vkrt::cli {
+
+struct RenderArgs {
+    std::string scene;
+    std::string output;  // empty: <scene name>.png in the current directory
+    std::string backend = "vulkan";
+    std::string device;
+    std::optional<std::uint32_t> width;
+    std::optional<std::uint32_t> height;
+    std::optional<std::uint32_t> spp;
+    std::optional<std::uint32_t> seed;
+    unsigned threads = 0;
+    std::string stats_file;
+    bool validate = false;
+    bool quiet = false;
+};
+
+struct CompareArgs {
+    std::string a;
+    std::string b;
+    std::optional<double> max_rmse;
+    std::optional<double> max_abs;
+    double threshold = 1e-3;
+};
+
+int run_render(const RenderArgs& args);
+int run_compare(const CompareArgs& args);
+int run_devices();
+
+}  // namespace vkrt::cli

@@ -1,0 +1,76 @@
+#include "image/image.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
+#include <fmt/std.h>
+
+namespace vkrt {
+
+bool is_float_format(const std::filesystem::path& file) {
+    std::string ext = file.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext == ".exr" || ext == ".hdr" || ext == ".pfm";
+}
+
+float linear_to_srgb(float linear) {
+    const float c = std::clamp(linear, 0.0f, 1.0f);  // also maps NaN-free input only
+    return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+void write_image(const Image& image, const std::filesystem::path& file) {
+    const std::string name = file.string();
+    auto out = OIIO::ImageOutput::create(name);
+    if (!out) {
+        throw ImageError(fmt::format("{}: cannot write this image format ({})", name, OIIO::geterror()));
+    }
+    const bool linear = is_float_format(file);
+    OIIO::ImageSpec spec(int(image.width), int(image.height), 3, linear ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:ColorSpace", linear ? "Linear" : "sRGB");
+    if (!out->open(name, spec)) {
+        throw ImageError(fmt::format("{}: cannot open for writing: {}", name, out->geterror()));
+    }
+    bool ok = false;
+    if (linear) {
+        ok = out->write_image(OIIO::TypeDesc::FLOAT, image.rgb.data());
+    } else {
+        // Encode here rather than trusting a format's colour-space handling: the
+        // stored bytes are then the same for every 8-bit format.
+        std::vector<std::uint8_t> bytes(image.rgb.size());
+        for (std::size_t i = 0; i < bytes.size(); ++i) {
+            bytes[i] = static_cast<std::uint8_t>(std::lround(linear_to_srgb(image.rgb[i]) * 255.0f));
+        }
+        ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+    }
+    if (!ok || !out->close()) {
+        throw ImageError(fmt::format("{}: writing failed: {}", name, out->geterror()));
+    }
+}
+
+Image read_image(const std::filesystem::path& file) {
+    const std::string name = file.string();
+    if (!std::filesystem::exists(file)) {
+        throw ImageError(fmt::format("{}: no such file", name));
+    }
+    auto in = OIIO::ImageInput::open(name);
+    if (!in) {
+        throw ImageError(fmt::format("{}: cannot read image ({})", name, OIIO::geterror()));
+    }
+    const OIIO::ImageSpec& spec = in->spec();
+    const int channels = spec.nchannels;
+    std::vector<float> all(std::size_t(spec.width) * spec.height * channels);
+    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, all.data())) {
+        throw ImageError(fmt::format("{}: reading failed: {}", name, in->geterror()));
+    }
+    Image image(std::uint32_t(spec.width), std::uint32_t(spec.height));
+    for (std::size_t p = 0; p < std::size_t(spec.width) * spec.height; ++p) {
+        for (int c = 0; c < 3; ++c) {
+            image.rgb[p * 3 + c] = all[p * channels + std::min(c, channels - 1)];
+        }
+    }
+    return image;
+}
+
+}  // namespace vkrt

@@ -1,0 +1,42 @@
+#pragma once
+// Linear float RGB images and their files. The extension picks the format through
+// OpenImageIO: .exr, .hdr and .pfm are written as linear float; every other format
+// (.png, .ppm, .jpg, ...) is clamped to [0, 1], sRGB-encoded and stored in 8 bits.
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <vector>
+
+namespace vkrt {
+
+class ImageError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+struct Image {
+    std::uint32_t width = 0;
+    std::uint32_t height = 0;
+    std::vector<float> rgb;  // row-major, row 0 at the top, 3 floats a pixel
+
+    Image() = default;
+    Image(std::uint32_t w, std::uint32_t h) : width(w), height(h), rgb(std::size_t(w) * h * 3, 0.0f) {}
+    float* pixel(std::uint32_t x, std::uint32_t y) { return &rgb[(std::size_t(y) * width + x) * 3]; }
+    const float* pixel(std::uint32_t x, std::uint32_t y) const {
+        return &rgb[(std::size_t(y) * width + x) * 3];
+    }
+};
+
+// True for the formats written as linear floats.
+bool is_float_format(const std::filesystem::path& file);
+
+// The sRGB transfer function (IEC 61966-2-1) for a linear value clamped to [0, 1].
+float linear_to_srgb(float linear);
+
+void write_image(const Image& image, const std::filesystem::path& file);
+
+// Reads the first three channels (one channel is repeated as grey) as stored: 8-bit
+// files give their encoded values scaled to [0, 1], float files their linear values.
+Image read_image(const std::filesystem::path& file);
+
+}  // namespace vkrt

@@ -1,0 +1,24 @@
+#pragma once
+// The kernel's shared constants and buffer layouts (shaders/kernel/), seen from C++.
+// GLSL types come from GLM; the layout file is included verbatim, so the host and
+// the shader cannot disagree on a field.
+#include <cstdint>
+#include <glm/glm.hpp>
+
+namespace vkrt::kernel {
+using namespace glm;
+using uint = std::uint32_t;
+
+#include "kernel/constants.glsl"
+#include "kernel/layout.glsl"
+
+// std430 offsets and sizes: vec4 members only, so these hold by construction; the
+// asserts catch anyone adding a vec3 or a scalar.
+static_assert(sizeof(vec4) == 16 && sizeof(uvec4) == 16);
+static_assert(sizeof(Sphere) == 32);
+static_assert(sizeof(Triangle) == 112);
+static_assert(sizeof(Material) == 80);
+static_assert(sizeof(PointLight) == 32);
+static_assert(sizeof(Params) == 144);
+static_assert(offsetof(Params, image) == 96 && offsetof(Params, limits) == 128);
+}  // namespace vkrt::kernel

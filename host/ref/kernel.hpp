@@ -1,0 +1,34 @@
+#pragma once
+// The reference backend's view of the kernel: the GLSL files of shaders/kernel/ are
+// included inside a struct whose members carry the same names as the shader's
+// buffers, uniforms and specialization constants, so the very same text compiles as
+// C++ member functions (DESIGN.md, "The shared kernel, concretely").
+// One Kernel object plays the part of one invocation's private state: make one per
+// thread.
+#include <span>
+
+#include "kernel_types.hpp"
+
+namespace vkrt::kernel {
+
+#define INOUT(T) T&
+#define precise
+
+struct Kernel {
+#define FEATURE(id, name) bool name = true;
+#include "kernel/features.glsl"
+#undef FEATURE
+
+    Params params{};
+    std::span<const Material> materials;
+    std::span<const Sphere> spheres;
+    std::span<const Triangle> triangles;
+    std::span<const PointLight> lights;
+
+#include "kernel/all.glsl"
+};
+
+#undef precise
+#undef INOUT
+
+}  // namespace vkrt::kernel

@@ -1,0 +1,49 @@
+#pragma once
+// The one path from a scene to an image, used by the program and the tests alike:
+// Scene -> SceneGpu -> backend -> per-pixel sums -> averaged linear image + stats.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "image/image.hpp"
+#include "render/backend.hpp"
+#include "scene/scene.hpp"
+#include "scene/scene_gpu.hpp"
+
+namespace vkrt {
+
+struct RenderStats {
+    std::string backend;
+    std::string device;
+    std::uint32_t width = 0;
+    std::uint32_t height = 0;
+    std::uint32_t samples_per_pixel = 0;
+    std::uint64_t eye_rays = 0;
+    std::uint64_t shadow_rays = 0;
+    std::uint64_t truncated_samples = 0;  // stopped by the loop budget: the image is wrong there
+    std::uint64_t nonfinite_samples = 0;  // discarded for NaN or infinity
+    double flatten_seconds = 0.0;         // Scene -> SceneGpu
+    double setup_seconds = 0.0;           // backend set-up (pipelines, uploads)
+    double render_seconds = 0.0;
+    double total_seconds = 0.0;
+    FeatureSet features;
+    std::vector<BufferSize> buffers;
+    std::uint32_t validation_messages = 0;
+
+    std::uint64_t rays() const { return eye_rays + shadow_rays; }
+};
+
+struct RenderOutcome {
+    Image image;
+    RenderStats stats;
+};
+
+// Each pixel's sum divided by its count of good samples (black where there is none).
+Image resolve_image(const RenderResult& result);
+
+RenderStats collect_stats(const SceneGpu& scene, const Backend& backend, const RenderResult& result);
+
+// Renders every sample the scene asks for.
+RenderOutcome render_scene(const Scene& scene, Backend& backend, const ProgressCallback& progress = {});
+
+}  // namespace vkrt

@@ -1,0 +1,25 @@
+#include "render/stats_json.hpp"
+
+namespace vkrt {
+
+nlohmann::json stats_to_json(const RenderStats& s) {
+    nlohmann::json buffers = nlohmann::json::object();
+    for (const BufferSize& b : s.buffers) buffers[b.name] = b.bytes;
+    return {
+        {"backend", s.backend},
+        {"device", s.device},
+        {"width", s.width},
+        {"height", s.height},
+        {"samples_per_pixel", s.samples_per_pixel},
+        {"rays", {{"total", s.rays()}, {"eye", s.eye_rays}, {"shadow", s.shadow_rays}}},
+        {"samples", {{"truncated", s.truncated_samples}, {"nonfinite", s.nonfinite_samples}}},
+        {"seconds", {{"flatten", s.flatten_seconds}, {"setup", s.setup_seconds},
+                     {"render", s.render_seconds}, {"total", s.total_seconds}}},
+        {"rays_per_second", s.render_seconds > 0.0 ? double(s.rays()) / s.render_seconds : 0.0},
+        {"features", {{"kept", s.features.kept()}, {"left_out", s.features.left_out()}}},
+        {"buffers", buffers},
+        {"validation_messages", s.validation_messages},
+    };
+}
+
+}  // namespace vkrt

@@ -1,0 +1,77 @@
+#include "scene/features.hpp"
+
+#include <algorithm>
+#include <cctype>
+
+namespace vkrt {
+namespace {
+
+constexpr const char* kFeatureIds[] = {
+#define FEATURE(id, name) #name,
+#include "kernel/features.glsl"
+#undef FEATURE
+};
+
+bool nonzero(const dvec3& v) { return v.x != 0.0 || v.y != 0.0 || v.z != 0.0; }
+
+}  // namespace
+
+std::string feature_name(std::uint32_t id) {
+    std::string name = kFeatureIds[id];
+    if (name.rfind("HAS_", 0) == 0) {
+        name.erase(0, 4);
+    }
+    std::transform(name.begin(), name.end(), name.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return name;
+}
+
+std::vector<std::string> FeatureSet::kept() const {
+    std::vector<std::string> names;
+    for (std::uint32_t id = 0; id < kFeatureCount; ++id) {
+        if (on_[id]) names.push_back(feature_name(id));
+    }
+    return names;
+}
+
+std::vector<std::string> FeatureSet::left_out() const {
+    std::vector<std::string> names;
+    for (std::uint32_t id = 0; id < kFeatureCount; ++id) {
+        if (!on_[id]) names.push_back(feature_name(id));
+    }
+    return names;
+}
+
+FeatureSet analyze_features(const Scene& scene) {
+    FeatureSet f;
+    const bool has_lights = !scene.lights.empty();
+    const bool has_geometry = !scene.spheres.empty() || !scene.triangles.empty();
+
+    // Only materials that some primitive uses can ask for shading code.
+    std::vector<bool> used(scene.materials.size(), false);
+    for (const auto& s : scene.spheres) used[s.material] = true;
+    for (const auto& t : scene.triangles) used[t.material] = true;
+    bool specular = false;
+    bool emission = false;
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        const Material& m = scene.materials[i];
+        if (!used[i]) continue;
+        specular = specular || (m.ks > 0.0 && nonzero(m.specular));
+        emission = emission || nonzero(m.emission);
+    }
+
+    f.set(Feature::HAS_SPHERES, !scene.spheres.empty());
+    f.set(Feature::HAS_TRIANGLES, !scene.triangles.empty());
+    f.set(Feature::HAS_SMOOTH_NORMALS,
+          std::any_of(scene.triangles.begin(), scene.triangles.end(),
+                      [](const Triangle& t) { return t.normals.has_value(); }));
+    f.set(Feature::HAS_POINT_LIGHTS, has_lights && has_geometry);
+    f.set(Feature::HAS_SHADOWS, scene.render.shadows && has_lights && has_geometry);
+    f.set(Feature::HAS_SPECULAR, specular && has_lights);
+    f.set(Feature::HAS_AMBIENT, nonzero(scene.render.ambient) && has_geometry);
+    f.set(Feature::HAS_EMISSION, emission);
+    f.set(Feature::HAS_JITTER, scene.render.jitter);
+    return f;
+}
+
+}  // namespace vkrt

@@ -1,0 +1,17 @@
+#pragma once
+// Bounds on user input, shared by the scene loader and the command line so both
+// reject the same values with the same reasoning.
+#include <cstdint>
+
+namespace vkrt::limits {
+
+// An image side beyond this is a typo, not a render; the accumulation buffers of
+// the largest allowed image (32 bytes a pixel) stay near 1 GiB.
+inline constexpr std::uint32_t kMaxImageSide = 32768;
+inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t(1) << 25;
+inline constexpr std::uint32_t kMaxAa = 64;
+inline constexpr std::uint32_t kMaxSpp = 1u << 20;
+inline constexpr std::uint32_t kMaxDepth = 64;
+inline constexpr std::uint32_t kMaxLoopBudget = 65000;  // below lavapipe's 65,535 cap
+
+}  // namespace vkrt::limits

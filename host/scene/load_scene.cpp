@@ -1,0 +1,19 @@
+#include "scene/load_scene.hpp"
+
+#include <fmt/format.h>
+
+#include "scene/json_scene_loader.hpp"
+#include "scene/scene_error.hpp"
+
+namespace vkrt {
+
+Scene load_scene(const std::filesystem::path& file) {
+    const std::string ext = file.extension().string();
+    if (ext == ".json" || ext == ".jsonc") {
+        return load_json_scene(file);
+    }
+    throw SceneError(fmt::format("{}: unknown scene format '{}' (expected a .json scene file)",
+                                 file.string(), ext));
+}
+
+}  // namespace vkrt

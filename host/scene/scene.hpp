@@ -1,0 +1,86 @@
+#pragma once
+// The validated, in-memory scene: what a loader produces and everything downstream
+// reads (DESIGN.md principle 2). Values stay in double here; they become float only
+// when host/scene/scene_gpu.cpp flattens them for a backend.
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace vkrt {
+
+using glm::dvec3;
+
+struct Camera {
+    dvec3 eye{0.0, 0.0, 0.0};
+    dvec3 look_at{0.0, 0.0, -1.0};
+    dvec3 up{0.0, 1.0, 0.0};
+    double fov = 40.0;  // vertical, degrees, in (0, 180)
+    std::uint32_t width = 400;
+    std::uint32_t height = 300;
+};
+
+enum class RenderMode { Local };
+
+struct RenderSettings {
+    RenderMode mode = RenderMode::Local;
+    std::uint32_t aa = 1;          // aa x aa sub-pixel rays per pixel (paper's Fig. 6)
+    bool jitter = false;           // random position inside each sub-pixel
+    bool shadows = true;
+    std::uint32_t max_depth = 5;   // reflection/refraction depth (used once mirrors land)
+    dvec3 ambient{0.0};
+    dvec3 background{0.0};
+    std::uint32_t seed = 0;
+    std::uint32_t spp = 0;         // samples per pixel; 0 means aa * aa
+    std::uint32_t loop_budget = 0; // per-invocation loop iterations; 0 means the kernel default
+
+    std::uint32_t samples_per_pixel() const { return spp != 0 ? spp : aa * aa; }
+};
+
+struct Material {
+    std::string name;
+    dvec3 diffuse{0.0};
+    double kd = 1.0;
+    dvec3 specular{0.0};
+    double ks = 0.0;
+    double shininess = 20.0;
+    dvec3 reflect{0.0};
+    dvec3 transmit{0.0};
+    double ior = 1.5;
+    dvec3 emission{0.0};
+};
+
+struct PointLight {
+    dvec3 position{0.0};
+    dvec3 color{1.0};
+    double intensity = 1.0;
+};
+
+struct Sphere {
+    dvec3 center{0.0};
+    double radius = 1.0;
+    std::uint32_t material = 0;  // index into Scene::materials
+};
+
+// A quad in the scene file becomes two of these (front face = cross(edge1, edge2)).
+struct Triangle {
+    std::array<dvec3, 3> vertices{};
+    std::optional<std::array<dvec3, 3>> normals;  // interpolated when present
+    std::uint32_t material = 0;
+};
+
+struct Scene {
+    std::filesystem::path source;  // the file it came from, for messages
+    Camera camera;
+    RenderSettings render;
+    std::vector<Material> materials;
+    std::vector<PointLight> lights;
+    std::vector<Sphere> spheres;
+    std::vector<Triangle> triangles;
+};
+
+}  // namespace vkrt

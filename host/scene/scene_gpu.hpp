@@ -1,0 +1,40 @@
+#pragma once
+// A scene flattened into the kernel's buffer layouts (shaders/kernel/layout.glsl),
+// the one form both backends consume. Buffers the feature set leaves out are empty:
+// neither built here nor uploaded by a backend.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "kernel_types.hpp"
+#include "scene/features.hpp"
+#include "scene/scene.hpp"
+
+namespace vkrt {
+
+struct BufferSize {
+    std::string name;
+    std::size_t bytes;
+};
+
+struct SceneGpu {
+    kernel::Params params{};
+    FeatureSet features;
+    std::vector<kernel::Material> materials;
+    std::vector<kernel::Sphere> spheres;
+    std::vector<kernel::Triangle> triangles;
+    std::vector<kernel::PointLight> lights;
+    std::uint32_t samples_per_pixel = 1;
+
+    std::uint32_t width() const { return params.image.x; }
+    std::uint32_t height() const { return params.image.y; }
+    std::size_t pixel_count() const { return std::size_t(width()) * height(); }
+
+    // The scene buffers that were built (non-empty), with their sizes.
+    std::vector<BufferSize> built_buffers() const;
+};
+
+SceneGpu build_scene_gpu(const Scene& scene);
+
+}  // namespace vkrt

@@ -1,0 +1,12 @@
+// The whole kernel, in dependency order. Included by shaders/render.comp and, inside
+// the reference Kernel struct, by host/ref/kernel.hpp. Before including it, a host
+// declares the feature flags (features.glsl), `params`, and the buffers
+// materials, spheres, triangles and lights.
+#include "rng.glsl"
+#include "ray.glsl"
+#include "intersect.glsl"
+#include "budget.glsl"
+#include "camera.glsl"
+#include "scene.glsl"
+#include "shade.glsl"
+#include "sample.glsl"

@@ -1,0 +1,24 @@
+// Primary rays. The host builds the camera vectors in double precision
+// (host/scene/scene_gpu.cpp); the kernel only combines them.
+
+// The ray through continuous image position (x, y), in pixels from the top-left
+// corner of the image (row 0 at the top).
+Ray camera_ray(float x, float y) {
+    precise vec3 d = vec3(params.cam_corner) + x * vec3(params.cam_right) + y * vec3(params.cam_down);
+    return Ray(vec3(params.cam_eye), normalize(d));
+}
+
+// Position inside the pixel for one sample: sample k covers sub-pixel k mod aa^2 of
+// the paper's regular aa x aa grid (Fig. 6), at the sub-pixel's centre, or at a
+// uniformly random point inside it when jitter is on.
+vec2 subpixel_position(uint sample_index, INOUT(Rng) rng) {
+    uint aa = params.image.z;
+    uint k = sample_index % (aa * aa);
+    float jx = 0.5f;
+    float jy = 0.5f;
+    if (HAS_JITTER) {
+        jx = rng_next(rng);
+        jy = rng_next(rng);
+    }
+    return vec2((float(k % aa) + jx) / float(aa), (float(k / aa) + jy) / float(aa));
+}

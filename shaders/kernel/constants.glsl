@@ -1,0 +1,15 @@
+// Constants shared by both hosts.
+
+// Lanes of the per-pixel counter buffer. Counting per pixel, not with atomics, keeps
+// the hot path contention-free; the host sums the lanes after read-back.
+const uint COUNTER_EYE_RAYS = 0u;
+const uint COUNTER_SHADOW_RAYS = 1u;
+const uint COUNTER_TRUNCATED = 2u;   // samples stopped by the loop budget
+const uint COUNTER_NONFINITE = 3u;   // samples discarded for a NaN or infinite value
+
+// Mesa's lavapipe stops an invocation's loops silently after 65,535 iterations in
+// total (DESIGN.md). The kernel counts its own iterations against a budget below that
+// cap; the default leaves room for the handful of loop entries it does not count.
+const uint DEFAULT_LOOP_BUDGET = 60000u;
+
+const float INFINITY_T = 3.0e38f;   // "no hit yet"; finite so comparisons stay ordered

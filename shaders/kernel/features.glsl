@@ -1,0 +1,16 @@
+// The feature set: one entry per part of the kernel that a scene may not need.
+// Each side defines FEATURE(id, NAME) before including this file:
+//   GLSL   -> a boolean specialization constant with constant_id = id (default true),
+//   kernel -> a bool member of the reference Kernel struct,
+//   host   -> the Feature enum and its names (host/scene/features.hpp).
+// A feature that is false is compiled out of the pipeline by the driver, and the
+// buffers only it reads are neither built nor uploaded.
+FEATURE(0, HAS_SPHERES)
+FEATURE(1, HAS_TRIANGLES)
+FEATURE(2, HAS_SMOOTH_NORMALS)
+FEATURE(3, HAS_POINT_LIGHTS)
+FEATURE(4, HAS_SHADOWS)
+FEATURE(5, HAS_SPECULAR)
+FEATURE(6, HAS_AMBIENT)
+FEATURE(7, HAS_EMISSION)
+FEATURE(8, HAS_JITTER)

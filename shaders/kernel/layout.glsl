@@ -1,0 +1,56 @@
+// Buffer layouts shared by the compute shader and the C++ host.
+// std430 rules with vec4/uvec4 members only, so GLSL and C++ agree on every offset
+// without padding rules to remember; host/kernel_types.hpp static_asserts the sizes.
+// Unused .w lanes are documented as such and written as 0 by the host.
+
+// A sphere: centre in xyz, radius in w; meta.x = material index.
+struct Sphere {
+    vec4 center_radius;
+    uvec4 meta;
+};
+
+// A triangle stores its own vertices (no index indirection: one fetch per primitive).
+// Vertex normals are used only when meta.y != 0 (the scene gave normals); the front
+// face is the side of cross(p1 - p0, p2 - p0). meta.x = material index.
+struct Triangle {
+    vec4 p0;
+    vec4 p1;
+    vec4 p2;
+    vec4 n0;
+    vec4 n1;
+    vec4 n2;
+    uvec4 meta;
+};
+
+// Material fields as in the scene file (docs/scene-format.md).
+struct Material {
+    vec4 diffuse_kd;         // rgb diffuse colour, w = kd
+    vec4 specular_ks;        // rgb specular colour, w = ks
+    vec4 reflect_shininess;  // rgb mirror reflectance, w = Phong exponent
+    vec4 transmit_ior;       // rgb transmittance, w = index of refraction
+    vec4 emission;           // rgb emitted radiance (front face only), w unused
+};
+
+// A point light: position in xyz; rgb = colour * intensity.
+struct PointLight {
+    vec4 position;
+    vec4 radiance;
+};
+
+// Per-render constants. The camera is given as direction vectors relative to the eye:
+// the ray through continuous image position (x, y), in pixels from the top-left
+// corner, has direction cam_corner + x * cam_right + y * cam_down.
+struct Params {
+    vec4 cam_eye;
+    vec4 cam_corner;
+    vec4 cam_right;
+    vec4 cam_down;
+    vec4 ambient;      // rgb ambient light, w unused
+    vec4 background;   // rgb radiance of rays that hit nothing, w unused
+    uvec4 image;       // x width, y height, z aa (sub-pixels per side), w seed
+    uvec4 counts;      // x spheres, y triangles, z point lights, w materials
+    uvec4 limits;      // x loop-iteration budget per invocation, y max_depth, z/w unused
+};
+
+// Per-pixel accumulation: rgb = sum of sample radiance, a = number of samples summed.
+// Per-pixel counters (uvec4): see COUNTER_* in constants.glsl.

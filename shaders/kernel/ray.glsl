@@ -1,0 +1,38 @@
+// Rays, hit records and the offset that keeps secondary rays off their own surface.
+
+struct Ray {
+    vec3 origin;
+    vec3 dir;   // unit length
+};
+
+struct Hit {
+    float t;          // INFINITY_T when nothing was hit
+    vec3 normal;      // shading normal, unit length, facing the incoming ray
+    vec3 geo_normal;  // geometric normal, unit length, facing the incoming ray
+    uint material;
+    bool front_face;  // the ray arrived on the side the primitive calls its front
+};
+
+Hit no_hit() {
+    return Hit(INFINITY_T, vec3(0.0f), vec3(0.0f), 0u, false);
+}
+
+// Moves a point off a surface along its geometric normal by an amount proportional to
+// the point's own magnitude, in integer ULPs, so the offset is right at any scale
+// (Wächter & Binder, "A Fast and Robust Method for Avoiding Self-Intersection",
+// Ray Tracing Gems ch. 6). Near the origin, where ULPs get tiny, a fixed float offset
+// takes over.
+float offset_coordinate(float p, float n) {
+    const float ORIGIN_REGION = 1.0f / 32.0f;
+    const float FLOAT_SCALE = 1.0f / 65536.0f;
+    const float INT_SCALE = 256.0f;
+    int ulps = int(INT_SCALE * n);
+    float moved = intBitsToFloat(floatBitsToInt(p) + (p < 0.0f ? -ulps : ulps));
+    return abs(p) < ORIGIN_REGION ? p + FLOAT_SCALE * n : moved;
+}
+
+vec3 offset_ray_origin(vec3 p, vec3 geo_normal) {
+    return vec3(offset_coordinate(p.x, geo_normal.x),
+                offset_coordinate(p.y, geo_normal.y),
+                offset_coordinate(p.z, geo_normal.z));
+}

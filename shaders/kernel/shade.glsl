@@ -1,0 +1,53 @@
+// Local illumination as the paper defines it (DESIGN.md, "Numbers and conventions"):
+// per point light, colour * intensity * (kd * diffuse * cos(theta) + ks * specular *
+// cos(alpha)^shininess), with alpha between the mirrored light vector and the eye
+// vector; plus ambient * kd * diffuse, plus the material's own emission seen from
+// its front face. Lights below the surface get no shadow ray (the SPD rule).
+
+vec3 shade_local(Ray ray, Hit hit, INOUT(uint) shadow_rays) {
+    Material m = materials[hit.material];
+    vec3 diffuse = vec3(m.diffuse_kd) * m.diffuse_kd.w;
+    vec3 color = vec3(0.0f);
+    if (HAS_EMISSION && hit.front_face) {
+        color += vec3(m.emission);
+    }
+    if (HAS_AMBIENT) {
+        color += vec3(params.ambient) * diffuse;
+    }
+    if (HAS_POINT_LIGHTS) {
+        precise vec3 p = ray.origin + hit.t * ray.dir;
+        vec3 shadow_origin = offset_ray_origin(p, hit.geo_normal);
+        vec3 to_eye = -ray.dir;
+        for (uint i = 0u; i < params.counts.z; ++i) {
+            if (!loop_tick()) {
+                break;
+            }
+            PointLight light = lights[i];
+            vec3 to_light = vec3(light.position) - p;
+            float dist = length(to_light);
+            vec3 l = to_light / dist;
+            float cos_theta = dot(hit.normal, l);
+            // Written as !(x > 0) so that a light exactly at the hit point (NaN) is skipped.
+            if (!(cos_theta > 0.0f && dot(hit.geo_normal, l) > 0.0f)) {
+                continue;
+            }
+            if (HAS_SHADOWS) {
+                shadow_rays += 1u;
+                if (occluded(Ray(shadow_origin, l), dist)) {
+                    continue;
+                }
+            }
+            vec3 term = diffuse * cos_theta;
+            if (HAS_SPECULAR) {
+                vec3 mirrored = (2.0f * cos_theta) * hit.normal - l;
+                float cos_alpha = dot(mirrored, to_eye);
+                // pow(0, 0) is undefined in GLSL: no highlight where cos(alpha) <= 0.
+                if (cos_alpha > 0.0f) {
+                    term += vec3(m.specular_ks) * (m.specular_ks.w * pow(cos_alpha, m.reflect_shininess.w));
+                }
+            }
+            color += vec3(light.radiance) * term;
+        }
+    }
+    return color;
+}

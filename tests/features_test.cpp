@@ -1,0 +1,100 @@
+// Leave out what the scene does not need: the feature set and the buffers built.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "scene/scene_gpu.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using namespace vkrt;
+
+bool contains(const std::vector<std::string>& v, const std::string& s) {
+    return std::find(v.begin(), v.end(), s) != v.end();
+}
+
+Scene spheres_only() {
+    Scene s;
+    s.camera.eye = {0, 0, 4};
+    s.camera.width = 16;
+    s.camera.height = 12;
+    s.camera.look_at = {0, 0, 0};
+    Material m;
+    m.diffuse = {0.5, 0.5, 0.5};
+    s.materials.push_back(m);
+    s.lights.push_back(PointLight{{1, 2, 3}, {1, 1, 1}, 1});
+    s.spheres.push_back(Sphere{{0, 0, 0}, 1, 0});
+    return s;
+}
+
+TEST(Features, SpheresOnlySceneLeavesTrianglesOut) {
+    const SceneGpu g = build_scene_gpu(spheres_only());
+    EXPECT_TRUE(g.features.has(Feature::HAS_SPHERES));
+    EXPECT_FALSE(g.features.has(Feature::HAS_TRIANGLES));
+    EXPECT_FALSE(g.features.has(Feature::HAS_SMOOTH_NORMALS));
+    EXPECT_FALSE(g.features.has(Feature::HAS_SPECULAR));  // ks is 0
+    EXPECT_TRUE(g.features.has(Feature::HAS_SHADOWS));
+    EXPECT_TRUE(g.triangles.empty());
+    for (const BufferSize& b : g.built_buffers()) EXPECT_NE(b.name, "triangles");
+    EXPECT_TRUE(contains(g.features.left_out(), "triangles"));
+    EXPECT_TRUE(contains(g.features.kept(), "spheres"));
+}
+
+TEST(Features, ShadowsOffLeavesShadowCodeOut) {
+    Scene s = spheres_only();
+    s.render.shadows = false;
+    EXPECT_FALSE(build_scene_gpu(s).features.has(Feature::HAS_SHADOWS));
+    s.lights.clear();
+    s.render.shadows = true;
+    const SceneGpu g = build_scene_gpu(s);
+    EXPECT_FALSE(g.features.has(Feature::HAS_SHADOWS));
+    EXPECT_FALSE(g.features.has(Feature::HAS_POINT_LIGHTS));
+    EXPECT_TRUE(g.lights.empty());
+}
+
+TEST(Features, TrianglesWithNormalsKeepSmoothNormals) {
+    Scene s = spheres_only();
+    Triangle t;
+    t.vertices = {dvec3(0, 0, 0), dvec3(1, 0, 0), dvec3(0, 1, 0)};
+    s.triangles.push_back(t);
+    EXPECT_FALSE(build_scene_gpu(s).features.has(Feature::HAS_SMOOTH_NORMALS));
+    s.triangles[0].normals = std::array<dvec3, 3>{dvec3(0, 0, 1), dvec3(0, 0, 1), dvec3(0, 0, 1)};
+    const SceneGpu g = build_scene_gpu(s);
+    EXPECT_TRUE(g.features.has(Feature::HAS_SMOOTH_NORMALS));
+    EXPECT_EQ(g.triangles.size(), 1u);
+}
+
+// The program's --stats report says what was kept and left out, for both backends.
+TEST(Features, StatsReportNamesWhatWasLeftOut) {
+    const auto dir = std::filesystem::temp_directory_path() / "vkrt_features_test";
+    std::filesystem::create_directories(dir);
+    const auto scene = dir / "spheres.json";
+    std::ofstream(scene) << R"({
+        "camera": {"eye": [0, 0, 4], "look_at": [0, 0, 0], "width": 32, "height": 24},
+        "materials": {"m": {"diffuse": [0.5, 0.5, 0.5]}},
+        "lights": [{"type": "point", "position": [1, 2, 3]}],
+        "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})";
+    for (const std::string backend : {"cpu", "vulkan"}) {
+        const auto stats = dir / ("stats_" + backend + ".json");
+        const std::string cmd = std::string(VKRT_EXE) + " render " + scene.string() + " -q --validate --backend " +
+                                backend + " -o " + (dir / "out.png").string() + " --stats " + stats.string();
+        ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+        const auto report = nlohmann::json::parse(std::ifstream(stats));
+        EXPECT_EQ(report["backend"], backend);
+        EXPECT_EQ(report["width"], 32);
+        EXPECT_EQ(report["rays"]["eye"], 32 * 24);
+        EXPECT_TRUE(contains(report["features"]["left_out"], "triangles"));
+        EXPECT_TRUE(contains(report["features"]["kept"], "spheres"));
+        EXPECT_FALSE(report["buffers"].contains("triangles"));
+        EXPECT_TRUE(report["buffers"].contains("spheres"));
+        EXPECT_EQ(report["validation_messages"], 0);
+        EXPECT_GT(report["seconds"]["total"].get<double>(), 0.0);
+    }
+}
+
+}  // namespace

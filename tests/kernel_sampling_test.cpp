@@ -1,0 +1,152 @@
+// Camera rays, sub-pixel positions and random numbers of the shared kernel.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "ref/kernel.hpp"
+#include "scene/scene_gpu.hpp"
+
+namespace {
+
+using vkrt::kernel::Kernel;
+using vkrt::kernel::uint;
+using vkrt::kernel::uvec4;
+using vkrt::kernel::vec3;
+
+// A camera at the origin looking down -z with a 90 degree vertical field of view on
+// a 4x2 image: one pixel is exactly one unit on the image plane at distance 1.
+Kernel kernel_for_camera(std::uint32_t aa = 1, bool jitter = false) {
+    vkrt::Scene scene;
+    scene.camera.eye = {0, 0, 0};
+    scene.camera.look_at = {0, 0, -1};
+    scene.camera.fov = 90;
+    scene.camera.width = 4;
+    scene.camera.height = 2;
+    scene.render.aa = aa;
+    scene.render.jitter = jitter;
+    Kernel k;
+    k.params = vkrt::build_scene_gpu(scene).params;
+    k.HAS_JITTER = jitter;
+    return k;
+}
+
+TEST(Camera, CentreOfImageLooksAtTarget) {
+    Kernel k = kernel_for_camera();
+    const auto r = k.camera_ray(2.0f, 1.0f);
+    EXPECT_EQ(r.origin, vec3(0));
+    EXPECT_EQ(r.dir, vec3(0, 0, -1));
+}
+
+TEST(Camera, TopLeftCornerIsUpAndLeft) {
+    Kernel k = kernel_for_camera();
+    // Image position (0, 0) is the top-left corner: direction (-2, 1, -1).
+    const auto r = k.camera_ray(0.0f, 0.0f);
+    const float s = 1.0f / std::sqrt(6.0f);
+    EXPECT_FLOAT_EQ(r.dir.x, -2.0f * s);
+    EXPECT_FLOAT_EQ(r.dir.y, 1.0f * s);
+    EXPECT_FLOAT_EQ(r.dir.z, -1.0f * s);
+}
+
+TEST(Camera, RowsGrowDownwards) {
+    Kernel k = kernel_for_camera();
+    EXPECT_GT(k.camera_ray(0.5f, 0.5f).dir.y, 0.0f);
+    EXPECT_LT(k.camera_ray(0.5f, 1.5f).dir.y, 0.0f);
+    EXPECT_LT(k.camera_ray(0.5f, 0.5f).dir.x, k.camera_ray(3.5f, 0.5f).dir.x);
+}
+
+TEST(Subpixel, RegularGridCentresWithoutJitter) {
+    Kernel k = kernel_for_camera(3);
+    auto rng = k.rng_start(0, 0, 0);
+    const auto first = k.subpixel_position(0, rng);
+    EXPECT_FLOAT_EQ(first.x, 0.5f / 3.0f);
+    EXPECT_FLOAT_EQ(first.y, 0.5f / 3.0f);
+    const auto centre = k.subpixel_position(4, rng);
+    EXPECT_FLOAT_EQ(centre.x, 0.5f);
+    EXPECT_FLOAT_EQ(centre.y, 0.5f);
+    const auto fifth = k.subpixel_position(5, rng);  // column 2, row 1
+    EXPECT_FLOAT_EQ(fifth.x, 2.5f / 3.0f);
+    EXPECT_FLOAT_EQ(fifth.y, 1.5f / 3.0f);
+    const auto wrapped = k.subpixel_position(9, rng);  // sample 9 reuses stratum 0
+    EXPECT_EQ(wrapped.x, first.x);
+    EXPECT_EQ(wrapped.y, first.y);
+    EXPECT_EQ(rng.dim, 0u);  // no random numbers drawn without jitter
+}
+
+TEST(Subpixel, JitterStaysInsideItsStratum) {
+    Kernel k = kernel_for_camera(2, true);
+    for (uint s = 0; s < 400; ++s) {
+        auto rng = k.rng_start(7, s, 0);
+        const auto p = k.subpixel_position(s, rng);
+        const uint stratum = s % 4;
+        EXPECT_GE(p.x, float(stratum % 2) * 0.5f);
+        EXPECT_LT(p.x, float(stratum % 2 + 1) * 0.5f);
+        EXPECT_GE(p.y, float(stratum / 2) * 0.5f);
+        EXPECT_LT(p.y, float(stratum / 2 + 1) * 0.5f);
+        EXPECT_EQ(rng.dim, 2u);
+    }
+}
+
+// pcg4d transcribed independently from Jarzynski & Olano (JCGT 2020), listing 4,
+// on plain integers: the kernel must produce exactly these bits.
+std::uint32_t pcg4d_x(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
+    std::uint32_t v[4] = {a, b, c, d};
+    for (auto& e : v) e = e * 1664525u + 1013904223u;
+    auto mix = [&] {
+        v[0] += v[1] * v[3];
+        v[1] += v[2] * v[0];
+        v[2] += v[0] * v[1];
+        v[3] += v[1] * v[2];
+    };
+    mix();
+    for (auto& e : v) e ^= e >> 16u;
+    mix();
+    return v[0];
+}
+
+TEST(Rng, MatchesThePublishedHash) {
+    Kernel k;
+    auto rng = k.rng_start(12345u, 67u, 89u);
+    for (uint dim = 0; dim < 8; ++dim) {
+        const float expected = float(pcg4d_x(12345u, 67u, 89u, dim) >> 8) / 16777216.0f;
+        EXPECT_EQ(k.rng_next(rng), expected) << "dimension " << dim;
+    }
+}
+
+TEST(Rng, IsAPureFunctionOfItsCounters) {
+    Kernel k;
+    auto a = k.rng_start(3, 4, 5);
+    auto b = k.rng_start(3, 4, 5);
+    for (int i = 0; i < 16; ++i) EXPECT_EQ(k.rng_next(a), k.rng_next(b));
+    // Changing any one of pixel, sample or seed changes the stream.
+    auto first = [&](uint p, uint s, uint seed) {
+        auto r = k.rng_start(p, s, seed);
+        return k.rng_next(r);
+    };
+    std::set<float> values{first(3, 4, 5), first(4, 4, 5), first(3, 5, 5), first(3, 4, 6)};
+    EXPECT_EQ(values.size(), 4u);
+}
+
+TEST(Rng, UniformInTheHalfOpenUnitInterval) {
+    Kernel k;
+    constexpr int kBins = 16;
+    constexpr int kDraws = 160000;
+    int bins[kBins] = {};
+    double sum = 0.0;
+    for (int i = 0; i < kDraws; ++i) {
+        auto rng = k.rng_start(uint(i), 0, 0);
+        const float x = k.rng_next(rng);
+        ASSERT_GE(x, 0.0f);
+        ASSERT_LT(x, 1.0f);
+        sum += x;
+        ++bins[int(x * kBins)];
+    }
+    EXPECT_NEAR(sum / kDraws, 0.5, 0.005);
+    // Chi-square with 15 degrees of freedom: 37.7 is the 0.1% tail.
+    double chi2 = 0.0;
+    const double expected = double(kDraws) / kBins;
+    for (int b : bins) chi2 += (b - expected) * (b - expected) / expected;
+    EXPECT_LT(chi2, 37.7);
+}
+
+}  // namespace

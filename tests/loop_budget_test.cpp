@@ -1,0 +1,87 @@
+// The kernel's own loop budget must fire, on both backends, before lavapipe's
+// silent 65,535-iteration cap would: a brute-force scene with more spheres than the
+// budget truncates every sample that loops over them, and says so.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+
+#include "test_support.hpp"
+
+namespace {
+
+using namespace vkrt;
+
+// 8x8 pixels; the camera looks at a row of spheres, all of which every eye ray tests.
+Scene too_many_spheres(std::uint32_t count) {
+    Scene s;
+    s.camera.eye = {0, 0, 10};
+    s.camera.look_at = {0, 0, 0};
+    s.camera.width = 8;
+    s.camera.height = 8;
+    Material m;
+    m.diffuse = {1, 1, 1};
+    s.materials.push_back(m);
+    for (std::uint32_t i = 0; i < count; ++i) {
+        s.spheres.push_back(Sphere{{double(i % 100) * 0.01, double(i / 100) * 0.01, -5.0}, 0.004, 0});
+    }
+    return s;
+}
+
+void expect_truncation(const RenderOutcome& out, std::uint64_t expected) {
+    EXPECT_EQ(out.stats.truncated_samples, expected);
+}
+
+TEST(LoopBudget, FiresOnBothBackendsWhenOverBudget) {
+    const Scene scene = too_many_spheres(61000);  // > DEFAULT_LOOP_BUDGET tests per eye ray
+    const RenderOutcome cpu = test::render_cpu(scene);
+    const RenderOutcome gpu = test::render_vulkan(scene);
+    expect_truncation(cpu, 64);
+    expect_truncation(gpu, 64);
+    EXPECT_EQ(gpu.stats.validation_messages, 0u);
+}
+
+TEST(LoopBudget, SilentWhenUnderBudget) {
+    const Scene scene = too_many_spheres(2000);
+    expect_truncation(test::render_cpu(scene), 0);
+    const RenderOutcome gpu = test::render_vulkan(scene);
+    expect_truncation(gpu, 0);
+}
+
+TEST(LoopBudget, SceneCanLowerTheBudget) {
+    // The same exactness with a smaller budget: 100 spheres against a budget of 50.
+    Scene scene = too_many_spheres(100);
+    scene.render.loop_budget = 50;
+    expect_truncation(test::render_cpu(scene), 64);
+    expect_truncation(test::render_vulkan(scene), 64);
+    scene.render.loop_budget = 101;  // one tick per sphere, plus none for the (absent) lights
+    expect_truncation(test::render_cpu(scene), 0);
+    expect_truncation(test::render_vulkan(scene), 0);
+}
+
+TEST(LoopBudget, CommandLineReportsTruncationAsAnError) {
+    // Rendering through the program: non-zero exit and a message that says why.
+    const auto dir = std::filesystem::temp_directory_path() / "vkrt_budget_test";
+    std::filesystem::create_directories(dir);
+    const auto scene = dir / "budget.json";
+    std::ofstream(scene) << R"({
+        "camera": {"eye": [0, 0, 4], "look_at": [0, 0, 0], "width": 4, "height": 4},
+        "render": {"loop_budget": 2},
+        "materials": {"m": {"diffuse": [0.5, 0.5, 0.5]}},
+        "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"},
+                    {"type": "sphere", "center": [3, 0, 0], "radius": 1, "material": "m"},
+                    {"type": "sphere", "center": [-3, 0, 0], "radius": 1, "material": "m"}]})";
+    const auto err = dir / "stderr.txt";
+    const std::string cmd = std::string(VKRT_EXE) + " render " + scene.string() + " -q --backend cpu -o " +
+                            (dir / "out.png").string() + " 2> " + err.string();
+    const int status = std::system(cmd.c_str());
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << status;
+    std::ifstream in(err);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("16 samples ran out of the per-invocation loop budget"), std::string::npos) << text;
+}
+
+}  // namespace

@@ -1,0 +1,39 @@
+#include "test_support.hpp"
+
+#include <algorithm>
+
+#include "gpu/vulkan_backend.hpp"
+#include "ref/ref_backend.hpp"
+#include "scene/load_scene.hpp"
+
+namespace vkrt::test {
+
+std::filesystem::path source_dir() { return VKRT_SOURCE_DIR; }
+
+std::vector<std::filesystem::path> repo_scenes() {
+    std::vector<std::filesystem::path> scenes;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(source_dir() / "scenes")) {
+        if (entry.is_regular_file() && entry.path().extension() == ".json") scenes.push_back(entry.path());
+    }
+    std::sort(scenes.begin(), scenes.end());
+    return scenes;
+}
+
+Scene load_at_size(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height) {
+    Scene scene = load_scene(file);
+    scene.camera.width = width;
+    scene.camera.height = height;
+    return scene;
+}
+
+RenderOutcome render_cpu(const Scene& scene) {
+    auto backend = make_reference_backend();
+    return render_scene(scene, *backend);
+}
+
+RenderOutcome render_vulkan(const Scene& scene) {
+    auto backend = make_vulkan_backend(VulkanOptions{"", true});
+    return render_scene(scene, *backend);
+}
+
+}  // namespace vkrt::test
