@@ -1,0 +1,273 @@
+// The JSON scene format (docs/scene-format.md): reads a file into a validated
+// Scene. Everything that could later crash, hang or silently render black is
+// refused here with a message naming the file and the JSON path.
+#include "scene/json_scene_loader.hpp"
+
+#include <array>
+#include <cerrno>
+#include <cstdint>
+#include <cstdio>
+#include <functional>
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <system_error>
+
+#include <fmt/format.h>
+#include <glm/geometric.hpp>
+
+#include "scene/json_reader.hpp"
+#include "scene/limits.hpp"
+#include "scene/scene_error.hpp"
+
+namespace vkrt {
+namespace {
+
+using json::Node;
+
+// Two directions count as parallel when the sine of the angle between them is
+// below this: such a camera basis or triangle has no usable orientation in the
+// kernel's single precision, however exactly the file states it.
+constexpr double kParallelSine = 1e-9;
+
+bool parallel_or_zero(const dvec3& a, const dvec3& b) {
+    return glm::length(glm::cross(a, b)) <= kParallelSine * glm::length(a) * glm::length(b);
+}
+
+std::string read_text(const std::filesystem::path& file, const std::string& name) {
+    // C stdio rather than iostreams: it reliably leaves errno set, so the message
+    // can say why (no such file, permission denied, is a directory).
+    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "rb"), &std::fclose);
+    if (!f) {
+        throw SceneError(fmt::format("{}: cannot open scene file ({})", name,
+                                     std::generic_category().message(errno)));
+    }
+    std::string text;
+    char buffer[1 << 16];
+    std::size_t n = 0;
+    while ((n = std::fread(buffer, 1, sizeof buffer, f.get())) > 0) text.append(buffer, n);
+    if (std::ferror(f.get())) {
+        throw SceneError(fmt::format("{}: cannot open scene file (read failed: {})", name,
+                                     std::generic_category().message(errno)));
+    }
+    return text;
+}
+
+std::uint32_t whole32(const Node& n, std::uint64_t lo, std::uint64_t hi) {
+    return static_cast<std::uint32_t>(n.whole(lo, hi));
+}
+
+Camera read_camera(const Node& n) {
+    n.allow_only({"eye", "look_at", "up", "fov", "width", "height"});
+    Camera c;
+    c.eye = n.required("eye").vec3();
+    c.look_at = n.required("look_at").vec3();
+    if (auto up = n.find("up")) c.up = up->vec3();
+    if (auto fov = n.find("fov")) c.fov = fov->number_between_exclusive(0.0, 180.0);
+    if (auto w = n.find("width")) c.width = whole32(*w, 1, limits::kMaxImageSide);
+    if (auto h = n.find("height")) c.height = whole32(*h, 1, limits::kMaxImageSide);
+
+    const std::uint64_t pixels = std::uint64_t(c.width) * c.height;
+    if (pixels > limits::kMaxImagePixels) {
+        n.fail(fmt::format("image of {}x{} pixels is larger than the limit of {} pixels", c.width, c.height,
+                           limits::kMaxImagePixels));
+    }
+    const dvec3 view = c.look_at - c.eye;
+    if (glm::length(view) == 0.0) {
+        n.fail_field("look_at", fmt::format("look_at must differ from eye (both are {})", json::format_vec3(c.eye)));
+    }
+    if (glm::length(c.up) == 0.0) {
+        n.fail_field("up", fmt::format("expected a non-zero vector, got {}", json::format_vec3(c.up)));
+    }
+    if (parallel_or_zero(c.up, view)) {
+        n.fail_field("up", fmt::format("{}up {} is parallel to the view direction look_at - eye = {}",
+                                       n.find("up") ? "" : "the default ", json::format_vec3(c.up),
+                                       json::format_vec3(view)));
+    }
+    return c;
+}
+
+RenderSettings read_render(const Node& n) {
+    n.allow_only({"mode", "aa", "jitter", "shadows", "max_depth", "ambient", "background", "seed", "spp",
+                  "loop_budget"});
+    RenderSettings r;
+    if (auto mode = n.find("mode")) {
+        const std::string m = mode->string();
+        if (m == "global") mode->fail("global illumination (mode \"global\") is not supported yet; use \"local\"");
+        if (m != "local") mode->fail(fmt::format("unknown mode {} (expected \"local\")", json::quote_user(m)));
+        r.mode = RenderMode::Local;
+    }
+    if (auto aa = n.find("aa")) r.aa = whole32(*aa, 1, limits::kMaxAa);
+    if (auto jitter = n.find("jitter")) r.jitter = jitter->boolean();
+    if (auto shadows = n.find("shadows")) r.shadows = shadows->boolean();
+    if (auto depth = n.find("max_depth")) r.max_depth = whole32(*depth, 0, limits::kMaxDepth);
+    if (auto ambient = n.find("ambient")) r.ambient = ambient->color();
+    if (auto background = n.find("background")) r.background = background->color();
+    if (auto seed = n.find("seed")) r.seed = whole32(*seed, 0, std::numeric_limits<std::uint32_t>::max());
+    if (auto spp = n.find("spp")) r.spp = whole32(*spp, 1, limits::kMaxSpp);
+    if (auto budget = n.find("loop_budget")) r.loop_budget = whole32(*budget, 1, limits::kMaxLoopBudget);
+    return r;
+}
+
+bool nonzero(const dvec3& v) { return v.x != 0.0 || v.y != 0.0 || v.z != 0.0; }
+
+Material read_material(const std::string& name, const Node& n) {
+    n.allow_only({"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit", "ior", "emission"});
+    Material m;
+    m.name = name;
+    if (auto v = n.find("diffuse")) m.diffuse = v->color();
+    if (auto v = n.find("kd")) m.kd = v->number_at_least(0.0);
+    if (auto v = n.find("specular")) m.specular = v->color();
+    if (auto v = n.find("ks")) m.ks = v->number_at_least(0.0);
+    if (auto v = n.find("shininess")) m.shininess = v->number_at_least(0.0);
+    if (auto v = n.find("ior")) m.ior = v->number_above(0.0);
+    if (auto v = n.find("emission")) m.emission = v->color();
+    // Parsed and range-checked like the rest, so a file written for the later
+    // mirror/glass work is diagnosed precisely, then refused rather than
+    // rendered as if the surface were opaque.
+    if (auto v = n.find("reflect")) {
+        m.reflect = v->color();
+        if (nonzero(m.reflect)) v->fail("mirror reflection is not supported yet (reflect must be [0, 0, 0])");
+    }
+    if (auto v = n.find("transmit")) {
+        m.transmit = v->color();
+        if (nonzero(m.transmit)) v->fail("refraction is not supported yet (transmit must be [0, 0, 0])");
+    }
+    return m;
+}
+
+// Material name -> index into Scene::materials (definition order).
+using MaterialIndex = std::map<std::string, std::uint32_t, std::less<>>;
+
+MaterialIndex read_materials(const Node& n, std::vector<Material>& out) {
+    MaterialIndex index;
+    for (const auto& [name, node] : n.members()) {
+        out.push_back(read_material(name, node));
+        index.emplace(name, static_cast<std::uint32_t>(out.size() - 1));
+    }
+    return index;
+}
+
+void read_lights(const Node& n, std::vector<PointLight>& out) {
+    for (const Node& light : n.elements()) {
+        const Node type = light.required("type");
+        const std::string t = type.string();
+        if (t == "area") type.fail("area lights are not supported yet");
+        if (t != "point") type.fail(fmt::format("unknown light type {} (expected one of: point)", json::quote_user(t)));
+        light.allow_only({"type", "position", "color", "intensity"});
+        PointLight p;
+        p.position = light.required("position").vec3();
+        if (auto c = light.find("color")) p.color = c->color();
+        if (auto i = light.find("intensity")) p.intensity = i->number_at_least(0.0);
+        out.push_back(p);
+    }
+}
+
+std::uint32_t material_of(const Node& object, const MaterialIndex& materials) {
+    const Node node = object.required("material");
+    const std::string name = node.string();
+    if (const auto it = materials.find(name); it != materials.end()) return it->second;
+    std::string defined;
+    std::size_t shown = 0;
+    for (const auto& [known, index] : materials) {
+        if (++shown > 20) {
+            defined += ", ...";
+            break;
+        }
+        defined += (defined.empty() ? "" : ", ") + known;
+    }
+    node.fail(fmt::format("unknown material {} ({})", json::quote_user(name),
+                          materials.empty() ? std::string("no materials are defined") : "defined: " + defined));
+}
+
+Sphere read_sphere(const Node& n, const MaterialIndex& materials) {
+    n.allow_only({"center", "radius", "material", "type"});
+    Sphere s;
+    s.center = n.required("center").vec3();
+    s.radius = n.required("radius").number_above(0.0);
+    s.material = material_of(n, materials);
+    return s;
+}
+
+Triangle read_triangle(const Node& n, const MaterialIndex& materials) {
+    n.allow_only({"vertices", "normals", "material", "type"});
+    Triangle t;
+    const Node vertices = n.required("vertices");
+    const auto v = vertices.elements(3, "an array of 3 points");
+    for (int i = 0; i < 3; ++i) t.vertices[i] = v[i].vec3();
+    if (parallel_or_zero(t.vertices[1] - t.vertices[0], t.vertices[2] - t.vertices[0])) {
+        vertices.fail("the triangle has zero area (its vertices coincide or lie on one line)");
+    }
+    if (auto normals = n.find("normals")) {
+        const auto e = normals->elements(3, "an array of 3 vectors");
+        std::array<dvec3, 3> ns{};
+        for (int i = 0; i < 3; ++i) {
+            ns[i] = e[i].vec3();
+            if (!nonzero(ns[i])) e[i].fail("expected a non-zero vector, got [0, 0, 0]");
+            // Normalized here so the kernel can interpolate without renormalizing
+            // inputs; the file may give any length.
+            ns[i] = glm::normalize(ns[i]);
+        }
+        t.normals = ns;
+    }
+    t.material = material_of(n, materials);
+    return t;
+}
+
+// A quad is two triangles sharing the diagonal corner -> corner+e1+e2, both wound
+// so that their front face is the side of cross(edge1, edge2).
+void read_quad(const Node& n, const MaterialIndex& materials, std::vector<Triangle>& out) {
+    n.allow_only({"corner", "edge1", "edge2", "material", "type"});
+    const dvec3 corner = n.required("corner").vec3();
+    const dvec3 e1 = n.required("edge1").vec3();
+    const Node edge2 = n.required("edge2");
+    const dvec3 e2 = edge2.vec3();
+    if (!nonzero(e1)) n.fail_field("edge1", "expected a non-zero vector, got [0, 0, 0]");
+    if (!nonzero(e2)) edge2.fail("expected a non-zero vector, got [0, 0, 0]");
+    if (parallel_or_zero(e1, e2)) edge2.fail("edge1 and edge2 are parallel, so the quad has zero area");
+    const std::uint32_t material = material_of(n, materials);
+    out.push_back(Triangle{{corner, corner + e1, corner + e1 + e2}, std::nullopt, material});
+    out.push_back(Triangle{{corner, corner + e1 + e2, corner + e2}, std::nullopt, material});
+}
+
+void read_objects(const Node& n, const MaterialIndex& materials, Scene& scene) {
+    for (const Node& object : n.elements()) {
+        const Node type = object.required("type");
+        const std::string t = type.string();
+        if (t == "sphere") {
+            scene.spheres.push_back(read_sphere(object, materials));
+        } else if (t == "triangle") {
+            scene.triangles.push_back(read_triangle(object, materials));
+        } else if (t == "quad") {
+            read_quad(object, materials, scene.triangles);
+        } else {
+            type.fail(fmt::format("unknown object type {} (expected one of: sphere, triangle, quad)",
+                                  json::quote_user(t)));
+        }
+    }
+}
+
+}  // namespace
+
+Scene load_json_scene(const std::filesystem::path& file) {
+    const std::string name = file.string();
+    const std::string text = read_text(file, name);
+    const json::Json doc = json::parse_document(name, text);
+    const Node root(name, doc, "");
+    if (!doc.is_object()) {
+        root.fail(fmt::format("expected a JSON object at the top level, got {}", json::describe(doc)));
+    }
+    root.allow_only({"camera", "render", "materials", "lights", "objects"});
+
+    Scene scene;
+    scene.source = file;
+    scene.camera = read_camera(root.required("camera"));
+    if (auto render = root.find("render")) scene.render = read_render(*render);
+    const MaterialIndex materials = read_materials(root.required("materials"), scene.materials);
+    if (auto lights = root.find("lights")) read_lights(*lights, scene.lights);
+    read_objects(root.required("objects"), materials, scene);
+    return scene;
+}
+
+}  // namespace vkrt

@@ -1,0 +1,156 @@
+// Bad scene files through the real program: each must end with exit status 1 and
+// exactly one "error: " line naming the file and the JSON path (or line:column),
+// never a crash, a hang or an output image (DESIGN.md principle 5). The loader's
+// own messages are tested value by value in scene_loader_test.cpp; this test is
+// about what a user at the command line sees.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <ostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct BadInput {
+    std::string name;                 // test name and scene file stem
+    std::string text;                 // file contents; empty: the file is not created
+    std::vector<std::string> pieces;  // each must appear in the error line
+};
+
+// gtest prints parameters on failure; the name says which case it was.
+void PrintTo(const BadInput& input, std::ostream* os) { *os << input.name; }
+
+// A valid scene with one piece replaced. Kept tiny so every case reads at a glance.
+std::string scene(const std::string& camera, const std::string& objects,
+                  const std::string& materials = R"({"chalk": {"diffuse": [0.8, 0.8, 0.8]}})") {
+    return fmt::format(R"({{"camera": {}, "materials": {}, "objects": {}}})", camera, materials, objects);
+}
+
+const std::string kCamera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 8, "height": 6})";
+const std::string kSphere = R"([{"type": "sphere", "center": [0, 1, 0], "radius": 0.5, "material": "chalk"}])";
+
+std::string camera_with(const std::string& extra) {
+    return fmt::format(R"({{"eye": [0, 1, 3], "look_at": [0, 1, 0], {}}})", extra);
+}
+
+std::string sphere_with_radius(const std::string& radius) {
+    return fmt::format(R"([{{"type": "sphere", "center": [0, 1, 0], "radius": {}, "material": "chalk"}}])", radius);
+}
+
+std::vector<BadInput> cases() {
+    return {
+        {"malformed_json", "{\n  \"camera\": {\"eye\": [0, 1, 3],, }\n}", {":2:", "invalid JSON"}},
+        {"truncated_json", "{\"camera\": {\"eye\": [0, 1", {":1:", "invalid JSON"}},
+        {"top_level_array", "[]", {"expected a JSON object"}},
+        {"missing_camera_eye", scene(R"({"look_at": [0, 1, 0]})", kSphere), {"camera.eye", "missing"}},
+        {"missing_radius",
+         scene(kCamera, R"([{"type": "sphere", "center": [0, 1, 0], "material": "chalk"}])"),
+         {"objects[0].radius", "missing"}},
+        {"fov_is_a_string", scene(camera_with(R"("fov": "wide")"), kSphere), {"camera.fov", "expected a number"}},
+        {"objects_is_an_object", scene(kCamera, "{}"), {"objects", "expected an array"}},
+        {"eye_has_two_numbers", scene(R"({"eye": [0, 1], "look_at": [0, 1, 0]})", kSphere),
+         {"camera.eye", "3 numbers"}},
+        {"width_is_fractional", scene(camera_with(R"("width": 2.5)"), kSphere), {"camera.width", "whole number"}},
+        {"unknown_material",
+         scene(kCamera, R"([{"type": "sphere", "center": [0, 1, 0], "radius": 0.5, "material": "chalk2"}])"),
+         {"objects[0].material", "unknown material 'chalk2'", "chalk"}},
+        {"negative_radius", scene(kCamera, sphere_with_radius("-1")), {"objects[0].radius", "> 0"}},
+        {"zero_radius", scene(kCamera, sphere_with_radius("0")), {"objects[0].radius", "> 0"}},
+        {"infinite_radius", scene(kCamera, sphere_with_radius("1e999")), {"objects[0].radius", "finite"}},
+        {"infinite_eye", scene(R"({"eye": [-1e999, 1, 3], "look_at": [0, 1, 0]})", kSphere),
+         {"camera.eye[0]", "finite"}},
+        {"zero_up", scene(camera_with(R"("up": [0, 0, 0])"), kSphere), {"camera.up", "non-zero"}},
+        {"fov_zero", scene(camera_with(R"("fov": 0)"), kSphere), {"camera.fov", "between 0 and 180"}},
+        {"fov_180", scene(camera_with(R"("fov": 180)"), kSphere), {"camera.fov", "between 0 and 180"}},
+        {"fov_negative", scene(camera_with(R"("fov": -5)"), kSphere), {"camera.fov", "between 0 and 180"}},
+        {"fov_200", scene(camera_with(R"("fov": 200)"), kSphere), {"camera.fov", "between 0 and 180"}},
+        {"width_zero", scene(camera_with(R"("width": 0)"), kSphere), {"camera.width", "got 0"}},
+        {"height_zero", scene(camera_with(R"("height": 0)"), kSphere), {"camera.height", "got 0"}},
+        {"width_100000", scene(camera_with(R"("width": 100000)"), kSphere), {"camera.width", "got 100000"}},
+        {"image_30000_squared", scene(camera_with(R"("width": 30000, "height": 30000)"), kSphere),
+         {"camera: image of 30000x30000 pixels"}},
+        {"unknown_field",
+         scene(kCamera, R"([{"type": "sphere", "center": [0, 1, 0], "radus": 0.5, "material": "chalk"}])"),
+         {"objects[0]", "unknown field 'radus'", "radius"}},
+        {"reflect_not_supported_yet",
+         scene(kCamera, kSphere, R"({"chalk": {"reflect": [1, 1, 1]}})"),
+         {"materials.chalk.reflect", "not supported yet"}},
+        {"file_does_not_exist", "", {"cannot open scene file"}},
+    };
+}
+
+std::string shell_quote(const std::string& s) {
+    std::string out = "'";
+    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+class BadInputTest : public ::testing::TestWithParam<BadInput> {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / fmt::format("vkrt_bad_input_{}_{}", ::getpid(), GetParam().name);
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    fs::path dir_;
+};
+
+TEST_P(BadInputTest, FailsWithOneClearError) {
+    const BadInput& input = GetParam();
+    ASSERT_TRUE(fs::exists(VKRT_EXE)) << "program not built: " << VKRT_EXE;
+
+    const fs::path file = dir_ / (input.name + ".json");
+    if (!input.text.empty()) std::ofstream(file, std::ios::binary) << input.text;
+    const fs::path out = dir_ / "out.png";
+    const fs::path err = dir_ / "stderr.txt";
+
+    // timeout turns a hang into a failure (status 124) instead of a stuck suite;
+    // -k makes sure even a program that ignores SIGTERM goes away.
+    const std::string command = fmt::format("timeout -k 5 20 {} render {} -o {} --backend cpu > {} 2> {}",
+                                            shell_quote(VKRT_EXE), shell_quote(file.string()),
+                                            shell_quote(out.string()), shell_quote((dir_ / "stdout.txt").string()),
+                                            shell_quote(err.string()));
+    const int status = std::system(command.c_str());
+
+    std::ifstream in(err);
+    std::stringstream all;
+    all << in.rdbuf();
+    const std::string stderr_text = all.str();
+
+    ASSERT_NE(status, -1) << "could not run: " << command;
+    ASSERT_TRUE(WIFEXITED(status)) << "shell ended by a signal; stderr:\n" << stderr_text;
+    const int code = WEXITSTATUS(status);
+    EXPECT_NE(code, 124) << "timed out (hang); stderr:\n" << stderr_text;
+    EXPECT_LT(code, 128) << "crashed (signal " << code - 128 << "); stderr:\n" << stderr_text;
+    EXPECT_EQ(code, 1) << "stderr:\n" << stderr_text;
+
+    std::vector<std::string> error_lines;
+    std::istringstream lines(stderr_text);
+    for (std::string line; std::getline(lines, line);) {
+        if (line.rfind("error: ", 0) == 0) error_lines.push_back(line);
+    }
+    ASSERT_EQ(error_lines.size(), 1u) << "stderr:\n" << stderr_text;
+    const std::string& line = error_lines[0];
+    EXPECT_NE(line.find(file.filename().string()), std::string::npos) << "no file name in: " << line;
+    for (const std::string& piece : input.pieces) {
+        EXPECT_NE(line.find(piece), std::string::npos) << "missing '" << piece << "' in: " << line;
+    }
+    EXPECT_FALSE(fs::exists(out)) << "an output image was written despite the error";
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, BadInputTest, ::testing::ValuesIn(cases()),
+                         [](const ::testing::TestParamInfo<BadInput>& p) { return p.param.name; });
+
+}  // namespace

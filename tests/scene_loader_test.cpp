@@ -1,0 +1,568 @@
+// The JSON scene loader, in process: valid files give the exact values (defaults
+// included), and every class of bad input gives a SceneError that names the file,
+// the JSON path and what was wrong (DESIGN.md principle 5).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <string>
+#include <string_view>
+
+#include <fmt/format.h>
+#include <glm/geometric.hpp>
+
+#include "scene/json_scene_loader.hpp"
+#include "scene/limits.hpp"
+#include "scene/scene_error.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using vkrt::dvec3;
+using vkrt::Scene;
+using vkrt::SceneError;
+
+// A valid scene whose sections can be replaced one at a time; an empty string
+// leaves that section out of the file.
+struct Parts {
+    std::string camera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0]})";
+    std::string render;
+    std::string materials = R"({"chalk": {"diffuse": [0.8, 0.8, 0.8]}, "glass": {}})";
+    std::string lights;
+    std::string objects = R"([{"type": "sphere", "center": [0, 1, 0], "radius": 0.5, "material": "chalk"}])";
+
+    std::string text() const {
+        std::string out = "{";
+        auto add = [&out](std::string_view key, const std::string& value) {
+            if (value.empty()) return;
+            out += fmt::format("{}\"{}\": {}", out.size() > 1 ? ", " : "", key, value);
+        };
+        add("camera", camera);
+        add("render", render);
+        add("materials", materials);
+        add("lights", lights);
+        add("objects", objects);
+        return out + "}";
+    }
+};
+
+Parts with_objects(std::string objects) {
+    Parts p;
+    p.objects = std::move(objects);
+    return p;
+}
+
+Parts with_camera(std::string camera) {
+    Parts p;
+    p.camera = std::move(camera);
+    return p;
+}
+
+Parts with_render(std::string render) {
+    Parts p;
+    p.render = std::move(render);
+    return p;
+}
+
+Parts with_materials(std::string materials) {
+    Parts p;
+    p.materials = std::move(materials);
+    return p;
+}
+
+Parts with_lights(std::string lights) {
+    Parts p;
+    p.lights = std::move(lights);
+    return p;
+}
+
+void expect_vec(const dvec3& actual, const dvec3& expected) {
+    EXPECT_DOUBLE_EQ(actual.x, expected.x);
+    EXPECT_DOUBLE_EQ(actual.y, expected.y);
+    EXPECT_DOUBLE_EQ(actual.z, expected.z);
+}
+
+class SceneLoaderTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() / fmt::format("vkrt_scene_loader_{}_{}", ::getpid(), info->name());
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    fs::path write(const std::string& text, const std::string& name = "scene.json") {
+        const fs::path file = dir_ / name;
+        std::ofstream(file, std::ios::binary) << text;
+        return file;
+    }
+
+    Scene load(const std::string& text) { return vkrt::load_json_scene(write(text)); }
+
+    // Loads text that must be refused; returns the message after checking that it
+    // starts with the file name and contains every expected piece.
+    std::string expect_error(const std::string& text, std::initializer_list<std::string_view> pieces) {
+        const fs::path file = write(text);
+        try {
+            vkrt::load_json_scene(file);
+        } catch (const SceneError& e) {
+            const std::string message = e.what();
+            EXPECT_EQ(message.rfind(file.string() + ":", 0), 0u) << message;
+            for (std::string_view piece : pieces) {
+                EXPECT_NE(message.find(piece), std::string::npos) << "missing '" << piece << "' in: " << message;
+            }
+            EXPECT_EQ(message.find('\n'), std::string::npos) << "not one line: " << message;
+            return message;
+        }
+        ADD_FAILURE() << "no SceneError for: " << text;
+        return {};
+    }
+
+    std::string expect_error(const Parts& parts, std::initializer_list<std::string_view> pieces) {
+        return expect_error(parts.text(), pieces);
+    }
+
+    fs::path dir_;
+};
+
+// ---- valid scenes -------------------------------------------------------------
+
+TEST_F(SceneLoaderTest, ReadsEveryFieldOfAFullScene) {
+    const Scene s = load(R"({
+      // comments are allowed, both kinds
+      "camera": { "eye": [1, 2, 3], "look_at": [0, 1, 0], "up": [0, 0, 2], "fov": 55.5,
+                  "width": 640, "height": 480 },
+      "render": { "mode": "local", "aa": 3, "jitter": true, "shadows": false, "max_depth": 7,
+                  "ambient": [0.1, 0.2, 0.3], "background": [0.4, 0.5, 0.6], "seed": 4294967295,
+                  "spp": 16, "loop_budget": 1000 },
+      /* zeta comes first in the file, so it is material 0 whatever the alphabet says */
+      "materials": {
+        "zeta": { "diffuse": [0.8, 0.7, 0.6], "kd": 0.9, "specular": [1, 1, 0.5], "ks": 0.25,
+                  "shininess": 50, "reflect": [0, 0, 0], "transmit": [0, 0, 0], "ior": 1.33,
+                  "emission": [2, 3, 4] },
+        "alpha": {}
+      },
+      "lights": [ { "type": "point", "position": [0, 1.9, 0], "color": [1, 0.5, 0.25], "intensity": 2.5 } ],
+      "objects": [
+        { "type": "sphere", "center": [0, 1, 0], "radius": 0.5, "material": "alpha" },
+        { "type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]],
+          "normals": [[0, 0, 2], [3, 0, 4], [0, 0, 0.5]], "material": "zeta" }
+      ]
+    })");
+
+    EXPECT_EQ(s.source, dir_ / "scene.json");
+    expect_vec(s.camera.eye, {1, 2, 3});
+    expect_vec(s.camera.look_at, {0, 1, 0});
+    expect_vec(s.camera.up, {0, 0, 2});
+    EXPECT_DOUBLE_EQ(s.camera.fov, 55.5);
+    EXPECT_EQ(s.camera.width, 640u);
+    EXPECT_EQ(s.camera.height, 480u);
+
+    EXPECT_EQ(s.render.mode, vkrt::RenderMode::Local);
+    EXPECT_EQ(s.render.aa, 3u);
+    EXPECT_TRUE(s.render.jitter);
+    EXPECT_FALSE(s.render.shadows);
+    EXPECT_EQ(s.render.max_depth, 7u);
+    expect_vec(s.render.ambient, {0.1, 0.2, 0.3});
+    expect_vec(s.render.background, {0.4, 0.5, 0.6});
+    EXPECT_EQ(s.render.seed, 4294967295u);
+    EXPECT_EQ(s.render.spp, 16u);
+    EXPECT_EQ(s.render.samples_per_pixel(), 16u);
+    EXPECT_EQ(s.render.loop_budget, 1000u);
+
+    ASSERT_EQ(s.materials.size(), 2u);
+    const auto& zeta = s.materials[0];
+    EXPECT_EQ(zeta.name, "zeta");
+    expect_vec(zeta.diffuse, {0.8, 0.7, 0.6});
+    EXPECT_DOUBLE_EQ(zeta.kd, 0.9);
+    expect_vec(zeta.specular, {1, 1, 0.5});
+    EXPECT_DOUBLE_EQ(zeta.ks, 0.25);
+    EXPECT_DOUBLE_EQ(zeta.shininess, 50);
+    expect_vec(zeta.reflect, {0, 0, 0});
+    expect_vec(zeta.transmit, {0, 0, 0});
+    EXPECT_DOUBLE_EQ(zeta.ior, 1.33);
+    expect_vec(zeta.emission, {2, 3, 4});
+    EXPECT_EQ(s.materials[1].name, "alpha");
+
+    ASSERT_EQ(s.lights.size(), 1u);
+    expect_vec(s.lights[0].position, {0, 1.9, 0});
+    expect_vec(s.lights[0].color, {1, 0.5, 0.25});
+    EXPECT_DOUBLE_EQ(s.lights[0].intensity, 2.5);
+
+    ASSERT_EQ(s.spheres.size(), 1u);
+    expect_vec(s.spheres[0].center, {0, 1, 0});
+    EXPECT_DOUBLE_EQ(s.spheres[0].radius, 0.5);
+    EXPECT_EQ(s.spheres[0].material, 1u);  // alpha: second in the file
+
+    ASSERT_EQ(s.triangles.size(), 1u);
+    const auto& t = s.triangles[0];
+    expect_vec(t.vertices[0], {0, 0, 0});
+    expect_vec(t.vertices[1], {1, 0, 0});
+    expect_vec(t.vertices[2], {0, 1, 0});
+    EXPECT_EQ(t.material, 0u);
+    ASSERT_TRUE(t.normals.has_value());
+    expect_vec((*t.normals)[0], {0, 0, 1});  // normalized by the loader
+    expect_vec((*t.normals)[1], {0.6, 0, 0.8});
+    expect_vec((*t.normals)[2], {0, 0, 1});
+}
+
+TEST_F(SceneLoaderTest, FillsDefaults) {
+    const Scene s = load(R"({"camera": {"eye": [0, 1, 3], "look_at": [0, 1, 0]},
+                             "materials": {"plain": {}}, "objects": []})");
+    expect_vec(s.camera.up, {0, 1, 0});
+    EXPECT_DOUBLE_EQ(s.camera.fov, 40.0);
+    EXPECT_EQ(s.camera.width, 400u);
+    EXPECT_EQ(s.camera.height, 300u);
+
+    EXPECT_EQ(s.render.mode, vkrt::RenderMode::Local);
+    EXPECT_EQ(s.render.aa, 1u);
+    EXPECT_FALSE(s.render.jitter);
+    EXPECT_TRUE(s.render.shadows);
+    EXPECT_EQ(s.render.max_depth, 5u);
+    expect_vec(s.render.ambient, {0, 0, 0});
+    expect_vec(s.render.background, {0, 0, 0});
+    EXPECT_EQ(s.render.seed, 0u);
+    EXPECT_EQ(s.render.spp, 0u);
+    EXPECT_EQ(s.render.loop_budget, 0u);
+
+    ASSERT_EQ(s.materials.size(), 1u);
+    const auto& m = s.materials[0];
+    EXPECT_EQ(m.name, "plain");
+    expect_vec(m.diffuse, {0, 0, 0});
+    EXPECT_DOUBLE_EQ(m.kd, 1.0);
+    expect_vec(m.specular, {0, 0, 0});
+    EXPECT_DOUBLE_EQ(m.ks, 0.0);
+    EXPECT_DOUBLE_EQ(m.shininess, 20.0);
+    expect_vec(m.reflect, {0, 0, 0});
+    expect_vec(m.transmit, {0, 0, 0});
+    EXPECT_DOUBLE_EQ(m.ior, 1.5);
+    expect_vec(m.emission, {0, 0, 0});
+
+    EXPECT_TRUE(s.lights.empty());
+    EXPECT_TRUE(s.spheres.empty());
+    EXPECT_TRUE(s.triangles.empty());
+}
+
+TEST_F(SceneLoaderTest, SamplesPerPixelDefaultsToAaSquared) {
+    const Scene s = load(with_render(R"({"aa": 4})").text());
+    EXPECT_EQ(s.render.spp, 0u);
+    EXPECT_EQ(s.render.samples_per_pixel(), 16u);
+}
+
+TEST_F(SceneLoaderTest, LightDefaults) {
+    const Scene s = load(with_lights(R"([{"type": "point", "position": [1, 2, 3]}])").text());
+    ASSERT_EQ(s.lights.size(), 1u);
+    expect_vec(s.lights[0].position, {1, 2, 3});
+    expect_vec(s.lights[0].color, {1, 1, 1});
+    EXPECT_DOUBLE_EQ(s.lights[0].intensity, 1.0);
+}
+
+TEST_F(SceneLoaderTest, QuadBecomesTwoTrianglesFacingCrossOfEdges) {
+    const Scene s = load(with_objects(R"([{"type": "quad", "corner": [1, 2, 3], "edge1": [2, 0, 0],
+                                           "edge2": [0, 0, -4], "material": "glass"}])")
+                             .text());
+    ASSERT_EQ(s.triangles.size(), 2u);
+    const auto& a = s.triangles[0];
+    const auto& b = s.triangles[1];
+    expect_vec(a.vertices[0], {1, 2, 3});   // corner
+    expect_vec(a.vertices[1], {3, 2, 3});   // corner + e1
+    expect_vec(a.vertices[2], {3, 2, -1});  // corner + e1 + e2
+    expect_vec(b.vertices[0], {1, 2, 3});   // corner
+    expect_vec(b.vertices[1], {3, 2, -1});  // corner + e1 + e2
+    expect_vec(b.vertices[2], {1, 2, -1});  // corner + e2
+    EXPECT_FALSE(a.normals.has_value());
+    EXPECT_FALSE(b.normals.has_value());
+    EXPECT_EQ(a.material, 1u);
+    EXPECT_EQ(b.material, 1u);
+    // cross((2,0,0), (0,0,-4)) = (0,8,0): both halves must face +y.
+    for (const auto& t : s.triangles) {
+        const dvec3 n = glm::cross(t.vertices[1] - t.vertices[0], t.vertices[2] - t.vertices[0]);
+        EXPECT_GT(n.y, 0.0);
+        EXPECT_DOUBLE_EQ(n.x, 0.0);
+        EXPECT_DOUBLE_EQ(n.z, 0.0);
+    }
+}
+
+TEST_F(SceneLoaderTest, AcceptsWholeNumbersWrittenAsFloats) {
+    const Scene s = load(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 64.0, "height": 4.8e1})").text());
+    EXPECT_EQ(s.camera.width, 64u);
+    EXPECT_EQ(s.camera.height, 48u);
+}
+
+TEST_F(SceneLoaderTest, AcceptsZeroReflectAndTransmit) {
+    const Scene s = load(with_materials(R"({"chalk": {"reflect": [0, 0, 0], "transmit": [0, 0, 0]}})").text());
+    ASSERT_EQ(s.materials.size(), 1u);
+    expect_vec(s.materials[0].reflect, {0, 0, 0});
+}
+
+TEST_F(SceneLoaderTest, AcceptsLargestImage) {
+    const Scene s = load(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 8192, "height": 4096})").text());
+    EXPECT_EQ(std::uint64_t(s.camera.width) * s.camera.height, vkrt::limits::kMaxImagePixels);
+}
+
+// ---- files and syntax ---------------------------------------------------------
+
+TEST_F(SceneLoaderTest, MissingFile) {
+    const fs::path file = dir_ / "nope.json";
+    try {
+        vkrt::load_json_scene(file);
+        ADD_FAILURE() << "no error";
+    } catch (const SceneError& e) {
+        const std::string message = e.what();
+        EXPECT_EQ(message.rfind(file.string() + ": cannot open scene file (", 0), 0u) << message;
+        EXPECT_NE(message.find("No such file"), std::string::npos) << message;
+    }
+}
+
+TEST_F(SceneLoaderTest, DirectoryInsteadOfFile) {
+    try {
+        vkrt::load_json_scene(dir_);
+        ADD_FAILURE() << "no error";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind(dir_.string() + ": cannot open scene file", 0), 0u) << e.what();
+    }
+}
+
+TEST_F(SceneLoaderTest, MalformedJsonGivesLineAndColumn) {
+    const std::string file = (dir_ / "scene.json").string();
+    // The stray comma is line 3, column 31.
+    std::string m = expect_error("{\n  // a comment\n  \"camera\": {\"eye\": [0, 1, 3],, \"look_at\": [0, 1, 0]}\n}",
+                                 {"invalid JSON"});
+    EXPECT_EQ(m.rfind(file + ":3:31: invalid JSON: ", 0), 0u) << m;
+    m = expect_error("{\"camera\": {", {"invalid JSON", "end of input"});
+    EXPECT_EQ(m.rfind(file + ":1:13: ", 0), 0u) << m;
+    m = expect_error("", {"invalid JSON"});
+    EXPECT_EQ(m.rfind(file + ":1:1: ", 0), 0u) << m;
+    // Columns count characters, not UTF-8 bytes.
+    m = expect_error("{\"é\": x}", {"invalid JSON"});
+    EXPECT_EQ(m.rfind(file + ":1:7: ", 0), 0u) << m;
+    expect_error("{} /* unterminated", {"invalid JSON", "comment"});
+}
+
+TEST_F(SceneLoaderTest, TopLevelMustBeAnObject) {
+    expect_error("[1, 2]", {"expected a JSON object at the top level", "got an array of 2 elements"});
+}
+
+TEST_F(SceneLoaderTest, DuplicateKey) {
+    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "fov": 30, "fov": 60})"),
+                 {": camera: ", "'fov'", "more than once"});
+}
+
+TEST_F(SceneLoaderTest, AbsurdNesting) {
+    expect_error(with_objects(std::string(200, '[') + std::string(200, ']')), {"objects[0]", "nesting"});
+}
+
+// ---- missing and unknown fields -----------------------------------------------
+
+TEST_F(SceneLoaderTest, MissingRequiredFields) {
+    Parts no_camera;
+    no_camera.camera.clear();
+    expect_error(no_camera, {": camera: required field is missing"});
+    Parts no_materials;
+    no_materials.materials.clear();
+    expect_error(no_materials, {": materials: required field is missing"});
+    Parts no_objects;
+    no_objects.objects.clear();
+    expect_error(no_objects, {": objects: required field is missing"});
+    expect_error(with_camera(R"({"look_at": [0, 1, 0]})"), {": camera.eye: required field is missing"});
+    expect_error(with_camera(R"({"eye": [0, 1, 3]})"), {": camera.look_at: required field is missing"});
+    expect_error(with_objects(R"([{"type": "sphere", "center": [0, 0, 0], "material": "chalk"}])"),
+                 {": objects[0].radius: required field is missing"});
+    expect_error(with_objects(R"([{"center": [0, 0, 0], "radius": 1, "material": "chalk"}])"),
+                 {": objects[0].type: required field is missing"});
+    expect_error(with_objects(R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1}])"),
+                 {": objects[0].material: required field is missing"});
+    expect_error(with_lights(R"([{"type": "point"}])"), {": lights[0].position: required field is missing"});
+    expect_error(with_lights(R"([{"position": [0, 0, 0]}])"), {": lights[0].type: required field is missing"});
+}
+
+TEST_F(SceneLoaderTest, UnknownFieldsAreErrors) {
+    const std::string m = expect_error(
+        with_objects(R"([{"type": "sphere", "center": [0, 0, 0], "radus": 1, "material": "chalk"}])"), {});
+    EXPECT_NE(m.find(": objects[0]: unknown field 'radus' (expected one of: center, radius, material, type)"),
+              std::string::npos)
+        << m;
+    Parts top;
+    top.lights = "[]";
+    expect_error(top.text().replace(0, 1, "{\"objcts\": [], "), {"unknown field 'objcts'", "objects"});
+    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "fvo": 30})"),
+                 {": camera: unknown field 'fvo'", "fov"});
+    expect_error(with_render(R"({"shadow": false})"), {": render: unknown field 'shadow'", "shadows"});
+    expect_error(with_materials(R"({"m": {"difuse": [1, 1, 1]}})"), {": materials.m: unknown field 'difuse'"});
+    expect_error(with_lights(R"([{"type": "point", "position": [0, 0, 0], "colour": [1, 1, 1]}])"),
+                 {": lights[0]: unknown field 'colour'"});
+    expect_error(with_objects(R"([{"type": "quad", "corner": [0, 0, 0], "edge1": [1, 0, 0], "edge2": [0, 1, 0],
+                                   "normals": [], "material": "chalk"}])"),
+                 {": objects[0]: unknown field 'normals'"});
+}
+
+// ---- types ------------------------------------------------------------------------
+
+TEST_F(SceneLoaderTest, WrongTypes) {
+    expect_error(with_objects(R"([{"type": "sphere", "center": [0, 0, 0], "radius": "1", "material": "chalk"}])"),
+                 {": objects[0].radius: expected a number, got a string"});
+    expect_error(with_camera(R"([0, 1, 3])"), {": camera: expected an object, got an array"});
+    expect_error(with_camera(R"({"eye": [0, 1], "look_at": [0, 1, 0]})"),
+                 {": camera.eye: expected an array of 3 numbers, got an array of 2 elements"});
+    expect_error(with_camera(R"({"eye": [0, null, 3], "look_at": [0, 1, 0]})"),
+                 {": camera.eye[1]: expected a number, got null"});
+    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 2.5})"),
+                 {": camera.width: expected a whole number, got 2.5"});
+    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "height": "300"})"),
+                 {": camera.height: expected a whole number, got a string"});
+    expect_error(with_render(R"({"jitter": "yes"})"), {": render.jitter: expected true or false, got a string"});
+    expect_error(with_render(R"({"mode": 1})"), {": render.mode: expected a string, got a number (1)"});
+    expect_error(with_materials("[]"), {": materials: expected an object, got an array"});
+    expect_error(with_materials(R"({"m": 1})"), {": materials.m: expected an object, got a number"});
+    expect_error(with_objects("{}"), {": objects: expected an array, got an object"});
+    expect_error(with_lights(R"({"type": "point"})"), {": lights: expected an array, got an object"});
+    expect_error(with_objects(R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": 3}])"),
+                 {": objects[0].material: expected a string, got a number"});
+    expect_error(with_objects(R"([{"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0]], "material": "chalk"}])"),
+                 {": objects[0].vertices: expected an array of 3 points, got an array of 2 elements"});
+    expect_error(with_objects(R"([{"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], 7], "material": "chalk"}])"),
+                 {": objects[0].vertices[2]: expected an array of 3 numbers, got a number"});
+}
+
+TEST_F(SceneLoaderTest, KeysThatAreNotIdentifiersAreQuotedInPaths) {
+    expect_error(with_materials(R"({"my glass": {"kd": -1}})"),
+                 {": materials[\"my glass\"].kd: expected a number >= 0, got -1"});
+}
+
+// ---- numbers ------------------------------------------------------------------------
+
+TEST_F(SceneLoaderTest, InfiniteNumbersAreRefusedWithTheirPath) {
+    expect_error(with_objects(R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1e999, "material": "chalk"}])"),
+                 {": objects[0].radius: expected a finite number", "1e999"});
+    expect_error(with_objects(R"([{"type": "sphere", "center": [0, -1e999, 0], "radius": 1, "material": "chalk"}])"),
+                 {": objects[0].center[1]: expected a finite number", "-1e999"});
+    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "fov": 1e400})"),
+                 {": camera.fov: expected a finite number"});
+}
+
+TEST_F(SceneLoaderTest, HugeMagnitudesAreRefused) {
+    expect_error(with_objects(R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1e30, "material": "chalk"}])"),
+                 {": objects[0].radius: expected a number of magnitude at most"});
+}
+
+TEST_F(SceneLoaderTest, RadiusMustBePositive) {
+    expect_error(with_objects(R"([{"type": "sphere", "center": [0, 0, 0], "radius": -1, "material": "chalk"}])"),
+                 {": objects[0].radius: expected a number > 0, got -1"});
+    expect_error(with_objects(R"([{"type": "sphere", "center": [0, 0, 0], "radius": 0, "material": "chalk"}])"),
+                 {": objects[0].radius: expected a number > 0, got 0"});
+}
+
+TEST_F(SceneLoaderTest, FieldOfViewIsStrictlyInsideZeroTo180) {
+    for (const char* fov : {"0", "180", "-5", "200"}) {
+        expect_error(with_camera(fmt::format(R"({{"eye": [0, 1, 3], "look_at": [0, 1, 0], "fov": {}}})", fov)),
+                     {": camera.fov: expected a number strictly between 0 and 180, got"});
+    }
+}
+
+TEST_F(SceneLoaderTest, ImageSizeLimits) {
+    const std::string side = std::to_string(vkrt::limits::kMaxImageSide);
+    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 0})"),
+                 {": camera.width: expected a whole number in [1, " + side + "], got 0"});
+    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "height": 0})"),
+                 {": camera.height: expected a whole number in [1, "});
+    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 100000})"),
+                 {": camera.width: expected a whole number in [1, " + side + "], got 100000"});
+    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": -3})"),
+                 {": camera.width: expected a whole number", "got -3"});
+    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 30000, "height": 30000})"),
+                 {": camera: image of 30000x30000 pixels is larger than the limit of " +
+                  std::to_string(vkrt::limits::kMaxImagePixels) + " pixels"});
+}
+
+TEST_F(SceneLoaderTest, RenderRanges) {
+    expect_error(with_render(R"({"aa": 0})"), {": render.aa: expected a whole number in [1, 64], got 0"});
+    expect_error(with_render(R"({"aa": 65})"), {": render.aa: expected a whole number in [1, 64], got 65"});
+    expect_error(with_render(R"({"max_depth": 65})"), {": render.max_depth: expected a whole number in [0, 64]"});
+    expect_error(with_render(R"({"spp": 0})"), {": render.spp: expected a whole number in [1, "});
+    expect_error(with_render(R"({"loop_budget": 65001})"),
+                 {": render.loop_budget: expected a whole number in [1, 65000], got 65001"});
+    expect_error(with_render(R"({"seed": -1})"), {": render.seed: expected a whole number in [0, 4294967295], got -1"});
+    expect_error(with_render(R"({"seed": 4294967296})"), {": render.seed: expected a whole number in [0, 4294967295]"});
+    expect_error(with_render(R"({"ambient": [0, -0.5, 0]})"), {": render.ambient[1]: expected a number >= 0, got -0.5"});
+    expect_error(with_render(R"({"background": [0, 0]})"), {": render.background: expected an array of 3 numbers"});
+}
+
+TEST_F(SceneLoaderTest, MaterialRanges) {
+    expect_error(with_materials(R"({"m": {"diffuse": [0.5, -0.1, 0]}})"),
+                 {": materials.m.diffuse[1]: expected a number >= 0, got -0.1"});
+    expect_error(with_materials(R"({"m": {"emission": [0, 0, -1]}})"), {": materials.m.emission[2]: expected a number >= 0"});
+    expect_error(with_materials(R"({"m": {"kd": -1}})"), {": materials.m.kd: expected a number >= 0, got -1"});
+    expect_error(with_materials(R"({"m": {"ks": -0.5}})"), {": materials.m.ks: expected a number >= 0"});
+    expect_error(with_materials(R"({"m": {"shininess": -2}})"), {": materials.m.shininess: expected a number >= 0"});
+    expect_error(with_materials(R"({"m": {"ior": 0}})"), {": materials.m.ior: expected a number > 0, got 0"});
+}
+
+TEST_F(SceneLoaderTest, LightRanges) {
+    expect_error(with_lights(R"([{"type": "point", "position": [0, 0, 0], "intensity": -1}])"),
+                 {": lights[0].intensity: expected a number >= 0, got -1"});
+    expect_error(with_lights(R"([{"type": "point", "position": [0, 0, 0], "color": [1, -1, 1]}])"),
+                 {": lights[0].color[1]: expected a number >= 0"});
+}
+
+// ---- camera geometry ------------------------------------------------------------
+
+TEST_F(SceneLoaderTest, CameraGeometry) {
+    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "up": [0, 0, 0]})"),
+                 {": camera.up: expected a non-zero vector, got [0, 0, 0]"});
+    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "up": [0, 0, -2]})"),
+                 {": camera.up: ", "parallel to the view direction"});
+    expect_error(with_camera(R"({"eye": [0, 5, 0], "look_at": [0, 1, 0]})"),
+                 {": camera.up: the default up [0, 1, 0] is parallel"});
+    expect_error(with_camera(R"({"eye": [1, 2, 3], "look_at": [1, 2, 3]})"),
+                 {": camera.look_at: look_at must differ from eye"});
+}
+
+// ---- references and geometry of objects ------------------------------------------
+
+TEST_F(SceneLoaderTest, UnknownMaterial) {
+    expect_error(
+        with_objects(R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "chalk"},
+                         {"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "glass"},
+                         {"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "chalk2"}])"),
+        {": objects[2].material: unknown material 'chalk2' (defined: chalk, glass)"});
+    expect_error(with_materials("{}"), {": objects[0].material: unknown material 'chalk' (no materials are defined)"});
+}
+
+TEST_F(SceneLoaderTest, UnknownTypes) {
+    expect_error(with_objects(R"([{"type": "cube", "material": "chalk"}])"),
+                 {": objects[0].type: unknown object type 'cube' (expected one of: sphere, triangle, quad)"});
+    expect_error(with_lights(R"([{"type": "spot", "position": [0, 0, 0]}])"),
+                 {": lights[0].type: unknown light type 'spot'"});
+}
+
+TEST_F(SceneLoaderTest, DegenerateGeometry) {
+    expect_error(with_objects(R"([{"type": "triangle", "vertices": [[0, 0, 0], [1, 1, 1], [2, 2, 2]], "material": "chalk"}])"),
+                 {": objects[0].vertices: ", "zero area"});
+    expect_error(with_objects(R"([{"type": "triangle", "vertices": [[0.1, 0.2, 0.3], [0.2, 0.4, 0.6], [0.3, 0.6, 0.9]], "material": "chalk"}])"),
+                 {": objects[0].vertices: ", "zero area"});
+    expect_error(with_objects(R"([{"type": "quad", "corner": [0, 0, 0], "edge1": [1, 0, 0], "edge2": [-2, 0, 0], "material": "chalk"}])"),
+                 {": objects[0].edge2: ", "parallel"});
+    expect_error(with_objects(R"([{"type": "quad", "corner": [0, 0, 0], "edge1": [0, 0, 0], "edge2": [0, 1, 0], "material": "chalk"}])"),
+                 {": objects[0].edge1: expected a non-zero vector"});
+    expect_error(with_objects(R"([{"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]],
+                                   "normals": [[0, 0, 1], [0, 0, 0], [0, 0, 1]], "material": "chalk"}])"),
+                 {": objects[0].normals[1]: expected a non-zero vector"});
+}
+
+// ---- not supported yet ------------------------------------------------------------
+
+TEST_F(SceneLoaderTest, LaterFeaturesAreRefusedClearly) {
+    expect_error(with_materials(R"({"glass": {"reflect": [0.5, 0.5, 0.5]}})"),
+                 {": materials.glass.reflect: mirror reflection is not supported yet"});
+    expect_error(with_materials(R"({"glass": {"transmit": [0, 0, 1]}})"),
+                 {": materials.glass.transmit: refraction is not supported yet"});
+    expect_error(with_render(R"({"mode": "global"})"), {": render.mode: ", "not supported yet"});
+    expect_error(with_render(R"({"mode": "fast"})"), {": render.mode: unknown mode 'fast'"});
+    expect_error(with_lights(R"([{"type": "area", "position": [0, 0, 0]}])"),
+                 {": lights[0].type: area lights are not supported yet"});
+}
+
+}  // namespace
