@@ -1,0 +1,44 @@
+#pragma once
+// A buffer and its memory, with upload and read-back. Where the device has memory
+// that is both device-local and host-mapped (lavapipe, integrated GPUs, resizable-BAR
+// GPUs), the buffer is mapped once and copies are memcpy; otherwise it lives in
+// device-local memory and copies go through a temporary staging buffer.
+#include <string>
+
+#include "gpu/vulkan_context.hpp"
+
+namespace vkrt::gpu {
+
+enum class Placement {
+    Device,   // used by shaders: device-local, mapped when the device allows
+    Staging,  // host-visible and coherent: the other end of a copy
+};
+
+class VulkanBuffer {
+public:
+    // `usage` is how shaders bind it; transfer usage is added as the placement needs.
+    // `name` appears in error messages.
+    VulkanBuffer(const VulkanContext& context, std::string name, VkDeviceSize size,
+                 VkBufferUsageFlags usage, Placement placement = Placement::Device);
+
+    VkBuffer get() const { return buffer_.get(); }
+    VkDeviceSize size() const { return size_; }
+    bool mapped() const { return mapped_ != nullptr; }
+
+    // Both wait for the device; they are meant for setup and the final read-back.
+    void upload(const void* data, VkDeviceSize bytes);
+    void readback(void* data, VkDeviceSize bytes) const;
+
+private:
+    void allocate(VkMemoryPropertyFlags wanted, VkMemoryPropertyFlags fallback, bool map);
+
+    const VulkanContext* context_;
+    std::string name_;
+    VkDeviceSize size_;
+    // Declared before the buffer, so the buffer is destroyed first.
+    DeviceHandle<VkDeviceMemory, vkFreeMemory> memory_;
+    DeviceHandle<VkBuffer, vkDestroyBuffer> buffer_;
+    void* mapped_ = nullptr;  // persistently mapped while memory_ lives
+};
+
+}  // namespace vkrt::gpu
