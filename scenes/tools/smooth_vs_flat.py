@@ -2,12 +2,14 @@
 """Writes scenes/smooth_vs_flat.json: the paper's Fig. 8 comparison on a low-poly
 sphere. Left: flat triangles (face normals). Right: the same triangles with vertex
 normals, interpolated across each face (Fig. 9), which hides the facets everywhere
-but on the silhouette. Run from the repo root: python3 scenes/tools/smooth_vs_flat.py
+but on the silhouette. Near the light's terminator the smooth sphere still shows
+facet steps: a facet whose flat face looks away from the light gets none of it, as
+in the paper's own renderer (Fig. 9). Run from the repo root: python3 scenes/tools/smooth_vs_flat.py
 """
 import json
 import math
 
-STACKS, SLICES = 6, 10
+STACKS, SLICES = 8, 16
 
 
 def uv_sphere(center, radius):
