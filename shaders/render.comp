@@ -12,7 +12,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "kernel/constants.glsl"
 #include "kernel/layout.glsl"
 
-// Binding numbers are mirrored in host/gpu/bindings.hpp.
+// Binding numbers are mirrored in host/gpu/vulkan_backend.cpp (enum Binding).
 layout(std140, binding = 0) uniform ParamsBlock { Params params; };
 layout(std430, binding = 1) readonly buffer MaterialBuffer { Material materials[]; };
 layout(std430, binding = 2) readonly buffer SphereBuffer { Sphere spheres[]; };

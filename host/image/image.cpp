@@ -16,7 +16,10 @@ bool is_float_format(const std::filesystem::path& file) {
 }
 
 float linear_to_srgb(float linear) {
-    const float c = std::clamp(linear, 0.0f, 1.0f);  // also maps NaN-free input only
+    const float c = std::clamp(linear, 0.0f, 1.0f);
+    if (c >= 1.0f) {
+        return 1.0f;  // in float the formula gives a hair under 1 there
+    }
     return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
@@ -33,7 +36,13 @@ void write_image(const Image& image, const std::filesystem::path& file) {
         throw ImageError(fmt::format("{}: cannot open for writing: {}", name, out->geterror()));
     }
     bool ok = false;
-    if (linear) {
+    if (linear && file.extension() == ".hdr") {
+        // RGBE shares one exponent across a pixel and has no sign: a negative channel
+        // would corrupt its neighbours, so it is stored as 0.
+        std::vector<float> positive(image.rgb);
+        for (float& v : positive) v = std::max(v, 0.0f);
+        ok = out->write_image(OIIO::TypeDesc::FLOAT, positive.data());
+    } else if (linear) {
         ok = out->write_image(OIIO::TypeDesc::FLOAT, image.rgb.data());
     } else {
         // Encode here rather than trusting a format's colour-space handling: the
