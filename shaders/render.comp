@@ -14,13 +14,41 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 // Binding numbers are mirrored in host/gpu/vulkan_backend.cpp (enum Binding).
 layout(std140, binding = 0) uniform ParamsBlock { Params params; };
-layout(std430, binding = 1) readonly buffer MaterialBuffer { Material materials[]; };
-layout(std430, binding = 2) readonly buffer SphereBuffer { Sphere spheres[]; };
-layout(std430, binding = 3) readonly buffer TriangleBuffer { Triangle triangles[]; };
-layout(std430, binding = 4) readonly buffer LightBuffer { PointLight lights[]; };
-layout(std430, binding = 5) buffer AccumBuffer { vec4 accum[]; };
-layout(std430, binding = 6) buffer CounterBuffer { uvec4 counters[]; };
+// Scene arrays and per-pixel sums are texel buffers (one uvec4/vec4 texel per struct
+// member), not SSBOs: lavapipe (Mesa 22.3) turns every SSBO load or store into a
+// scalar loop over the 8 SIMD lanes with a bounds check and a stack round-trip per
+// component, which made the primitive loops ~10x slower than the C++ reference.
+// Texel fetches and image loads/stores are vector gathers/scatters.
+layout(binding = 1) uniform usamplerBuffer material_texels;    // 5 texels per Material
+layout(binding = 2) uniform usamplerBuffer sphere_texels;      // 2 texels per Sphere
+layout(binding = 3) uniform usamplerBuffer triangle_texels;    // 7 texels per Triangle
+layout(binding = 4) uniform usamplerBuffer light_texels;       // 2 texels per PointLight
+layout(binding = 5, rgba32f) uniform imageBuffer accum;        // 1 texel per pixel
+layout(binding = 6, rgba32ui) uniform uimageBuffer counters;   // 1 texel per pixel
 layout(push_constant) uniform PassBlock { uvec4 pass; };   // x = sample index
+
+// The buffer accessors the kernel calls (host/ref/kernel.hpp has the C++ ones). Fields
+// a caller does not use are dropped by the driver's dead-code elimination.
+vec4 fetch_vec4(usamplerBuffer b, uint i) { return uintBitsToFloat(texelFetch(b, int(i))); }
+Material load_material(uint i) {
+    uint b = 5u * i;
+    return Material(fetch_vec4(material_texels, b), fetch_vec4(material_texels, b + 1u),
+                    fetch_vec4(material_texels, b + 2u), fetch_vec4(material_texels, b + 3u),
+                    fetch_vec4(material_texels, b + 4u));
+}
+Sphere load_sphere(uint i) {
+    return Sphere(fetch_vec4(sphere_texels, 2u * i), texelFetch(sphere_texels, int(2u * i + 1u)));
+}
+Triangle load_triangle(uint i) {
+    uint b = 7u * i;
+    return Triangle(fetch_vec4(triangle_texels, b), fetch_vec4(triangle_texels, b + 1u),
+                    fetch_vec4(triangle_texels, b + 2u), fetch_vec4(triangle_texels, b + 3u),
+                    fetch_vec4(triangle_texels, b + 4u), fetch_vec4(triangle_texels, b + 5u),
+                    texelFetch(triangle_texels, int(b + 6u)));
+}
+PointLight load_light(uint i) {
+    return PointLight(fetch_vec4(light_texels, 2u * i), fetch_vec4(light_texels, 2u * i + 1u));
+}
 
 #include "kernel/all.glsl"
 
@@ -31,9 +59,9 @@ void main() {
         return;
     }
     uint index = py * params.image.x + px;
-    vec4 sums = accum[index];
-    uvec4 counts = counters[index];
+    vec4 sums = imageLoad(accum, int(index));
+    uvec4 counts = imageLoad(counters, int(index));
     accumulate_sample(render_sample(px, py, pass.x), sums, counts);
-    accum[index] = sums;
-    counters[index] = counts;
+    imageStore(accum, int(index), sums);
+    imageStore(counters, int(index), counts);
 }

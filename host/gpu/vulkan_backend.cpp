@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "gpu/vulkan_buffer.hpp"
 #include "gpu/vulkan_context.hpp"
@@ -25,6 +26,22 @@ enum Binding : std::uint32_t {
     kParams, kMaterials, kSpheres, kTriangles, kLights, kAccum, kCounters, kBindingCount
 };
 constexpr std::uint32_t kLocalSize = 8;     // local_size_x and _y of render.comp
+
+// Every binding but the params is a texel buffer of 16-byte texels (see render.comp
+// for why): read-only scene arrays as uniform texel buffers, the sums as storage ones.
+VkDescriptorType descriptor_type(std::uint32_t binding) {
+    switch (binding) {
+    case kParams: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    case kAccum:
+    case kCounters: return VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
+    default: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+    }
+}
+VkFormat texel_format(std::uint32_t binding) {
+    return binding == kAccum ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R32G32B32A32_UINT;
+}
+constexpr VkBufferUsageFlags kSceneUsage = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+constexpr VkBufferUsageFlags kSumsUsage = VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT;
 constexpr std::uint32_t kPushBytes = 16;    // uvec4 pass
 constexpr double kTargetSubmitSeconds = 0.25;
 constexpr std::uint32_t kMaxBatch = 256;
@@ -68,8 +85,7 @@ Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features)
     std::array<VkDescriptorSetLayoutBinding, kBindingCount> bindings{};
     for (std::uint32_t i = 0; i < kBindingCount; ++i) {
         bindings[i].binding = i;
-        bindings[i].descriptorType =
-            i == kParams ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        bindings[i].descriptorType = descriptor_type(i);
         bindings[i].descriptorCount = 1;
         bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
     }
@@ -127,9 +143,10 @@ Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features)
           "vkCreateComputePipelines");
     p.pipeline = {device, pipeline};
 
-    const std::array<VkDescriptorPoolSize, 2> sizes{{
+    const std::array<VkDescriptorPoolSize, 3> sizes{{
         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindingCount - 1},
+        {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, kBindingCount - 3},
+        {VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, 2},
     }};
     VkDescriptorPoolCreateInfo pool_info{};
     pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
@@ -149,21 +166,37 @@ Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features)
     return p;
 }
 
-void write_descriptors(VkDevice device, VkDescriptorSet set,
-                       const std::array<const VulkanBuffer*, kBindingCount>& buffers) {
+using BufferView = DeviceHandle<VkBufferView, vkDestroyBufferView>;
+
+// Writes the set; returns the texel-buffer views, which must outlive its use.
+std::vector<BufferView> write_descriptors(VkDevice device, VkDescriptorSet set,
+                                          const std::array<const VulkanBuffer*, kBindingCount>& buffers) {
+    std::vector<BufferView> views;
     std::array<VkDescriptorBufferInfo, kBindingCount> infos{};
+    std::array<VkBufferView, kBindingCount> raw_views{};
     std::array<VkWriteDescriptorSet, kBindingCount> writes{};
     for (std::uint32_t i = 0; i < kBindingCount; ++i) {
-        infos[i] = {buffers[i]->get(), 0, VK_WHOLE_SIZE};
         writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
         writes[i].dstSet = set;
         writes[i].dstBinding = i;
         writes[i].descriptorCount = 1;
-        writes[i].descriptorType =
-            i == kParams ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        writes[i].pBufferInfo = &infos[i];
+        writes[i].descriptorType = descriptor_type(i);
+        if (i == kParams) {
+            infos[i] = {buffers[i]->get(), 0, VK_WHOLE_SIZE};
+            writes[i].pBufferInfo = &infos[i];
+            continue;
+        }
+        VkBufferViewCreateInfo view_info{};
+        view_info.sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO;
+        view_info.buffer = buffers[i]->get();
+        view_info.format = texel_format(i);
+        view_info.range = VK_WHOLE_SIZE;
+        check(vkCreateBufferView(device, &view_info, nullptr, &raw_views[i]), "vkCreateBufferView");
+        views.emplace_back(device, raw_views[i]);
+        writes[i].pTexelBufferView = &raw_views[i];
     }
     vkUpdateDescriptorSets(device, kBindingCount, writes.data(), 0, nullptr);
+    return views;
 }
 
 // A scene array as a buffer, or nothing when the scene leaves it out.
@@ -174,7 +207,7 @@ std::optional<VulkanBuffer> array_buffer(const VulkanContext& context, const cha
         return std::nullopt;
     }
     std::optional<VulkanBuffer> buffer;
-    buffer.emplace(context, name, items.size() * sizeof(T), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    buffer.emplace(context, name, items.size() * sizeof(T), kSceneUsage);
     buffer->upload(items.data(), buffer->size());
     return buffer;
 }
@@ -286,16 +319,16 @@ RenderResult VulkanBackend::render(const SceneGpu& scene, SampleRange samples,
     params.upload(&scene.params, sizeof(kernel::Params));
     // Stands in for every array the scene leaves out: the shader still declares the
     // binding, but with the feature off nothing reads it.
-    VulkanBuffer dummy(context_, "unused", 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    VulkanBuffer dummy(context_, "unused", 16, kSceneUsage);
     const std::optional<VulkanBuffer> materials = array_buffer(context_, "materials", scene.materials);
     const std::optional<VulkanBuffer> spheres = array_buffer(context_, "spheres", scene.spheres);
     const std::optional<VulkanBuffer> triangles = array_buffer(context_, "triangles", scene.triangles);
     const std::optional<VulkanBuffer> lights = array_buffer(context_, "lights", scene.lights);
-    VulkanBuffer accum(context_, "accum", pixels * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    VulkanBuffer counters(context_, "counters", pixels * sizeof(glm::uvec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    VulkanBuffer accum(context_, "accum", pixels * sizeof(glm::vec4), kSumsUsage);
+    VulkanBuffer counters(context_, "counters", pixels * sizeof(glm::uvec4), kSumsUsage);
 
     auto or_dummy = [&](const std::optional<VulkanBuffer>& b) { return b ? &*b : &dummy; };
-    write_descriptors(context_.device(), pipeline.set,
+    const std::vector<BufferView> views = write_descriptors(context_.device(), pipeline.set,
                       {&params, or_dummy(materials), or_dummy(spheres), or_dummy(triangles),
                        or_dummy(lights), &accum, &counters});
     context_.submit_and_wait([&](VkCommandBuffer cmd) {

@@ -47,6 +47,11 @@ void check_range(const VulkanContext& context, const std::string& name, VkDevice
     if ((usage & VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT) && size > limits.maxUniformBufferRange) {
         fail("maxUniformBufferRange", limits.maxUniformBufferRange);
     }
+    // Texel buffers are viewed as 16-byte texels (render.comp).
+    if ((usage & (VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT)) &&
+        size / 16 > limits.maxTexelBufferElements) {
+        fail("maxTexelBufferElements (x16)", limits.maxTexelBufferElements);
+    }
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
 #pragma once
 // The reference backend's view of the kernel: the GLSL files of shaders/kernel/ are
 // included inside a struct whose members carry the same names as the shader's
-// buffers, uniforms and specialization constants, so the very same text compiles as
-// C++ member functions (DESIGN.md, "The shared kernel, concretely").
+// uniforms, specialization constants and buffer accessors (load_sphere, ...), so the
+// very same text compiles as C++ member functions (DESIGN.md, "The shared kernel,
+// concretely"; docs/architecture.md says why buffers are read through accessors).
 // One Kernel object plays the part of one invocation's private state: make one per
 // thread.
 #include <span>
@@ -24,6 +25,12 @@ struct Kernel {
     std::span<const Sphere> spheres;
     std::span<const Triangle> triangles;
     std::span<const PointLight> lights;
+
+    // The accessors the kernel reads the scene through (render.comp has the GLSL ones).
+    Material load_material(uint i) const { return materials[i]; }
+    Sphere load_sphere(uint i) const { return spheres[i]; }
+    Triangle load_triangle(uint i) const { return triangles[i]; }
+    PointLight load_light(uint i) const { return lights[i]; }
 
 #include "kernel/all.glsl"
 };

@@ -1,7 +1,7 @@
 // The whole kernel, in dependency order. Included by shaders/render.comp and, inside
 // the reference Kernel struct, by host/ref/kernel.hpp. Before including it, a host
-// declares the feature flags (features.glsl), `params`, and the buffers
-// materials, spheres, triangles and lights.
+// declares the feature flags (features.glsl), `params`, and the accessors
+// load_material, load_sphere, load_triangle and load_light (uint index -> struct).
 #include "rng.glsl"
 #include "ray.glsl"
 #include "intersect.glsl"

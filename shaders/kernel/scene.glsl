@@ -6,7 +6,7 @@ const uint PRIM_SPHERE = 1u;
 const uint PRIM_TRIANGLE = 2u;
 
 Hit sphere_hit(Ray ray, uint index, float t) {
-    Sphere s = spheres[index];
+    Sphere s = load_sphere(index);
     vec3 center = vec3(s.center_radius);
     precise vec3 p = ray.origin + t * ray.dir;
     vec3 n = (p - center) / s.center_radius.w;
@@ -16,7 +16,7 @@ Hit sphere_hit(Ray ray, uint index, float t) {
 }
 
 Hit triangle_hit(Ray ray, uint index, TriangleHit th) {
-    Triangle tri = triangles[index];
+    Triangle tri = load_triangle(index);
     vec3 ng = triangle_face_normal(vec3(tri.p0), vec3(tri.p1), vec3(tri.p2));
     vec3 ns = ng;
     if (HAS_SMOOTH_NORMALS && tri.meta.y != 0u) {
@@ -40,7 +40,7 @@ Hit closest_hit(Ray ray, float t_max) {
             if (!loop_tick()) {
                 break;
             }
-            Sphere s = spheres[i];
+            Sphere s = load_sphere(i);
             float t = intersect_sphere(ray, vec3(s.center_radius), s.center_radius.w, 0.0f, closest);
             if (t < closest) {
                 closest = t;
@@ -54,7 +54,7 @@ Hit closest_hit(Ray ray, float t_max) {
             if (!loop_tick()) {
                 break;
             }
-            Triangle tri = triangles[i];
+            Triangle tri = load_triangle(i);
             TriangleHit th = intersect_triangle(ray, vec3(tri.p0), vec3(tri.p1), vec3(tri.p2), 0.0f, closest);
             if (th.t < closest) {
                 closest = th.t;
@@ -81,7 +81,7 @@ bool occluded(Ray ray, float t_max) {
             if (!loop_tick()) {
                 return false;
             }
-            Sphere s = spheres[i];
+            Sphere s = load_sphere(i);
             if (intersect_sphere(ray, vec3(s.center_radius), s.center_radius.w, 0.0f, t_max) < t_max) {
                 return true;
             }
@@ -92,7 +92,7 @@ bool occluded(Ray ray, float t_max) {
             if (!loop_tick()) {
                 return false;
             }
-            Triangle tri = triangles[i];
+            Triangle tri = load_triangle(i);
             if (intersect_triangle(ray, vec3(tri.p0), vec3(tri.p1), vec3(tri.p2), 0.0f, t_max).t < t_max) {
                 return true;
             }

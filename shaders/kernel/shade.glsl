@@ -5,7 +5,7 @@
 // its front face. Lights below the surface get no shadow ray (the SPD rule).
 
 vec3 shade_local(Ray ray, Hit hit, INOUT(uint) shadow_rays) {
-    Material m = materials[hit.material];
+    Material m = load_material(hit.material);
     vec3 diffuse = vec3(m.diffuse_kd) * m.diffuse_kd.w;
     vec3 color = vec3(0.0f);
     if (HAS_EMISSION && hit.front_face) {
@@ -22,7 +22,7 @@ vec3 shade_local(Ray ray, Hit hit, INOUT(uint) shadow_rays) {
             if (!loop_tick()) {
                 break;
             }
-            PointLight light = lights[i];
+            PointLight light = load_light(i);
             vec3 to_light = vec3(light.position) - p;
             float dist = length(to_light);
             vec3 l = to_light / dist;
