@@ -1,5 +1,7 @@
 #include "test_support.hpp"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 
 #include "gpu/vulkan_backend.hpp"
@@ -33,7 +35,11 @@ RenderOutcome render_cpu(const Scene& scene) {
 
 RenderOutcome render_vulkan(const Scene& scene) {
     auto backend = make_vulkan_backend(VulkanOptions{"", true});
-    return render_scene(scene, *backend);
+    RenderOutcome out = render_scene(scene, *backend);
+    // Every Vulkan render in the tests runs under the validation layer, and any
+    // message it prints fails the test that rendered.
+    EXPECT_EQ(out.stats.validation_messages, 0u) << "the validation layer reported problems (see stderr)";
+    return out;
 }
 
 }  // namespace vkrt::test
