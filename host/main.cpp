@@ -8,6 +8,7 @@
 int main(int argc, char** argv) {
     using namespace vkrt;
     CLI::App app{"vkrt: a ray tracer whose renderer is a Vulkan compute shader, with a C++ reference"};
+    app.set_version_flag("--version", "vkrt " VKRT_VERSION);
     app.require_subcommand(1);
 
     cli::RenderArgs render;

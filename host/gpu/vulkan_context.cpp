@@ -13,7 +13,7 @@ namespace {
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 constexpr const char* kNoDriverHint =
     "no usable Vulkan driver; install one (on Debian/Ubuntu, mesa-vulkan-drivers provides "
-    "lavapipe, a Vulkan device that runs on the CPU)";
+    "lavapipe, a Vulkan device that runs on the CPU), or render with --backend cpu";
 
 VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(
     VkDebugUtilsMessageSeverityFlagBitsEXT, VkDebugUtilsMessageTypeFlagsEXT,
