@@ -5,6 +5,7 @@
 
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
@@ -51,15 +52,47 @@ TEST(LoopBudget, SilentWhenUnderBudget) {
     expect_truncation(gpu, 0);
 }
 
-TEST(LoopBudget, SceneCanLowerTheBudget) {
-    // The same exactness with a smaller budget: 100 spheres against a budget of 50.
+TEST(LoopBudget, CountsEveryIterationAndEveryLoopEntry) {
+    // 100 spheres and no lights: the eye ray's sphere loop costs 100 iterations plus
+    // one for its exit test, the way lavapipe counts, so 101 is exactly enough.
     Scene scene = too_many_spheres(100);
-    scene.render.loop_budget = 50;
-    expect_truncation(test::render_cpu(scene), 64);
-    expect_truncation(test::render_vulkan(scene), 64);
-    scene.render.loop_budget = 101;  // one tick per sphere, plus none for the (absent) lights
+    scene.render.loop_budget = 101;
     expect_truncation(test::render_cpu(scene), 0);
     expect_truncation(test::render_vulkan(scene), 0);
+    scene.render.loop_budget = 100;
+    expect_truncation(test::render_cpu(scene), 64);
+    expect_truncation(test::render_vulkan(scene), 64);
+}
+
+// One sphere lit by many lights with shadows: each light costs its own iteration plus
+// a shadow ray's one-sphere loop, entry included: three counts a light. Lavapipe cut
+// 22,000 lights silently before shadow-ray loop entries were counted.
+Scene many_lights(std::uint32_t count) {
+    Scene s = too_many_spheres(0);
+    s.camera.width = 4;
+    s.camera.height = 4;
+    s.spheres.push_back(Sphere{{0, 0, 0}, 6.0, 0});  // fills the view
+    for (std::uint32_t i = 0; i < count; ++i) {
+        const double a = double(i) * 0.618;
+        s.lights.push_back(PointLight{{10 * std::cos(a), 10 * std::sin(a), 10}, {1, 1, 1}, 1e-5});
+    }
+    return s;
+}
+
+TEST(LoopBudget, ShadowRayLoopsCountToo) {
+    const Scene over = many_lights(21000);  // 3 * 21,000 > 60,000
+    expect_truncation(test::render_cpu(over), 16);
+    expect_truncation(test::render_vulkan(over), 16);
+
+    const Scene under = many_lights(19000);  // 3 * 19,000 + 3 < 60,000: every sample complete
+    const RenderOutcome cpu = test::render_cpu(under);
+    const RenderOutcome gpu = test::render_vulkan(under);
+    expect_truncation(cpu, 0);
+    expect_truncation(gpu, 0);
+    for (std::size_t i = 0; i < cpu.image.rgb.size(); ++i) {
+        EXPECT_NEAR(gpu.image.rgb[i], cpu.image.rgb[i], 1e-4) << "value " << i;
+    }
+    EXPECT_GT(cpu.image.pixel(2, 2)[0], 0.05f);  // lit, so a silent cut would show
 }
 
 TEST(LoopBudget, CommandLineReportsTruncationAsAnError) {

@@ -112,4 +112,38 @@ TEST(PixelProbe, VulkanMatchesHandComputedShading) {
     check_probe(out, scene);
 }
 
+// A lamp placed exactly on the ceiling must light the floor: the shadow ray toward it
+// must not be stopped by the ceiling it sits on.
+Scene lamp_on_ceiling(bool shadows) {
+    Scene s;
+    s.camera.eye = {0, 1, 3};
+    s.camera.look_at = {0, 0.3, 0};
+    s.camera.width = 16;
+    s.camera.height = 12;
+    s.render.shadows = shadows;
+    Material m;
+    m.diffuse = {0.7, 0.7, 0.7};
+    s.materials.push_back(m);
+    s.lights.push_back(PointLight{{0.1, 2.0, 0.2}, {1, 1, 1}, 1.0});
+    auto quad = [&](dvec3 corner, dvec3 e1, dvec3 e2) {
+        s.triangles.push_back(Triangle{{corner, corner + e1, corner + e1 + e2}, std::nullopt, 0});
+        s.triangles.push_back(Triangle{{corner, corner + e1 + e2, corner + e2}, std::nullopt, 0});
+    };
+    quad({-3, 0, 3}, {6, 0, 0}, {0, 0, -6});  // floor, facing up
+    quad({-3, 2, -3}, {6, 0, 0}, {0, 0, 6});  // ceiling, facing down, through the lamp
+    return s;
+}
+
+TEST(PixelProbe, LampOnTheCeilingLightsTheFloor) {
+    const RenderOutcome unshadowed = test::render_cpu(lamp_on_ceiling(false));
+    for (const bool vulkan : {false, true}) {
+        const Scene scene = lamp_on_ceiling(true);
+        const RenderOutcome out = vulkan ? test::render_vulkan(scene) : test::render_cpu(scene);
+        EXPECT_GT(out.image.pixel(8, 9)[0], 0.1f) << (vulkan ? "vulkan" : "cpu");
+        for (std::size_t i = 0; i < out.image.rgb.size(); ++i) {
+            ASSERT_NEAR(out.image.rgb[i], unshadowed.image.rgb[i], 1e-5) << (vulkan ? "vulkan" : "cpu") << " value " << i;
+        }
+    }
+}
+
 }  // namespace

@@ -36,6 +36,7 @@ Hit closest_hit(Ray ray, float t_max) {
     uint index = 0u;
     TriangleHit best_tri = TriangleHit(INFINITY_T, 0.0f, 0.0f);
     if (HAS_SPHERES) {
+        loop_enter();
         for (uint i = 0u; i < params.counts.x; ++i) {
             if (!loop_tick()) {
                 break;
@@ -50,6 +51,7 @@ Hit closest_hit(Ray ray, float t_max) {
         }
     }
     if (HAS_TRIANGLES) {
+        loop_enter();
         for (uint i = 0u; i < params.counts.y; ++i) {
             if (!loop_tick()) {
                 break;
@@ -77,6 +79,7 @@ Hit closest_hit(Ray ray, float t_max) {
 // first blocker, whichever it is.
 bool occluded(Ray ray, float t_max) {
     if (HAS_SPHERES) {
+        loop_enter();
         for (uint i = 0u; i < params.counts.x; ++i) {
             if (!loop_tick()) {
                 return false;
@@ -88,6 +91,7 @@ bool occluded(Ray ray, float t_max) {
         }
     }
     if (HAS_TRIANGLES) {
+        loop_enter();
         for (uint i = 0u; i < params.counts.y; ++i) {
             if (!loop_tick()) {
                 return false;

@@ -18,6 +18,7 @@ vec3 shade_local(Ray ray, Hit hit, INOUT(uint) shadow_rays) {
         precise vec3 p = ray.origin + hit.t * ray.dir;
         vec3 shadow_origin = offset_ray_origin(p, hit.geo_normal);
         vec3 to_eye = -ray.dir;
+        loop_enter();
         for (uint i = 0u; i < params.counts.z; ++i) {
             if (!loop_tick()) {
                 break;
@@ -33,7 +34,7 @@ vec3 shade_local(Ray ray, Hit hit, INOUT(uint) shadow_rays) {
             }
             if (HAS_SHADOWS) {
                 shadow_rays += 1u;
-                if (occluded(Ray(shadow_origin, l), dist)) {
+                if (occluded(Ray(shadow_origin, l), dist * SHADOW_RAY_END)) {
                     continue;
                 }
             }
