@@ -52,6 +52,10 @@ std::vector<BadInput> cases() {
         {"malformed_json", "{\n  \"camera\": {\"eye\": [0, 1, 3],, }\n}", {":2:", "invalid JSON"}},
         {"truncated_json", "{\"camera\": {\"eye\": [0, 1", {":1:", "invalid JSON"}},
         {"top_level_array", "[]", {"expected a JSON object"}},
+        // JSON has no NaN literal; the parser must say where it stopped.
+        {"nan_radius",
+         scene(kCamera, "[\n  {\"type\": \"sphere\", \"center\": [0, 1, 0],\n   \"radius\": NaN, \"material\": \"chalk\"}]"),
+         {":3:14:", "invalid JSON"}},
         {"missing_camera_eye", scene(R"({"look_at": [0, 1, 0]})", kSphere), {"camera.eye", "missing"}},
         {"missing_radius",
          scene(kCamera, R"([{"type": "sphere", "center": [0, 1, 0], "material": "chalk"}])"),

@@ -153,6 +153,53 @@ TEST(VulkanBackend, ManySamplesSpanSeveralBatches) {
     EXPECT_EQ(backend->validation_messages(), 0u);
 }
 
+// A triangle far larger than the view, facing the camera, that glows: with the
+// triangle feature on every pixel sees its emission; with it off, the very same
+// buffers and counts (counts.y = 1, the triangle uploaded) must give pure
+// background, because the specialization constant leaves the triangle loop out of
+// the pipeline rather than the host leaving the data out.
+SceneGpu glowing_triangle_scene(bool has_triangles) {
+    SceneGpu scene = tiny_scene();
+    scene.spheres.clear();
+    scene.features.set(Feature::HAS_SPHERES, false);
+    scene.features.set(Feature::HAS_TRIANGLES, has_triangles);
+    scene.features.set(Feature::HAS_EMISSION, true);
+    scene.params.counts = glm::uvec4(0, 1, 0, 1);
+    scene.materials[0].emission = glm::vec4(1.0f, 0.5f, 0.125f, 0.0f);
+    // At z = -2 the view spans [-2, 2] in x and y; the front face, cross(p1 - p0,
+    // p2 - p0) = +z, looks at the camera.
+    kernel::Triangle tri{};
+    tri.p0 = glm::vec4(-10.0f, -10.0f, -2.0f, 0.0f);
+    tri.p1 = glm::vec4(30.0f, -10.0f, -2.0f, 0.0f);
+    tri.p2 = glm::vec4(-10.0f, 30.0f, -2.0f, 0.0f);
+    tri.meta = glm::uvec4(0);
+    scene.triangles.push_back(tri);
+    return scene;
+}
+
+TEST(VulkanBackend, SpecializationConstantsCompileTrianglesOut) {
+    testing::internal::CaptureStderr();
+    {
+        const std::unique_ptr<Backend> backend = lavapipe();
+        const std::uint32_t samples = 2;
+        const RenderResult with = backend->render(glowing_triangle_scene(true), SampleRange{0, samples});
+        const RenderResult without = backend->render(glowing_triangle_scene(false), SampleRange{0, samples});
+        ASSERT_EQ(with.accum.size(), kSize * kSize);
+        ASSERT_EQ(without.accum.size(), kSize * kSize);
+        const glm::vec3 emission(1.0f, 0.5f, 0.125f);
+        for (std::size_t i = 0; i < with.accum.size(); ++i) {
+            SCOPED_TRACE("pixel " + std::to_string(i));
+            EXPECT_EQ(with.accum[i], glm::vec4(emission * float(samples), float(samples)));
+            EXPECT_EQ(without.accum[i], glm::vec4(glm::vec3(kBackground) * float(samples), float(samples)));
+            EXPECT_EQ(with.counters[i], glm::uvec4(samples, 0, 0, 0));
+            EXPECT_EQ(without.counters[i], glm::uvec4(samples, 0, 0, 0));
+        }
+        EXPECT_EQ(backend->validation_messages(), 0u);
+    }
+    const std::string log = testing::internal::GetCapturedStderr();
+    EXPECT_EQ(log.find("vulkan validation:"), std::string::npos) << log;
+}
+
 // lavapipe has only mapped memory, so without this switch CI would never run the
 // staging copies a discrete GPU takes.
 TEST(VulkanBackend, StagingPathMatchesMappedPath) {
