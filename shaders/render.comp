@@ -12,7 +12,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "kernel/constants.glsl"
 #include "kernel/layout.glsl"
 
-// Binding numbers are mirrored in host/gpu/vulkan_backend.cpp (enum Binding).
+// Binding numbers are mirrored in host/gpu/vulkan_pipeline.hpp (enum Binding).
 layout(std140, binding = 0) uniform ParamsBlock { Params params; };
 // Scene arrays and per-pixel sums are texel buffers (one uvec4/vec4 texel per struct
 // member), not SSBOs: lavapipe (Mesa 22.3) turns every SSBO load or store into a

@@ -24,33 +24,23 @@ std::uint32_t find_memory_type(const VkPhysicalDeviceMemoryProperties& memory,
     return UINT32_MAX;
 }
 
-void barrier(VkCommandBuffer cmd, VkPipelineStageFlags src_stage, VkAccessFlags src_access,
-             VkPipelineStageFlags dst_stage, VkAccessFlags dst_access) {
-    VkMemoryBarrier b{};
-    b.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-    b.srcAccessMask = src_access;
-    b.dstAccessMask = dst_access;
-    vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 1, &b, 0, nullptr, 0, nullptr);
-}
-
+// Buffers are bound only as a uniform buffer (the params) or as texel buffers (every
+// array, see render.comp), so those are the limits to check.
 void check_range(const VulkanContext& context, const std::string& name, VkDeviceSize size,
                  VkBufferUsageFlags usage) {
     const VkPhysicalDeviceLimits& limits = context.properties().limits;
-    auto fail = [&](const char* limit, std::uint32_t max) {
+    auto fail = [&](const std::string& limit) {
         throw GpuError("buffer '" + name + "' needs " + std::to_string(size) +
-                       " bytes, more than this device's " + limit + " of " +
-                       std::to_string(max) + " bytes");
+                       " bytes, more than this device's " + limit);
     };
-    if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && size > limits.maxStorageBufferRange) {
-        fail("maxStorageBufferRange", limits.maxStorageBufferRange);
-    }
     if ((usage & VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT) && size > limits.maxUniformBufferRange) {
-        fail("maxUniformBufferRange", limits.maxUniformBufferRange);
+        fail("maxUniformBufferRange of " + std::to_string(limits.maxUniformBufferRange) + " bytes");
     }
     // Texel buffers are viewed as 16-byte texels (render.comp).
     if ((usage & (VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT)) &&
         size / 16 > limits.maxTexelBufferElements) {
-        fail("maxTexelBufferElements (x16)", limits.maxTexelBufferElements);
+        fail("maxTexelBufferElements of " + std::to_string(limits.maxTexelBufferElements) +
+             " 16-byte texels");
     }
 }
 
@@ -139,8 +129,9 @@ void VulkanBuffer::upload(const void* data, VkDeviceSize bytes) {
         const VkBufferCopy region{0, 0, bytes};
         vkCmdCopyBuffer(cmd, staging.get(), buffer_.get(), 1, &region);
         // Everything later on this queue, whichever stage, sees the copy.
-        barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
+        memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                       VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
     });
 }
 
@@ -152,20 +143,20 @@ void VulkanBuffer::readback(void* data, VkDeviceSize bytes) const {
     if (mapped_) {
         // Device writes reach the host only through a barrier to the host stage.
         context_->submit_and_wait([&](VkCommandBuffer cmd) {
-            barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
-                    VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+            memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
+                           VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
         });
         std::memcpy(data, mapped_, bytes);
         return;
     }
     VulkanBuffer staging(*context_, name_ + " (staging)", bytes, 0, Placement::Staging);
     context_->submit_and_wait([&](VkCommandBuffer cmd) {
-        barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
-                VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+        memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
+                       VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
         const VkBufferCopy region{0, 0, bytes};
         vkCmdCopyBuffer(cmd, buffer_.get(), staging.get(), 1, &region);
-        barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+        memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
     });
     std::memcpy(data, staging.mapped_, bytes);
 }

@@ -17,6 +17,8 @@ enum class Placement {
 class VulkanBuffer {
 public:
     // `usage` is how shaders bind it; transfer usage is added as the placement needs.
+    // The size is checked against the limits of uniform and texel buffers, the only
+    // kinds render.comp binds.
     // `name` appears in error messages.
     VulkanBuffer(const VulkanContext& context, std::string name, VkDeviceSize size,
                  VkBufferUsageFlags usage, Placement placement = Placement::Device);

@@ -204,6 +204,15 @@ std::string result_name(VkResult result) {
     }
 }
 
+void memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags src_stage, VkAccessFlags src_access,
+                    VkPipelineStageFlags dst_stage, VkAccessFlags dst_access) {
+    VkMemoryBarrier b{};
+    b.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+    b.srcAccessMask = src_access;
+    b.dstAccessMask = dst_access;
+    vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 1, &b, 0, nullptr, 0, nullptr);
+}
+
 VulkanInstance::VulkanInstance(bool validation) {
     // A 1.0 loader cannot make the 1.1 instance that vkGetPhysicalDeviceProperties2
     // and the rest of this backend need.

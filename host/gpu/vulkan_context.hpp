@@ -58,6 +58,11 @@ private:
     T handle_ = VK_NULL_HANDLE;
 };
 
+// Records a global memory barrier: writes of `src_access` in `src_stage` become
+// visible to accesses of `dst_access` in `dst_stage`.
+void memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags src_stage, VkAccessFlags src_access,
+                    VkPipelineStageFlags dst_stage, VkAccessFlags dst_access);
+
 // A physical device as enumerated, with what selection needs to know about it.
 struct PhysicalDevice {
     VkPhysicalDevice handle = VK_NULL_HANDLE;

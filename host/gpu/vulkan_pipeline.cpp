@@ -1,0 +1,143 @@
+#include "gpu/vulkan_pipeline.hpp"
+
+#include "gpu/vulkan_buffer.hpp"
+#include "render_comp_spv.h"
+
+namespace vkrt::gpu {
+
+namespace {
+
+// The descriptor types and texel formats that kSceneUsage and kSumsUsage are for.
+VkDescriptorType descriptor_type(std::uint32_t binding) {
+    switch (binding) {
+    case kParams: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    case kAccum:
+    case kCounters: return VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
+    default: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+    }
+}
+VkFormat texel_format(std::uint32_t binding) {
+    return binding == kAccum ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R32G32B32A32_UINT;
+}
+
+}  // namespace
+
+Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features) {
+    const VkDevice device = context.device();
+    Pipeline p;
+
+    std::array<VkDescriptorSetLayoutBinding, kBindingCount> bindings{};
+    for (std::uint32_t i = 0; i < kBindingCount; ++i) {
+        bindings[i].binding = i;
+        bindings[i].descriptorType = descriptor_type(i);
+        bindings[i].descriptorCount = 1;
+        bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+    }
+    VkDescriptorSetLayoutCreateInfo set_info{};
+    set_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+    set_info.bindingCount = kBindingCount;
+    set_info.pBindings = bindings.data();
+    VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+    check(vkCreateDescriptorSetLayout(device, &set_info, nullptr, &set_layout), "vkCreateDescriptorSetLayout");
+    p.set_layout = {device, set_layout};
+
+    const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, kPushBytes};
+    VkPipelineLayoutCreateInfo layout_info{};
+    layout_info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+    layout_info.setLayoutCount = 1;
+    layout_info.pSetLayouts = &set_layout;
+    layout_info.pushConstantRangeCount = 1;
+    layout_info.pPushConstantRanges = &push;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    check(vkCreatePipelineLayout(device, &layout_info, nullptr, &layout), "vkCreatePipelineLayout");
+    p.layout = {device, layout};
+
+    VkShaderModuleCreateInfo module_info{};
+    module_info.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
+    module_info.codeSize = sizeof(render_comp_spv);
+    module_info.pCode = render_comp_spv;
+    VkShaderModule raw_module = VK_NULL_HANDLE;
+    check(vkCreateShaderModule(device, &module_info, nullptr, &raw_module), "vkCreateShaderModule");
+    const DeviceHandle<VkShaderModule, vkDestroyShaderModule> module(device, raw_module);
+
+    // One VkBool32 per feature, constant_id = feature id: a feature that is off is
+    // compiled out by the driver.
+    std::array<VkBool32, kFeatureCount> values{};
+    std::array<VkSpecializationMapEntry, kFeatureCount> entries{};
+    for (std::uint32_t id = 0; id < kFeatureCount; ++id) {
+        values[id] = features.has(id) ? VK_TRUE : VK_FALSE;
+        entries[id] = {id, std::uint32_t(id * sizeof(VkBool32)), sizeof(VkBool32)};
+    }
+    VkSpecializationInfo specialization{};
+    specialization.mapEntryCount = kFeatureCount;
+    specialization.pMapEntries = entries.data();
+    specialization.dataSize = sizeof(values);
+    specialization.pData = values.data();
+
+    VkComputePipelineCreateInfo pipeline_info{};
+    pipeline_info.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
+    pipeline_info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    pipeline_info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    pipeline_info.stage.module = raw_module;
+    pipeline_info.stage.pName = "main";
+    pipeline_info.stage.pSpecializationInfo = &specialization;
+    pipeline_info.layout = layout;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    check(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipeline_info, nullptr, &pipeline),
+          "vkCreateComputePipelines");
+    p.pipeline = {device, pipeline};
+
+    const std::array<VkDescriptorPoolSize, 3> sizes{{
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+        {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, kBindingCount - 3},
+        {VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, 2},
+    }};
+    VkDescriptorPoolCreateInfo pool_info{};
+    pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+    pool_info.maxSets = 1;
+    pool_info.poolSizeCount = sizes.size();
+    pool_info.pPoolSizes = sizes.data();
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    check(vkCreateDescriptorPool(device, &pool_info, nullptr, &pool), "vkCreateDescriptorPool");
+    p.pool = {device, pool};
+
+    VkDescriptorSetAllocateInfo alloc{};
+    alloc.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+    alloc.descriptorPool = pool;
+    alloc.descriptorSetCount = 1;
+    alloc.pSetLayouts = &set_layout;
+    check(vkAllocateDescriptorSets(device, &alloc, &p.set), "vkAllocateDescriptorSets");
+    return p;
+}
+
+std::vector<BufferView> write_descriptors(VkDevice device, VkDescriptorSet set,
+                                          const std::array<const VulkanBuffer*, kBindingCount>& buffers) {
+    std::vector<BufferView> views;
+    std::array<VkDescriptorBufferInfo, kBindingCount> infos{};
+    std::array<VkBufferView, kBindingCount> raw_views{};
+    std::array<VkWriteDescriptorSet, kBindingCount> writes{};
+    for (std::uint32_t i = 0; i < kBindingCount; ++i) {
+        writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+        writes[i].dstSet = set;
+        writes[i].dstBinding = i;
+        writes[i].descriptorCount = 1;
+        writes[i].descriptorType = descriptor_type(i);
+        if (i == kParams) {
+            infos[i] = {buffers[i]->get(), 0, VK_WHOLE_SIZE};
+            writes[i].pBufferInfo = &infos[i];
+            continue;
+        }
+        VkBufferViewCreateInfo view_info{};
+        view_info.sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO;
+        view_info.buffer = buffers[i]->get();
+        view_info.format = texel_format(i);
+        view_info.range = VK_WHOLE_SIZE;
+        check(vkCreateBufferView(device, &view_info, nullptr, &raw_views[i]), "vkCreateBufferView");
+        views.emplace_back(device, raw_views[i]);
+        writes[i].pTexelBufferView = &raw_views[i];
+    }
+    vkUpdateDescriptorSets(device, kBindingCount, writes.data(), 0, nullptr);
+    return views;
+}
+
+}  // namespace vkrt::gpu

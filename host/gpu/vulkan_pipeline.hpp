@@ -1,0 +1,45 @@
+#pragma once
+// The compute pipeline of shaders/render.comp, specialised for a scene's feature set,
+// and its one descriptor set.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "gpu/vulkan_context.hpp"
+#include "scene/features.hpp"
+
+namespace vkrt::gpu {
+
+class VulkanBuffer;
+
+// Binding numbers of shaders/render.comp.
+enum Binding : std::uint32_t {
+    kParams, kMaterials, kSpheres, kTriangles, kLights, kAccum, kCounters, kBindingCount
+};
+constexpr std::uint32_t kLocalSize = 8;   // local_size_x and _y of render.comp
+constexpr std::uint32_t kPushBytes = 16;  // uvec4 pass
+
+// Every binding but the params is a texel buffer of 16-byte texels (see render.comp
+// for why): read-only scene arrays as uniform texel buffers, the sums as storage ones.
+constexpr VkBufferUsageFlags kSceneUsage = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+constexpr VkBufferUsageFlags kSumsUsage = VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT;
+
+// The pipeline and its descriptor set. Members are destroyed in reverse order.
+struct Pipeline {
+    DeviceHandle<VkDescriptorSetLayout, vkDestroyDescriptorSetLayout> set_layout;
+    DeviceHandle<VkPipelineLayout, vkDestroyPipelineLayout> layout;
+    DeviceHandle<VkPipeline, vkDestroyPipeline> pipeline;
+    DeviceHandle<VkDescriptorPool, vkDestroyDescriptorPool> pool;
+    VkDescriptorSet set = VK_NULL_HANDLE;  // freed with the pool
+};
+
+Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features);
+
+using BufferView = DeviceHandle<VkBufferView, vkDestroyBufferView>;
+
+// Writes the set, one buffer per binding; returns the texel-buffer views, which must
+// outlive its use.
+std::vector<BufferView> write_descriptors(VkDevice device, VkDescriptorSet set,
+                                          const std::array<const VulkanBuffer*, kBindingCount>& buffers);
+
+}  // namespace vkrt::gpu
