@@ -2,8 +2,53 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <cstdint>
+#include <string>
+
 #include "cli/commands.hpp"
 #include "scene/limits.hpp"
+
+namespace {
+
+// CLI11's Range validator runs before conversion and so answers "abc" with "not in
+// range"; these say what was wrong.
+CLI::Validator whole_number(std::uint64_t lo, std::uint64_t hi) {
+    return CLI::Validator(
+        [lo, hi](std::string& text) -> std::string {
+            std::size_t used = 0;
+            unsigned long long value = 0;
+            try {
+                value = std::stoull(text, &used);
+            } catch (const std::exception&) {
+                used = 0;
+            }
+            if (used != text.size() || text.empty() || text[0] == '-' || value < lo || value > hi) {
+                return fmt::format("expected a whole number from {} to {}, got '{}'", lo, hi, text);
+            }
+            return {};
+        },
+        fmt::format("{}..{}", lo, hi));
+}
+
+CLI::Validator non_negative() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            std::size_t used = 0;
+            double value = -1.0;
+            try {
+                value = std::stod(text, &used);
+            } catch (const std::exception&) {
+                used = 0;
+            }
+            if (used != text.size() || !(value >= 0.0)) {
+                return fmt::format("expected a number >= 0, got '{}'", text);
+            }
+            return {};
+        },
+        ">= 0");
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     using namespace vkrt;
@@ -22,37 +67,51 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     r->add_option("--device", render.device, "Vulkan device: index or name from `vkrt devices` (e.g. lavapipe)");
     r->add_option("--width", render.width, "Image width, overrides the scene")
-        ->check(CLI::Range(1u, limits::kMaxImageSide));
+        ->check(whole_number(1, limits::kMaxImageSide));
     r->add_option("--height", render.height, "Image height, overrides the scene")
-        ->check(CLI::Range(1u, limits::kMaxImageSide));
+        ->check(whole_number(1, limits::kMaxImageSide));
     r->add_option("--spp", render.spp, "Samples per pixel (default: the scene's, else aa*aa)")
-        ->check(CLI::Range(1u, limits::kMaxSpp));
-    r->add_option("--seed", render.seed, "Random seed, overrides the scene");
+        ->check(whole_number(1, limits::kMaxSpp));
+    r->add_option("--seed", render.seed, "Random seed, overrides the scene")
+        ->check(whole_number(0, 0xffffffffu));
     r->add_option("--threads", render.threads, "CPU threads for the cpu backend (default: all)")
-        ->check(CLI::Range(0u, 1024u));
+        ->check(whole_number(0, 1024));
     r->add_option("--stats", render.stats_file, "Write render statistics as JSON to this file");
     r->add_flag("--validate", render.validate,
                 "Enable the Vulkan validation layer; any message makes the render fail");
-    r->add_flag("-q,--quiet", render.quiet, "Print nothing but errors");
+    r->add_flag("-q,--quiet", render.quiet, "Print nothing but warnings and errors");
 
     cli::CompareArgs compare;
     CLI::App* c = app.add_subcommand("compare", "Compare two images; exit 1 when over a given bound");
     c->add_option("a", compare.a, "First image")->required();
     c->add_option("b", compare.b, "Second image")->required();
-    c->add_option("--max-rmse", compare.max_rmse, "Fail when the RMSE is above this");
-    c->add_option("--max-abs", compare.max_abs, "Fail when the largest channel difference is above this");
+    c->add_option("--max-rmse", compare.max_rmse, "Fail when the RMSE is above this")
+        ->check(non_negative());
+    c->add_option("--max-abs", compare.max_abs, "Fail when the largest channel difference is above this")
+        ->check(non_negative());
     c->add_option("--threshold", compare.threshold, "Per-channel difference counted as a differing pixel")
+        ->check(non_negative())
         ->capture_default_str();
 
     app.add_subcommand("devices", "List the Vulkan devices");
 
-    CLI11_PARSE(app, argc, argv);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::Success& e) {  // --help, --version
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        // One line and status 1, like every other mistake (docs/cli.md).
+        fmt::print(stderr, "error: {} (see vkrt {}--help)\n", e.what(),
+                   r->parsed() ? "render " : c->parsed() ? "compare " : "");
+        return 1;
+    }
     try {
         if (r->parsed()) return cli::run_render(render);
         if (c->parsed()) return cli::run_compare(compare);
         return cli::run_devices();
     } catch (const std::exception& e) {
         fmt::print(stderr, "error: {}\n", e.what());
-        return 1;
+        // compare keeps 1 for "over the bound", so a script can tell the two apart.
+        return c->parsed() ? 2 : 1;
     }
 }

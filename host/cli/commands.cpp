@@ -1,5 +1,7 @@
 #include "cli/commands.hpp"
 
+#include <chrono>
+#include <filesystem>
 #include <fstream>
 
 #include <fmt/format.h>
@@ -37,6 +39,36 @@ void apply_overrides(const RenderArgs& args, Scene& scene) {
     }
 }
 
+double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void check_writable_file(const std::filesystem::path& file, const char* what) {
+    const std::filesystem::path dir = file.parent_path().empty() ? "." : file.parent_path();
+    if (!std::filesystem::is_directory(dir)) {
+        throw std::runtime_error(fmt::format("{}: cannot write the {} there: no directory {}", file.string(), what,
+                                             dir.string()));
+    }
+}
+
+void check_writable_image(const std::filesystem::path& file) {
+    check_writable_file(file, "image");
+    if (!can_write_image_format(file)) {
+        throw std::runtime_error(fmt::format(
+            "{}: unknown image format '{}' (use .png or .ppm for 8-bit sRGB, .exr or .hdr for linear float)",
+            file.string(), file.extension().string()));
+    }
+}
+
+void warn_ignored_options(const RenderArgs& args) {
+    if (args.backend == "vulkan" && args.threads != 0) {
+        fmt::print(stderr, "warning: --threads applies to --backend cpu only; ignored\n");
+    }
+    if (args.backend == "cpu" && (!args.device.empty() || args.validate)) {
+        fmt::print(stderr, "warning: --device and --validate apply to --backend vulkan only; ignored\n");
+    }
+}
+
 std::string default_output(const std::string& scene) {
     return std::filesystem::path(scene).stem().string() + ".png";
 }
@@ -44,8 +76,10 @@ std::string default_output(const std::string& scene) {
 void print_summary(const RenderStats& s, const std::string& output) {
     fmt::print("backend   {} on {}\n", s.backend, s.device);
     fmt::print("image     {}x{}, {} samples per pixel\n", s.width, s.height, s.samples_per_pixel);
-    fmt::print("features  kept: {}; left out: {}\n", fmt::join(s.features.kept(), ", "),
-               fmt::join(s.features.left_out(), ", "));
+    auto list = [](const std::vector<std::string>& names) {
+        return names.empty() ? std::string("(none)") : fmt::format("{}", fmt::join(names, ", "));
+    };
+    fmt::print("features  kept: {}; left out: {}\n", list(s.features.kept()), list(s.features.left_out()));
     fmt::print("rays      {} ({} eye, {} shadow), {:.2f} Mrays/s\n", s.rays(), s.eye_rays, s.shadow_rays,
                s.render_seconds > 0.0 ? double(s.rays()) / s.render_seconds * 1e-6 : 0.0);
     fmt::print("seconds   setup {:.3f}, render {:.3f}, total {:.3f}\n", s.flatten_seconds + s.setup_seconds,
@@ -56,11 +90,19 @@ void print_summary(const RenderStats& s, const std::string& output) {
 }  // namespace
 
 int run_render(const RenderArgs& args) {
+    const auto start = std::chrono::steady_clock::now();
     Scene scene = load_scene(args.scene);
     apply_overrides(args, scene);
     const std::string output = args.output.empty() ? default_output(args.scene) : args.output;
 
+    // Mistakes in the output paths are found now, not after a long render.
+    check_writable_image(output);
+    if (!args.stats_file.empty()) check_writable_file(args.stats_file, "stats file");
+    warn_ignored_options(args);
+
+    const auto backend_start = std::chrono::steady_clock::now();
     auto backend = make_backend(args);
+    const double backend_seconds = seconds_since(backend_start);
     ProgressReporter progress("rendering", !args.quiet);
     RenderOutcome outcome = render_scene(scene, *backend, [&](std::uint32_t done, std::uint32_t total) {
         progress.update(done, total);
@@ -68,7 +110,9 @@ int run_render(const RenderArgs& args) {
     progress.finish();
     write_image(outcome.image, output);
 
-    const RenderStats& s = outcome.stats;
+    RenderStats& s = outcome.stats;
+    s.setup_seconds += backend_seconds;         // device and instance creation
+    s.total_seconds = seconds_since(start);     // from loading the scene to the written image
     if (!args.stats_file.empty()) {
         std::ofstream out(args.stats_file);
         out << stats_to_json(s).dump(2) << '\n';
@@ -89,8 +133,7 @@ int run_render(const RenderArgs& args) {
             "{} samples ran out of the per-invocation loop budget of {} iterations and were left out; "
             "the image ({}) is incomplete. The scene has too many primitives for brute-force tracing in one "
             "invocation (lavapipe stops loops silently at 65,535 iterations)",
-            s.truncated_samples, scene.render.loop_budget != 0 ? scene.render.loop_budget : kernel::DEFAULT_LOOP_BUDGET,
-            output));
+            s.truncated_samples, s.loop_budget, output));
     }
     return 0;
 }
@@ -98,6 +141,10 @@ int run_render(const RenderArgs& args) {
 int run_compare(const CompareArgs& args) {
     const Image a = read_image(args.a);
     const Image b = read_image(args.b);
+    if (a.width != b.width || a.height != b.height) {
+        throw ImageError(fmt::format("{} is {}x{} but {} is {}x{}: only images of one size compare", args.a, a.width,
+                                     a.height, args.b, b.width, b.height));
+    }
     const ImageDiff d = compare_images(a, b, args.threshold);
     fmt::print("RMSE {:.6g}, max abs {:.6g}, PSNR {:.2f} dB, {} of {} pixels ({:.4f}%) differ by more than {:g}\n",
                d.rmse, d.max_abs, d.psnr, d.pixels_over, d.pixels, d.fraction_over() * 100.0, args.threshold);
@@ -116,7 +163,11 @@ int run_compare(const CompareArgs& args) {
 int run_devices() {
     const auto devices = list_vulkan_devices();
     for (const DeviceInfo& d : devices) {
-        fmt::print("{}: {} [{}] driver {}, Vulkan {}\n", d.index, d.name, d.type, d.driver, d.api_version);
+        // Users are told to pick Mesa's CPU driver by its project name, which the
+        // driver itself never prints.
+        const bool lavapipe = d.driver.find("llvmpipe") != std::string::npos;
+        fmt::print("{}: {} [{}] driver {}, Vulkan {}{}\n", d.index, d.name, d.type, d.driver, d.api_version,
+                   lavapipe ? " (lavapipe: --device lavapipe)" : "");
     }
     if (devices.empty()) fmt::print("no Vulkan devices\n");
     return 0;

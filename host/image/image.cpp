@@ -9,10 +9,23 @@
 
 namespace vkrt {
 
-bool is_float_format(const std::filesystem::path& file) {
+namespace {
+
+std::string lower_extension(const std::filesystem::path& file) {
     std::string ext = file.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return ext == ".exr" || ext == ".hdr" || ext == ".pfm";
+    return ext;
+}
+
+}  // namespace
+
+bool is_float_format(const std::filesystem::path& file) {
+    const std::string ext = lower_extension(file);
+    return ext == ".exr" || ext == ".hdr";
+}
+
+bool can_write_image_format(const std::filesystem::path& file) {
+    return !file.extension().empty() && OIIO::ImageOutput::create(file.string()) != nullptr;
 }
 
 float linear_to_srgb(float linear) {
@@ -36,7 +49,7 @@ void write_image(const Image& image, const std::filesystem::path& file) {
         throw ImageError(fmt::format("{}: cannot open for writing: {}", name, out->geterror()));
     }
     bool ok = false;
-    if (linear && file.extension() == ".hdr") {
+    if (linear && lower_extension(file) == ".hdr") {
         // RGBE shares one exponent across a pixel and has no sign: a negative channel
         // would corrupt its neighbours, so it is stored as 0.
         std::vector<float> positive(image.rgb);
@@ -76,7 +89,8 @@ Image read_image(const std::filesystem::path& file) {
     Image image(std::uint32_t(spec.width), std::uint32_t(spec.height));
     for (std::size_t p = 0; p < std::size_t(spec.width) * spec.height; ++p) {
         for (int c = 0; c < 3; ++c) {
-            image.rgb[p * 3 + c] = all[p * channels + std::min(c, channels - 1)];
+            // Grey (with or without alpha) fills all three; alpha is never colour.
+            image.rgb[p * 3 + c] = all[p * channels + (channels >= 3 ? c : 0)];
         }
     }
     return image;

@@ -1,6 +1,6 @@
 #pragma once
 // Linear float RGB images and their files. The extension picks the format through
-// OpenImageIO: .exr, .hdr and .pfm are written as linear float; every other format
+// OpenImageIO: .exr and .hdr are written as linear float; every other format
 // (.png, .ppm, .jpg, ...) is clamped to [0, 1], sRGB-encoded and stored in 8 bits.
 #include <cstdint>
 #include <filesystem>
@@ -29,6 +29,9 @@ struct Image {
 
 // True for the formats written as linear floats.
 bool is_float_format(const std::filesystem::path& file);
+
+// True when OpenImageIO has a writer for the file's extension.
+bool can_write_image_format(const std::filesystem::path& file);
 
 // The sRGB transfer function (IEC 61966-2-1) for a linear value clamped to [0, 1].
 float linear_to_srgb(float linear);

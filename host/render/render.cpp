@@ -34,6 +34,7 @@ RenderStats collect_stats(const SceneGpu& scene, const Backend& backend, const R
     s.features = scene.features;
     s.buffers = scene.built_buffers();
     s.validation_messages = backend.validation_messages();
+    s.loop_budget = scene.params.limits.x;
     return s;
 }
 

@@ -29,6 +29,7 @@ struct RenderStats {
     FeatureSet features;
     std::vector<BufferSize> buffers;
     std::uint32_t validation_messages = 0;
+    std::uint32_t loop_budget = 0;        // loop iterations allowed per invocation
 
     std::uint64_t rays() const { return eye_rays + shadow_rays; }
 };
