@@ -101,6 +101,10 @@ int main(int argc, char** argv) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         // One line and status 1, like every other mistake (docs/cli.md).
+        if (app.get_subcommands().empty() && argc > 1 && argv[1][0] != '-') {
+            fmt::print(stderr, "error: unknown command '{}' (expected render, compare or devices)\n", argv[1]);
+            return 1;
+        }
         fmt::print(stderr, "error: {} (see vkrt {}--help)\n", e.what(),
                    r->parsed() ? "render " : c->parsed() ? "compare " : "");
         return 1;

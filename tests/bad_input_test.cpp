@@ -111,6 +111,50 @@ protected:
     fs::path dir_;
 };
 
+// The program's exit status and standard error, run with a timeout so that a hang
+// fails (status 124) instead of blocking the suite; -k removes even a program that
+// ignores SIGTERM.
+struct ProgramRun {
+    int code = -1;
+    std::string stderr_text;
+};
+
+ProgramRun run_vkrt(const std::string& args, const fs::path& dir) {
+    const fs::path err = dir / "stderr.txt";
+    const std::string command = fmt::format("timeout -k 5 20 {} {} > {} 2> {}", shell_quote(VKRT_EXE), args,
+                                            shell_quote((dir / "stdout.txt").string()), shell_quote(err.string()));
+    const int status = std::system(command.c_str());
+    std::ifstream in(err);
+    std::stringstream all;
+    all << in.rdbuf();
+    ProgramRun run;
+    run.stderr_text = all.str();
+    EXPECT_NE(status, -1) << "could not run: " << command;
+    EXPECT_TRUE(WIFEXITED(status)) << "shell ended by a signal; stderr:\n" << run.stderr_text;
+    run.code = WEXITSTATUS(status);
+    EXPECT_NE(run.code, 124) << "timed out (hang); stderr:\n" << run.stderr_text;
+    EXPECT_LT(run.code, 128) << "crashed (signal " << run.code - 128 << "); stderr:\n" << run.stderr_text;
+    return run;
+}
+
+// Exit status 1 and exactly one "error: " line holding every piece; returns the line.
+std::string expect_one_error(const ProgramRun& run, const std::vector<std::string>& pieces) {
+    EXPECT_EQ(run.code, 1) << "stderr:\n" << run.stderr_text;
+    std::vector<std::string> error_lines;
+    std::istringstream lines(run.stderr_text);
+    for (std::string line; std::getline(lines, line);) {
+        if (line.rfind("error: ", 0) == 0) error_lines.push_back(line);
+    }
+    if (error_lines.size() != 1u) {
+        ADD_FAILURE() << "expected one error line; stderr:\n" << run.stderr_text;
+        return {};
+    }
+    for (const std::string& piece : pieces) {
+        EXPECT_NE(error_lines[0].find(piece), std::string::npos) << "missing '" << piece << "' in: " << error_lines[0];
+    }
+    return error_lines[0];
+}
+
 TEST_P(BadInputTest, FailsWithOneClearError) {
     const BadInput& input = GetParam();
     ASSERT_TRUE(fs::exists(VKRT_EXE)) << "program not built: " << VKRT_EXE;
@@ -118,43 +162,78 @@ TEST_P(BadInputTest, FailsWithOneClearError) {
     const fs::path file = dir_ / (input.name + ".json");
     if (!input.text.empty()) std::ofstream(file, std::ios::binary) << input.text;
     const fs::path out = dir_ / "out.png";
-    const fs::path err = dir_ / "stderr.txt";
-
-    // timeout turns a hang into a failure (status 124) instead of a stuck suite;
-    // -k makes sure even a program that ignores SIGTERM goes away.
-    const std::string command = fmt::format("timeout -k 5 20 {} render {} -o {} --backend cpu > {} 2> {}",
-                                            shell_quote(VKRT_EXE), shell_quote(file.string()),
-                                            shell_quote(out.string()), shell_quote((dir_ / "stdout.txt").string()),
-                                            shell_quote(err.string()));
-    const int status = std::system(command.c_str());
-
-    std::ifstream in(err);
-    std::stringstream all;
-    all << in.rdbuf();
-    const std::string stderr_text = all.str();
-
-    ASSERT_NE(status, -1) << "could not run: " << command;
-    ASSERT_TRUE(WIFEXITED(status)) << "shell ended by a signal; stderr:\n" << stderr_text;
-    const int code = WEXITSTATUS(status);
-    EXPECT_NE(code, 124) << "timed out (hang); stderr:\n" << stderr_text;
-    EXPECT_LT(code, 128) << "crashed (signal " << code - 128 << "); stderr:\n" << stderr_text;
-    EXPECT_EQ(code, 1) << "stderr:\n" << stderr_text;
-
-    std::vector<std::string> error_lines;
-    std::istringstream lines(stderr_text);
-    for (std::string line; std::getline(lines, line);) {
-        if (line.rfind("error: ", 0) == 0) error_lines.push_back(line);
-    }
-    ASSERT_EQ(error_lines.size(), 1u) << "stderr:\n" << stderr_text;
-    const std::string& line = error_lines[0];
+    const ProgramRun run = run_vkrt(fmt::format("render {} -o {} --backend cpu", shell_quote(file.string()),
+                                         shell_quote(out.string())), dir_);
+    const std::string line = expect_one_error(run, input.pieces);
     EXPECT_NE(line.find(file.filename().string()), std::string::npos) << "no file name in: " << line;
-    for (const std::string& piece : input.pieces) {
-        EXPECT_NE(line.find(piece), std::string::npos) << "missing '" << piece << "' in: " << line;
-    }
     EXPECT_FALSE(fs::exists(out)) << "an output image was written despite the error";
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, BadInputTest, ::testing::ValuesIn(cases()),
                          [](const ::testing::TestParamInfo<BadInput>& p) { return p.param.name; });
+
+}  // namespace
+
+namespace {
+
+// Mistakes on the command line: the same contract as mistakes in a scene file.
+struct BadOption {
+    std::string name;
+    std::string args;  // after the program name; SCENE and OUT are replaced
+    std::vector<std::string> pieces;
+};
+
+void PrintTo(const BadOption& option, std::ostream* os) { *os << option.name; }
+
+class BadOptionTest : public ::testing::TestWithParam<BadOption> {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / fmt::format("vkrt_bad_option_{}_{}", ::getpid(), GetParam().name);
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    fs::path dir_;
+};
+
+TEST_P(BadOptionTest, FailsWithOneClearError) {
+    std::string args = GetParam().args;
+    const fs::path scene = fs::path(VKRT_SOURCE_DIR) / "scenes" / "default.json";
+    const fs::path out = dir_ / "out.png";
+    for (auto [key, value] : {std::pair{std::string("SCENE"), scene.string()}, std::pair{std::string("OUT"), out.string()}}) {
+        for (std::size_t at = args.find(key); at != std::string::npos; at = args.find(key)) {
+            args.replace(at, key.size(), shell_quote(value));
+        }
+    }
+    expect_one_error(run_vkrt(args, dir_), GetParam().pieces);
+    EXPECT_FALSE(fs::exists(out)) << "an output image was written despite the error";
+}
+
+std::vector<BadOption> option_cases() {
+    return {
+        {"no_command", "", {"subcommand"}},
+        {"unknown_command", "draw SCENE", {"draw"}},
+        {"missing_scene", "render", {"scene is required"}},
+        {"unknown_backend", "render SCENE -o OUT --backend gpu", {"--backend", "gpu"}},
+        {"width_zero", "render SCENE -o OUT --width 0", {"--width", "whole number from 1", "'0'"}},
+        {"width_text", "render SCENE -o OUT --width abc", {"--width", "'abc'"}},
+        {"width_huge", "render SCENE -o OUT --width 40000", {"--width", "32768"}},
+        {"spp_fraction", "render SCENE -o OUT --spp 2.5", {"--spp", "'2.5'"}},
+        {"spp_too_many", "render SCENE -o OUT --spp 100000", {"--spp", "65536"}},
+        {"seed_negative", "render SCENE -o OUT --seed -1", {"--seed", "'-1'"}},
+        {"image_too_large", "render SCENE -o OUT --width 32768 --height 32768", {"--width/--height", "limit"}},
+        {"unknown_option", "render SCENE -o OUT --fast", {"--fast"}},
+        {"unknown_format", "render SCENE -o OUT.xyz", {".xyz", "unknown image format"}},
+        {"no_such_directory", "render SCENE -o /nonexistent/dir/out.png", {"no directory /nonexistent/dir"}},
+        {"unknown_device", "render SCENE -o OUT --device no-such-gpu", {"no-such-gpu", "available"}},
+        {"scene_format", "render OUT", {"unknown scene format '.png'"}},
+        {"compare_threshold", "compare OUT OUT --threshold -1", {"--threshold", ">= 0"}},
+        {"devices_extra", "devices extra", {"extra"}},
+    };
+}
+
+INSTANTIATE_TEST_SUITE_P(CommandLine, BadOptionTest, ::testing::ValuesIn(option_cases()),
+                         [](const ::testing::TestParamInfo<BadOption>& p) { return p.param.name; });
 
 }  // namespace
