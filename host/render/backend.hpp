@@ -14,9 +14,10 @@
 
 namespace vkrt {
 
-// Samples [first, first + count) of every pixel. Because every random number is a
-// function of (seed, pixel, sample index, dimension), any split of a range gives the
-// same sums as the whole.
+// Samples [first, first + count) of every pixel. Every random number is a function
+// of (seed, pixel, sample index, dimension), so any split of a range traces exactly
+// the rays of the whole; adding the split sums equals the whole's sums up to the
+// float rounding of that last addition (tests/split_test.cpp).
 struct SampleRange {
     std::uint32_t first = 0;
     std::uint32_t count = 1;
