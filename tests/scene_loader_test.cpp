@@ -305,6 +305,20 @@ TEST_F(SceneLoaderTest, AcceptsLargestImage) {
 
 // ---- files and syntax ---------------------------------------------------------
 
+// Vectors of tiny but non-zero length are valid directions: their lengths must not
+// underflow into "zero vector" errors or NaN normals.
+TEST_F(SceneLoaderTest, TinyVectorsAreDirectionsNotZero) {
+    const Scene s = load(R"({"camera": {"eye": [1e-300, 0, 3], "look_at": [0, 0, 0], "up": [0, 1e-300, 0]},
+        "materials": {"m": {}},
+        "objects": [{"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]],
+                     "normals": [[0, 0, 1e-300], [0, 0, 2], [3e-200, 0, 4e-200]], "material": "m"}]})");
+    EXPECT_EQ(s.camera.up.y, 1e-300);
+    const auto& n = *s.triangles[0].normals;
+    expect_vec(n[0], {0, 0, 1});
+    expect_vec(n[1], {0, 0, 1});
+    expect_vec(n[2], {0.6, 0, 0.8});
+}
+
 TEST_F(SceneLoaderTest, MissingFile) {
     const fs::path file = dir_ / "nope.json";
     try {

@@ -1,5 +1,7 @@
 #include "scene/features.hpp"
 
+#include "scene/vec_math.hpp"
+
 #include <algorithm>
 #include <cctype>
 
@@ -12,7 +14,6 @@ constexpr const char* kFeatureIds[] = {
 #undef FEATURE
 };
 
-bool nonzero(const dvec3& v) { return v.x != 0.0 || v.y != 0.0 || v.z != 0.0; }
 
 }  // namespace
 
@@ -56,8 +57,8 @@ FeatureSet analyze_features(const Scene& scene) {
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         const Material& m = scene.materials[i];
         if (!used[i]) continue;
-        specular = specular || (m.ks > 0.0 && nonzero(m.specular));
-        emission = emission || nonzero(m.emission);
+        specular = specular || (m.ks > 0.0 && is_nonzero(m.specular));
+        emission = emission || is_nonzero(m.emission);
     }
 
     f.set(Feature::HAS_SPHERES, !scene.spheres.empty());
@@ -68,7 +69,7 @@ FeatureSet analyze_features(const Scene& scene) {
     f.set(Feature::HAS_POINT_LIGHTS, has_lights && has_geometry);
     f.set(Feature::HAS_SHADOWS, scene.render.shadows && has_lights && has_geometry);
     f.set(Feature::HAS_SPECULAR, specular && has_lights);
-    f.set(Feature::HAS_AMBIENT, nonzero(scene.render.ambient) && has_geometry);
+    f.set(Feature::HAS_AMBIENT, is_nonzero(scene.render.ambient) && has_geometry);
     f.set(Feature::HAS_EMISSION, emission);
     f.set(Feature::HAS_JITTER, scene.render.jitter);
     return f;

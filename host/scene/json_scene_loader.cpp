@@ -20,6 +20,7 @@
 #include "scene/json_reader.hpp"
 #include "scene/limits.hpp"
 #include "scene/scene_error.hpp"
+#include "scene/vec_math.hpp"
 
 namespace vkrt {
 namespace {
@@ -31,9 +32,7 @@ using json::Node;
 // kernel's single precision, however exactly the file states it.
 constexpr double kParallelSine = 1e-9;
 
-bool parallel_or_zero(const dvec3& a, const dvec3& b) {
-    return glm::length(glm::cross(a, b)) <= kParallelSine * glm::length(a) * glm::length(b);
-}
+bool parallel_or_zero(const dvec3& a, const dvec3& b) { return vkrt::parallel_or_zero(a, b, kParallelSine); }
 
 std::string read_text(const std::filesystem::path& file, const std::string& name) {
     // C stdio rather than iostreams: it reliably leaves errno set, so the message
@@ -74,10 +73,10 @@ Camera read_camera(const Node& n) {
                            limits::kMaxImagePixels));
     }
     const dvec3 view = c.look_at - c.eye;
-    if (glm::length(view) == 0.0) {
+    if (!is_nonzero(view)) {
         n.fail_field("look_at", fmt::format("look_at must differ from eye (both are {})", json::format_vec3(c.eye)));
     }
-    if (glm::length(c.up) == 0.0) {
+    if (!is_nonzero(c.up)) {
         n.fail_field("up", fmt::format("expected a non-zero vector, got {}", json::format_vec3(c.up)));
     }
     if (parallel_or_zero(c.up, view)) {
@@ -110,7 +109,6 @@ RenderSettings read_render(const Node& n) {
     return r;
 }
 
-bool nonzero(const dvec3& v) { return v.x != 0.0 || v.y != 0.0 || v.z != 0.0; }
 
 Material read_material(const std::string& name, const Node& n) {
     n.allow_only({"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit", "ior", "emission"});
@@ -128,11 +126,11 @@ Material read_material(const std::string& name, const Node& n) {
     // rendered as if the surface were opaque.
     if (auto v = n.find("reflect")) {
         m.reflect = v->color();
-        if (nonzero(m.reflect)) v->fail("mirror reflection is not supported yet (reflect must be [0, 0, 0])");
+        if (is_nonzero(m.reflect)) v->fail("mirror reflection is not supported yet (reflect must be [0, 0, 0])");
     }
     if (auto v = n.find("transmit")) {
         m.transmit = v->color();
-        if (nonzero(m.transmit)) v->fail("refraction is not supported yet (transmit must be [0, 0, 0])");
+        if (is_nonzero(m.transmit)) v->fail("refraction is not supported yet (transmit must be [0, 0, 0])");
     }
     return m;
 }
@@ -204,10 +202,10 @@ Triangle read_triangle(const Node& n, const MaterialIndex& materials) {
         std::array<dvec3, 3> ns{};
         for (int i = 0; i < 3; ++i) {
             ns[i] = e[i].vec3();
-            if (!nonzero(ns[i])) e[i].fail("expected a non-zero vector, got [0, 0, 0]");
+            if (!is_nonzero(ns[i])) e[i].fail("expected a non-zero vector, got [0, 0, 0]");
             // Normalized here so the kernel can interpolate without renormalizing
             // inputs; the file may give any length.
-            ns[i] = glm::normalize(ns[i]);
+            ns[i] = robust_normalize(ns[i]);
         }
         t.normals = ns;
     }
@@ -223,8 +221,8 @@ void read_quad(const Node& n, const MaterialIndex& materials, std::vector<Triang
     const dvec3 e1 = n.required("edge1").vec3();
     const Node edge2 = n.required("edge2");
     const dvec3 e2 = edge2.vec3();
-    if (!nonzero(e1)) n.fail_field("edge1", "expected a non-zero vector, got [0, 0, 0]");
-    if (!nonzero(e2)) edge2.fail("expected a non-zero vector, got [0, 0, 0]");
+    if (!is_nonzero(e1)) n.fail_field("edge1", "expected a non-zero vector, got [0, 0, 0]");
+    if (!is_nonzero(e2)) edge2.fail("expected a non-zero vector, got [0, 0, 0]");
     if (parallel_or_zero(e1, e2)) edge2.fail("edge1 and edge2 are parallel, so the quad has zero area");
     const std::uint32_t material = material_of(n, materials);
     out.push_back(Triangle{{corner, corner + e1, corner + e1 + e2}, std::nullopt, material});

@@ -1,5 +1,7 @@
 #include "scene/scene_gpu.hpp"
 
+#include "scene/vec_math.hpp"
+
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -19,8 +21,8 @@ vec4 to_vec4(const dvec3& v, double w = 0.0) {
 // The camera frame is built in double and rounded once, so the kernel's rays do not
 // inherit the error of a float cross product and tan().
 void set_camera(const Camera& cam, kernel::Params& p) {
-    const dvec3 forward = glm::normalize(cam.look_at - cam.eye);
-    const dvec3 right = glm::normalize(glm::cross(forward, cam.up));
+    const dvec3 forward = robust_normalize(cam.look_at - cam.eye);
+    const dvec3 right = glm::normalize(glm::cross(forward, robust_normalize(cam.up)));
     const dvec3 up = glm::cross(right, forward);
     const double pixel = 2.0 * std::tan(glm::radians(cam.fov) / 2.0) / cam.height;
     const dvec3 step_right = right * pixel;
