@@ -12,8 +12,8 @@ using uint = std::uint32_t;
 #include "kernel/constants.glsl"
 #include "kernel/layout.glsl"
 
-// std430 offsets and sizes: vec4 members only, so these hold by construction; the
-// asserts catch anyone adding a vec3 or a scalar.
+// Sizes and offsets: vec4 members only, so these hold by construction (one 16-byte
+// texel a member); the asserts catch anyone adding a vec3 or a scalar.
 static_assert(sizeof(vec4) == 16 && sizeof(uvec4) == 16);
 static_assert(sizeof(Sphere) == 32);
 static_assert(sizeof(Triangle) == 112);

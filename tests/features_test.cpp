@@ -71,8 +71,7 @@ TEST(Features, TrianglesWithNormalsKeepSmoothNormals) {
 
 // The program's --stats report says what was kept and left out, for both backends.
 TEST(Features, StatsReportNamesWhatWasLeftOut) {
-    const auto dir = std::filesystem::temp_directory_path() / "vkrt_features_test";
-    std::filesystem::create_directories(dir);
+    const auto dir = test::temp_dir("features_test");
     const auto scene = dir / "spheres.json";
     std::ofstream(scene) << R"({
         "camera": {"eye": [0, 0, 4], "look_at": [0, 0, 0], "width": 32, "height": 24},

@@ -12,14 +12,14 @@
 
 #include "image/compare.hpp"
 #include "image/image.hpp"
+#include "test_support.hpp"
 
 namespace {
 
 using namespace vkrt;
 
 std::filesystem::path temp_dir() {
-    const auto dir = std::filesystem::temp_directory_path() / "vkrt_image_io_test";
-    std::filesystem::create_directories(dir);
+    static const std::filesystem::path dir = test::temp_dir("image_io_test");
     return dir;
 }
 

@@ -97,8 +97,7 @@ TEST(LoopBudget, ShadowRayLoopsCountToo) {
 
 TEST(LoopBudget, CommandLineReportsTruncationAsAnError) {
     // Rendering through the program: non-zero exit and a message that says why.
-    const auto dir = std::filesystem::temp_directory_path() / "vkrt_budget_test";
-    std::filesystem::create_directories(dir);
+    const auto dir = test::temp_dir("budget_test");
     const auto scene = dir / "budget.json";
     std::ofstream(scene) << R"({
         "camera": {"eye": [0, 0, 4], "look_at": [0, 0, 0], "width": 4, "height": 4},

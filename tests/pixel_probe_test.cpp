@@ -60,7 +60,6 @@ std::optional<dvec3> expected_radiance(const Scene& s, std::uint32_t px, std::ui
     const double b = glm::dot(o - sp.center, d);
     const double closest = glm::length(o - sp.center - b * d);
     if (closest > 0.97 * sp.radius) return std::nullopt;
-    if (closest > sp.radius) return std::nullopt;
     const double t = -b - std::sqrt(sp.radius * sp.radius - closest * closest);
     const dvec3 p = o + t * d;
     const dvec3 n = (p - sp.center) / sp.radius;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 
 #include "gpu/vulkan_backend.hpp"
@@ -12,10 +14,18 @@ namespace vkrt::test {
 
 std::filesystem::path source_dir() { return VKRT_SOURCE_DIR; }
 
+std::filesystem::path temp_dir(const std::string& name) {
+    const auto dir = std::filesystem::temp_directory_path() / ("vkrt_" + name + "_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
 std::vector<std::filesystem::path> repo_scenes() {
     std::vector<std::filesystem::path> scenes;
     for (const auto& entry : std::filesystem::recursive_directory_iterator(source_dir() / "scenes")) {
-        if (entry.is_regular_file() && entry.path().extension() == ".json") scenes.push_back(entry.path());
+        const auto ext = entry.path().extension();
+        if (entry.is_regular_file() && (ext == ".json" || ext == ".jsonc")) scenes.push_back(entry.path());
     }
     std::sort(scenes.begin(), scenes.end());
     return scenes;

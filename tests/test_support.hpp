@@ -11,6 +11,10 @@ namespace vkrt::test {
 
 std::filesystem::path source_dir();
 
+// A fresh directory under the system's temporary directory, unique to this process
+// so that concurrent test runs do not share files.
+std::filesystem::path temp_dir(const std::string& name);
+
 // Every scene shipped under scenes/ (recursively), sorted.
 std::vector<std::filesystem::path> repo_scenes();
 

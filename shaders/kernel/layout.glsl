@@ -1,6 +1,8 @@
 // Buffer layouts shared by the compute shader and the C++ host.
-// std430 rules with vec4/uvec4 members only, so GLSL and C++ agree on every offset
-// without padding rules to remember; host/kernel_types.hpp static_asserts the sizes.
+// vec4/uvec4 members only, so GLSL and C++ agree on every offset without padding
+// rules to remember (std140 and std430 coincide for such structs), and each member is
+// one 16-byte texel of the texel buffers render.comp reads them from;
+// host/kernel_types.hpp static_asserts the sizes.
 // Unused .w lanes are documented as such and written as 0 by the host.
 
 // A sphere: centre in xyz, radius in w; meta.x = material index.
