@@ -1,19 +1,17 @@
 #include "gpu/vulkan_context.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+
+#include "gpu/vulkan_devices.hpp"
 
 namespace vkrt::gpu {
 
 namespace {
 
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
-constexpr const char* kNoDriverHint =
-    "no usable Vulkan driver; install one (on Debian/Ubuntu, mesa-vulkan-drivers provides "
-    "lavapipe, a Vulkan device that runs on the CPU), or render with --backend cpu";
 
 VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(
     VkDebugUtilsMessageSeverityFlagBitsEXT, VkDebugUtilsMessageTypeFlagsEXT,
@@ -24,14 +22,6 @@ VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(
     return VK_FALSE;
 }
 
-// The second call of an enumeration may find more entries than the first counted
-// (a device or layer appeared in between); the shorter list is still a good answer.
-void check_listing(VkResult result, const char* call) {
-    if (result != VK_INCOMPLETE) {
-        check(result, call);
-    }
-}
-
 bool has_layer(const char* name) {
     std::uint32_t count = 0;
     check(vkEnumerateInstanceLayerProperties(&count, nullptr), "vkEnumerateInstanceLayerProperties");
@@ -40,133 +30,6 @@ bool has_layer(const char* name) {
                   "vkEnumerateInstanceLayerProperties");
     return std::any_of(layers.begin(), layers.begin() + count,
                        [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
-}
-
-bool has_device_extension(VkPhysicalDevice device, const char* name) {
-    std::uint32_t count = 0;
-    check(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr),
-          "vkEnumerateDeviceExtensionProperties");
-    std::vector<VkExtensionProperties> extensions(count);
-    check_listing(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data()),
-                  "vkEnumerateDeviceExtensionProperties");
-    return std::any_of(extensions.begin(), extensions.begin() + count,
-                       [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
-}
-
-std::string type_name(VkPhysicalDeviceType type) {
-    switch (type) {
-        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete";
-        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated";
-        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual";
-        case VK_PHYSICAL_DEVICE_TYPE_CPU: return "cpu";
-        default: return "other";
-    }
-}
-
-// Lower is better when no device was named.
-int type_rank(VkPhysicalDeviceType type) {
-    switch (type) {
-        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
-        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
-        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
-        case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
-        default: return 4;
-    }
-}
-
-std::string version_string(std::uint32_t v) {
-    return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) +
-           "." + std::to_string(VK_API_VERSION_PATCH(v));
-}
-
-std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return s;
-}
-
-bool usable(const PhysicalDevice& d) {
-    return d.has_compute && d.api_version >= VK_API_VERSION_1_1;
-}
-
-std::string describe(const PhysicalDevice& d) {
-    return std::to_string(d.info.index) + ": " + d.info.name + " [" + d.info.type + ", " +
-           d.info.driver + "]";
-}
-
-std::string describe_all(const std::vector<PhysicalDevice>& devices) {
-    std::string out;
-    for (const PhysicalDevice& d : devices) {
-        out += (out.empty() ? "" : "; ") + describe(d);
-    }
-    return out;
-}
-
-bool matches(const PhysicalDevice& d, const std::string& selector) {
-    const std::string s = lower(selector);
-    if (lower(d.info.name).find(s) != std::string::npos ||
-        lower(d.info.driver).find(s) != std::string::npos) {
-        return true;
-    }
-    // Mesa calls its Vulkan CPU driver lavapipe but reports it as llvmpipe.
-    return d.driver_id == VK_DRIVER_ID_MESA_LLVMPIPE && std::string("lavapipe").find(s) != std::string::npos;
-}
-
-// A family that does compute but not graphics is preferred: on GPUs it is the queue
-// least likely to share time with the desktop.
-std::uint32_t compute_family(const std::vector<VkQueueFamilyProperties>& families) {
-    std::uint32_t best = UINT32_MAX;
-    for (std::uint32_t i = 0; i < families.size(); ++i) {
-        const VkQueueFlags flags = families[i].queueFlags;
-        if ((flags & VK_QUEUE_COMPUTE_BIT) == 0 || families[i].queueCount == 0) {
-            continue;
-        }
-        if ((flags & VK_QUEUE_GRAPHICS_BIT) == 0) {
-            return i;
-        }
-        best = std::min(best, i);
-    }
-    return best;
-}
-
-std::vector<VkQueueFamilyProperties> queue_families(VkPhysicalDevice device) {
-    std::uint32_t count = 0;
-    vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
-    std::vector<VkQueueFamilyProperties> families(count);
-    vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
-    families.resize(count);
-    return families;
-}
-
-PhysicalDevice describe_device(VkPhysicalDevice handle, std::uint32_t index,
-                               std::uint32_t instance_api) {
-    PhysicalDevice d;
-    d.handle = handle;
-    VkPhysicalDeviceProperties props{};
-    vkGetPhysicalDeviceProperties(handle, &props);
-    d.type = props.deviceType;
-    d.api_version = props.apiVersion;
-    d.info.index = index;
-    d.info.name = props.deviceName;
-    d.info.type = type_name(props.deviceType);
-    d.info.api_version = version_string(props.apiVersion);
-    d.info.driver = "unknown driver";
-
-    // Driver properties are core from 1.2 (as both sides see it), else an extension.
-    const std::uint32_t effective = std::min(instance_api, props.apiVersion);
-    if (effective >= VK_API_VERSION_1_2 ||
-        (effective >= VK_API_VERSION_1_1 && has_device_extension(handle, VK_KHR_DRIVER_PROPERTIES_EXTENSION_NAME))) {
-        VkPhysicalDeviceDriverProperties driver{};
-        driver.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES;
-        VkPhysicalDeviceProperties2 props2{};
-        props2.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
-        props2.pNext = &driver;
-        vkGetPhysicalDeviceProperties2(handle, &props2);
-        d.driver_id = driver.driverID;
-        d.info.driver = std::string(driver.driverName) + " " + driver.driverInfo;
-    }
-    d.has_compute = compute_family(queue_families(handle)) != UINT32_MAX;
-    return d;
 }
 
 }  // namespace
@@ -297,60 +160,6 @@ VulkanInstance::~VulkanInstance() {
         }
     }
     vkDestroyInstance(instance_, nullptr);
-}
-
-std::vector<PhysicalDevice> VulkanInstance::devices() const {
-    std::uint32_t count = 0;
-    check(vkEnumeratePhysicalDevices(instance_, &count, nullptr), "vkEnumeratePhysicalDevices");
-    std::vector<VkPhysicalDevice> handles(count);
-    check_listing(vkEnumeratePhysicalDevices(instance_, &count, handles.data()), "vkEnumeratePhysicalDevices");
-    std::vector<PhysicalDevice> devices;
-    for (std::uint32_t i = 0; i < count; ++i) {
-        devices.push_back(describe_device(handles[i], i, api_version_));
-    }
-    return devices;
-}
-
-const PhysicalDevice& select_device(const std::vector<PhysicalDevice>& devices,
-                                    const std::string& selector) {
-    if (devices.empty()) {
-        throw GpuError(std::string("no Vulkan device found: ") + kNoDriverHint);
-    }
-    const PhysicalDevice* chosen = nullptr;
-    if (selector.empty()) {
-        for (const PhysicalDevice& d : devices) {
-            if (usable(d) && (!chosen || type_rank(d.type) < type_rank(chosen->type))) {
-                chosen = &d;
-            }
-        }
-        if (!chosen) {
-            throw GpuError("no Vulkan device supports Vulkan 1.1 with a compute queue; available: " +
-                           describe_all(devices));
-        }
-        return *chosen;
-    }
-    const bool is_index = std::all_of(selector.begin(), selector.end(),
-                                      [](unsigned char c) { return std::isdigit(c) != 0; });
-    if (is_index) {
-        const unsigned long index = std::strtoul(selector.c_str(), nullptr, 10);
-        if (index < devices.size()) {
-            chosen = &devices[index];
-        }
-    } else {
-        auto found = std::find_if(devices.begin(), devices.end(),
-                                  [&](const PhysicalDevice& d) { return matches(d, selector); });
-        if (found != devices.end()) {
-            chosen = &*found;
-        }
-    }
-    if (!chosen) {
-        throw GpuError("no Vulkan device matches '" + selector + "'; available: " + describe_all(devices));
-    }
-    if (!usable(*chosen)) {
-        throw GpuError("Vulkan device " + describe(*chosen) +
-                       " cannot run vkrt: it needs Vulkan 1.1 and a compute queue");
-    }
-    return *chosen;
 }
 
 VulkanContext::VulkanContext(const VulkanOptions& options) : instance_(options.validation) {
