@@ -4,10 +4,7 @@
 // own messages are tested value by value in scene_loader_test.cpp; this test is
 // about what a user at the command line sees.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <ostream>
@@ -17,9 +14,12 @@
 
 #include <fmt/format.h>
 
+#include "test_support.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
+namespace test = vkrt::test;
 
 struct BadInput {
     std::string name;                 // test name and scene file stem
@@ -93,52 +93,20 @@ std::vector<BadInput> cases() {
     };
 }
 
-std::string shell_quote(const std::string& s) {
-    std::string out = "'";
-    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
-
-class BadInputTest : public ::testing::TestWithParam<BadInput> {
+// A parameterised test with a fresh directory of its own, named for the case.
+template <class Case>
+class CaseDirTest : public ::testing::TestWithParam<Case> {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / fmt::format("vkrt_bad_input_{}_{}", ::getpid(), GetParam().name);
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
+    void SetUp() override { dir_ = test::temp_dir("case_" + this->GetParam().name); }
     void TearDown() override { fs::remove_all(dir_); }
 
     fs::path dir_;
 };
 
-// The program's exit status and standard error, run with a timeout so that a hang
-// fails (status 124) instead of blocking the suite; -k removes even a program that
-// ignores SIGTERM.
-struct ProgramRun {
-    int code = -1;
-    std::string stderr_text;
-};
-
-ProgramRun run_vkrt(const std::string& args, const fs::path& dir) {
-    const fs::path err = dir / "stderr.txt";
-    const std::string command = fmt::format("timeout -k 5 20 {} {} > {} 2> {}", shell_quote(VKRT_EXE), args,
-                                            shell_quote((dir / "stdout.txt").string()), shell_quote(err.string()));
-    const int status = std::system(command.c_str());
-    std::ifstream in(err);
-    std::stringstream all;
-    all << in.rdbuf();
-    ProgramRun run;
-    run.stderr_text = all.str();
-    EXPECT_NE(status, -1) << "could not run: " << command;
-    EXPECT_TRUE(WIFEXITED(status)) << "shell ended by a signal; stderr:\n" << run.stderr_text;
-    run.code = WEXITSTATUS(status);
-    EXPECT_NE(run.code, 124) << "timed out (hang); stderr:\n" << run.stderr_text;
-    EXPECT_LT(run.code, 128) << "crashed (signal " << run.code - 128 << "); stderr:\n" << run.stderr_text;
-    return run;
-}
+using BadInputTest = CaseDirTest<BadInput>;
 
 // Exit status 1 and exactly one "error: " line holding every piece; returns the line.
-std::string expect_one_error(const ProgramRun& run, const std::vector<std::string>& pieces) {
+std::string expect_one_error(const test::ProgramRun& run, const std::vector<std::string>& pieces) {
     EXPECT_EQ(run.code, 1) << "stderr:\n" << run.stderr_text;
     std::vector<std::string> error_lines;
     std::istringstream lines(run.stderr_text);
@@ -162,8 +130,8 @@ TEST_P(BadInputTest, FailsWithOneClearError) {
     const fs::path file = dir_ / (input.name + ".json");
     if (!input.text.empty()) std::ofstream(file, std::ios::binary) << input.text;
     const fs::path out = dir_ / "out.png";
-    const ProgramRun run = run_vkrt(fmt::format("render {} -o {} --backend cpu", shell_quote(file.string()),
-                                         shell_quote(out.string())), dir_);
+    const test::ProgramRun run = test::run_vkrt(fmt::format("render {} -o {} --backend cpu", test::shell_quote(file.string()),
+                                         test::shell_quote(out.string())), dir_);
     const std::string line = expect_one_error(run, input.pieces);
     EXPECT_NE(line.find(file.filename().string()), std::string::npos) << "no file name in: " << line;
     EXPECT_FALSE(fs::exists(out)) << "an output image was written despite the error";
@@ -185,17 +153,7 @@ struct BadOption {
 
 void PrintTo(const BadOption& option, std::ostream* os) { *os << option.name; }
 
-class BadOptionTest : public ::testing::TestWithParam<BadOption> {
-protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / fmt::format("vkrt_bad_option_{}_{}", ::getpid(), GetParam().name);
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    fs::path dir_;
-};
+using BadOptionTest = CaseDirTest<BadOption>;
 
 TEST_P(BadOptionTest, FailsWithOneClearError) {
     std::string args = GetParam().args;
@@ -203,10 +161,10 @@ TEST_P(BadOptionTest, FailsWithOneClearError) {
     const fs::path out = dir_ / "out.png";
     for (auto [key, value] : {std::pair{std::string("SCENE"), scene.string()}, std::pair{std::string("OUT"), out.string()}}) {
         for (std::size_t at = args.find(key); at != std::string::npos; at = args.find(key)) {
-            args.replace(at, key.size(), shell_quote(value));
+            args.replace(at, key.size(), test::shell_quote(value));
         }
     }
-    expect_one_error(run_vkrt(args, dir_), GetParam().pieces);
+    expect_one_error(test::run_vkrt(args, dir_), GetParam().pieces);
     EXPECT_FALSE(fs::exists(out)) << "an output image was written despite the error";
 }
 

@@ -2,7 +2,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -80,9 +79,12 @@ TEST(Features, StatsReportNamesWhatWasLeftOut) {
         "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})";
     for (const std::string backend : {"cpu", "vulkan"}) {
         const auto stats = dir / ("stats_" + backend + ".json");
-        const std::string cmd = std::string(VKRT_EXE) + " render " + scene.string() + " -q --validate --backend " +
-                                backend + " -o " + (dir / "out.png").string() + " --stats " + stats.string();
-        ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+        const test::ProgramRun run =
+            test::run_vkrt("render " + test::shell_quote(scene.string()) + " -q --validate --backend " + backend +
+                               " -o " + test::shell_quote((dir / "out.png").string()) + " --stats " +
+                               test::shell_quote(stats.string()),
+                           dir);
+        ASSERT_EQ(run.code, 0) << run.stderr_text;
         const auto report = nlohmann::json::parse(std::ifstream(stats));
         EXPECT_EQ(report["backend"], backend);
         EXPECT_EQ(report["width"], 32);

@@ -3,11 +3,8 @@
 // comparison's figures on images whose differences are known.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 
 #include "image/compare.hpp"
@@ -123,13 +120,17 @@ TEST(Compare, CommandExitsOneOverABound) {
     b.rgb[0] = 0.2f;
     write_image(a, temp_dir() / "a.exr");
     write_image(b, temp_dir() / "b.exr");
-    const std::string base = std::string(VKRT_EXE) + " compare " + (temp_dir() / "a.exr").string() + " " +
-                             (temp_dir() / "b.exr").string() + " > /dev/null";
-    EXPECT_EQ(std::system((base + " --max-abs 0.3").c_str()), 0);
-    const int over = std::system((base + " --max-abs 0.1").c_str());
-    EXPECT_TRUE(WIFEXITED(over) && WEXITSTATUS(over) == 1);
-    const int rmse = std::system((base + " --max-rmse 0.01").c_str());
-    EXPECT_TRUE(WIFEXITED(rmse) && WEXITSTATUS(rmse) == 1);
+    const std::string base = "compare " + test::shell_quote((temp_dir() / "a.exr").string()) + " " +
+                             test::shell_quote((temp_dir() / "b.exr").string());
+    EXPECT_EQ(test::run_vkrt(base + " --max-abs 0.3", temp_dir()).code, 0);
+    EXPECT_EQ(test::run_vkrt(base + " --max-abs 0.1", temp_dir()).code, 1);
+    EXPECT_EQ(test::run_vkrt(base + " --max-rmse 0.01", temp_dir()).code, 1);
+    // An unreadable image is an error, told apart from "over the bound".
+    EXPECT_EQ(test::run_vkrt("compare " + test::shell_quote((temp_dir() / "none.exr").string()) + " " +
+                                 test::shell_quote((temp_dir() / "a.exr").string()),
+                             temp_dir())
+                  .code,
+              2);
 }
 
 }  // namespace

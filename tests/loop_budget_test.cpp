@@ -3,12 +3,8 @@
 // budget truncates every sample that loops over them, and says so.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
-#include <iterator>
 
 #include "test_support.hpp"
 
@@ -106,14 +102,12 @@ TEST(LoopBudget, CommandLineReportsTruncationAsAnError) {
         "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"},
                     {"type": "sphere", "center": [3, 0, 0], "radius": 1, "material": "m"},
                     {"type": "sphere", "center": [-3, 0, 0], "radius": 1, "material": "m"}]})";
-    const auto err = dir / "stderr.txt";
-    const std::string cmd = std::string(VKRT_EXE) + " render " + scene.string() + " -q --backend cpu -o " +
-                            (dir / "out.png").string() + " 2> " + err.string();
-    const int status = std::system(cmd.c_str());
-    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << status;
-    std::ifstream in(err);
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    EXPECT_NE(text.find("16 samples ran out of the per-invocation loop budget"), std::string::npos) << text;
+    const test::ProgramRun run = test::run_vkrt(
+        "render " + test::shell_quote(scene.string()) + " -q --backend cpu -o " + test::shell_quote((dir / "out.png").string()),
+        dir);
+    EXPECT_EQ(run.code, 1);
+    EXPECT_NE(run.stderr_text.find("16 samples ran out of the per-invocation loop budget"), std::string::npos)
+        << run.stderr_text;
 }
 
 }  // namespace

@@ -26,12 +26,13 @@ using vkrt::Scene;
 using vkrt::SceneError;
 
 // A valid scene whose sections can be replaced one at a time; an empty string
-// leaves that section out of the file.
+// leaves that section out of the file. Name the one a test changes:
+// Parts{.objects = "[]"}.
 struct Parts {
     std::string camera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0]})";
-    std::string render;
+    std::string render = "";
     std::string materials = R"({"chalk": {"diffuse": [0.8, 0.8, 0.8]}, "glass": {}})";
-    std::string lights;
+    std::string lights = "";
     std::string objects = R"([{"type": "sphere", "center": [0, 1, 0], "radius": 0.5, "material": "chalk"}])";
 
     std::string text() const {
@@ -48,36 +49,6 @@ struct Parts {
         return out + "}";
     }
 };
-
-Parts with_objects(std::string objects) {
-    Parts p;
-    p.objects = std::move(objects);
-    return p;
-}
-
-Parts with_camera(std::string camera) {
-    Parts p;
-    p.camera = std::move(camera);
-    return p;
-}
-
-Parts with_render(std::string render) {
-    Parts p;
-    p.render = std::move(render);
-    return p;
-}
-
-Parts with_materials(std::string materials) {
-    Parts p;
-    p.materials = std::move(materials);
-    return p;
-}
-
-Parts with_lights(std::string lights) {
-    Parts p;
-    p.lights = std::move(lights);
-    return p;
-}
 
 void expect_vec(const dvec3& actual, const dvec3& expected) {
     EXPECT_DOUBLE_EQ(actual.x, expected.x);
@@ -247,13 +218,13 @@ TEST_F(SceneLoaderTest, FillsDefaults) {
 }
 
 TEST_F(SceneLoaderTest, SamplesPerPixelDefaultsToAaSquared) {
-    const Scene s = load(with_render(R"({"aa": 4})").text());
+    const Scene s = load(Parts{.render = R"({"aa": 4})"}.text());
     EXPECT_EQ(s.render.spp, 0u);
     EXPECT_EQ(s.render.samples_per_pixel(), 16u);
 }
 
 TEST_F(SceneLoaderTest, LightDefaults) {
-    const Scene s = load(with_lights(R"([{"type": "point", "position": [1, 2, 3]}])").text());
+    const Scene s = load(Parts{.lights = R"([{"type": "point", "position": [1, 2, 3]}])"}.text());
     ASSERT_EQ(s.lights.size(), 1u);
     expect_vec(s.lights[0].position, {1, 2, 3});
     expect_vec(s.lights[0].color, {1, 1, 1});
@@ -261,8 +232,8 @@ TEST_F(SceneLoaderTest, LightDefaults) {
 }
 
 TEST_F(SceneLoaderTest, QuadBecomesTwoTrianglesFacingCrossOfEdges) {
-    const Scene s = load(with_objects(R"([{"type": "quad", "corner": [1, 2, 3], "edge1": [2, 0, 0],
-                                           "edge2": [0, 0, -4], "material": "glass"}])")
+    const Scene s = load(Parts{.objects = R"([{"type": "quad", "corner": [1, 2, 3], "edge1": [2, 0, 0],
+                                           "edge2": [0, 0, -4], "material": "glass"}])"}
                              .text());
     ASSERT_EQ(s.triangles.size(), 2u);
     const auto& a = s.triangles[0];
@@ -287,19 +258,19 @@ TEST_F(SceneLoaderTest, QuadBecomesTwoTrianglesFacingCrossOfEdges) {
 }
 
 TEST_F(SceneLoaderTest, AcceptsWholeNumbersWrittenAsFloats) {
-    const Scene s = load(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 64.0, "height": 4.8e1})").text());
+    const Scene s = load(Parts{.camera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 64.0, "height": 4.8e1})"}.text());
     EXPECT_EQ(s.camera.width, 64u);
     EXPECT_EQ(s.camera.height, 48u);
 }
 
 TEST_F(SceneLoaderTest, AcceptsZeroReflectAndTransmit) {
-    const Scene s = load(with_materials(R"({"chalk": {"reflect": [0, 0, 0], "transmit": [0, 0, 0]}})").text());
+    const Scene s = load(Parts{.materials = R"({"chalk": {"reflect": [0, 0, 0], "transmit": [0, 0, 0]}})"}.text());
     ASSERT_EQ(s.materials.size(), 1u);
     expect_vec(s.materials[0].reflect, {0, 0, 0});
 }
 
 TEST_F(SceneLoaderTest, AcceptsLargestImage) {
-    const Scene s = load(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 8192, "height": 4096})").text());
+    const Scene s = load(Parts{.camera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 8192, "height": 4096})"}.text());
     EXPECT_EQ(std::uint64_t(s.camera.width) * s.camera.height, vkrt::limits::kMaxImagePixels);
 }
 
@@ -361,12 +332,12 @@ TEST_F(SceneLoaderTest, TopLevelMustBeAnObject) {
 }
 
 TEST_F(SceneLoaderTest, DuplicateKey) {
-    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "fov": 30, "fov": 60})"),
+    expect_error(Parts{.camera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "fov": 30, "fov": 60})"},
                  {": camera: ", "'fov'", "more than once"});
 }
 
 TEST_F(SceneLoaderTest, AbsurdNesting) {
-    expect_error(with_objects(std::string(200, '[') + std::string(200, ']')), {"objects[0]", "nesting"});
+    expect_error(Parts{.objects = std::string(200, '[') + std::string(200, ']')}, {"objects[0]", "nesting"});
 }
 
 // ---- missing and unknown fields -----------------------------------------------
@@ -381,156 +352,156 @@ TEST_F(SceneLoaderTest, MissingRequiredFields) {
     Parts no_objects;
     no_objects.objects.clear();
     expect_error(no_objects, {": objects: required field is missing"});
-    expect_error(with_camera(R"({"look_at": [0, 1, 0]})"), {": camera.eye: required field is missing"});
-    expect_error(with_camera(R"({"eye": [0, 1, 3]})"), {": camera.look_at: required field is missing"});
-    expect_error(with_objects(R"([{"type": "sphere", "center": [0, 0, 0], "material": "chalk"}])"),
+    expect_error(Parts{.camera = R"({"look_at": [0, 1, 0]})"}, {": camera.eye: required field is missing"});
+    expect_error(Parts{.camera = R"({"eye": [0, 1, 3]})"}, {": camera.look_at: required field is missing"});
+    expect_error(Parts{.objects = R"([{"type": "sphere", "center": [0, 0, 0], "material": "chalk"}])"},
                  {": objects[0].radius: required field is missing"});
-    expect_error(with_objects(R"([{"center": [0, 0, 0], "radius": 1, "material": "chalk"}])"),
+    expect_error(Parts{.objects = R"([{"center": [0, 0, 0], "radius": 1, "material": "chalk"}])"},
                  {": objects[0].type: required field is missing"});
-    expect_error(with_objects(R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1}])"),
+    expect_error(Parts{.objects = R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1}])"},
                  {": objects[0].material: required field is missing"});
-    expect_error(with_lights(R"([{"type": "point"}])"), {": lights[0].position: required field is missing"});
-    expect_error(with_lights(R"([{"position": [0, 0, 0]}])"), {": lights[0].type: required field is missing"});
+    expect_error(Parts{.lights = R"([{"type": "point"}])"}, {": lights[0].position: required field is missing"});
+    expect_error(Parts{.lights = R"([{"position": [0, 0, 0]}])"}, {": lights[0].type: required field is missing"});
 }
 
 TEST_F(SceneLoaderTest, UnknownFieldsAreErrors) {
     const std::string m = expect_error(
-        with_objects(R"([{"type": "sphere", "center": [0, 0, 0], "radus": 1, "material": "chalk"}])"), {});
+        Parts{.objects = R"([{"type": "sphere", "center": [0, 0, 0], "radus": 1, "material": "chalk"}])"}, {});
     EXPECT_NE(m.find(": objects[0]: unknown field 'radus' (expected one of: center, radius, material, type)"),
               std::string::npos)
         << m;
     Parts top;
     top.lights = "[]";
     expect_error(top.text().replace(0, 1, "{\"objcts\": [], "), {"unknown field 'objcts'", "objects"});
-    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "fvo": 30})"),
+    expect_error(Parts{.camera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "fvo": 30})"},
                  {": camera: unknown field 'fvo'", "fov"});
-    expect_error(with_render(R"({"shadow": false})"), {": render: unknown field 'shadow'", "shadows"});
-    expect_error(with_materials(R"({"m": {"difuse": [1, 1, 1]}})"), {": materials.m: unknown field 'difuse'"});
-    expect_error(with_lights(R"([{"type": "point", "position": [0, 0, 0], "colour": [1, 1, 1]}])"),
+    expect_error(Parts{.render = R"({"shadow": false})"}, {": render: unknown field 'shadow'", "shadows"});
+    expect_error(Parts{.materials = R"({"m": {"difuse": [1, 1, 1]}})"}, {": materials.m: unknown field 'difuse'"});
+    expect_error(Parts{.lights = R"([{"type": "point", "position": [0, 0, 0], "colour": [1, 1, 1]}])"},
                  {": lights[0]: unknown field 'colour'"});
-    expect_error(with_objects(R"([{"type": "quad", "corner": [0, 0, 0], "edge1": [1, 0, 0], "edge2": [0, 1, 0],
-                                   "normals": [], "material": "chalk"}])"),
+    expect_error(Parts{.objects = R"([{"type": "quad", "corner": [0, 0, 0], "edge1": [1, 0, 0], "edge2": [0, 1, 0],
+                                   "normals": [], "material": "chalk"}])"},
                  {": objects[0]: unknown field 'normals'"});
 }
 
 // ---- types ------------------------------------------------------------------------
 
 TEST_F(SceneLoaderTest, WrongTypes) {
-    expect_error(with_objects(R"([{"type": "sphere", "center": [0, 0, 0], "radius": "1", "material": "chalk"}])"),
+    expect_error(Parts{.objects = R"([{"type": "sphere", "center": [0, 0, 0], "radius": "1", "material": "chalk"}])"},
                  {": objects[0].radius: expected a number, got a string"});
-    expect_error(with_camera(R"([0, 1, 3])"), {": camera: expected an object, got an array"});
-    expect_error(with_camera(R"({"eye": [0, 1], "look_at": [0, 1, 0]})"),
+    expect_error(Parts{.camera = R"([0, 1, 3])"}, {": camera: expected an object, got an array"});
+    expect_error(Parts{.camera = R"({"eye": [0, 1], "look_at": [0, 1, 0]})"},
                  {": camera.eye: expected an array of 3 numbers, got an array of 2 elements"});
-    expect_error(with_camera(R"({"eye": [0, null, 3], "look_at": [0, 1, 0]})"),
+    expect_error(Parts{.camera = R"({"eye": [0, null, 3], "look_at": [0, 1, 0]})"},
                  {": camera.eye[1]: expected a number, got null"});
-    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 2.5})"),
+    expect_error(Parts{.camera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 2.5})"},
                  {": camera.width: expected a whole number, got 2.5"});
-    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "height": "300"})"),
+    expect_error(Parts{.camera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "height": "300"})"},
                  {": camera.height: expected a whole number, got a string"});
-    expect_error(with_render(R"({"jitter": "yes"})"), {": render.jitter: expected true or false, got a string"});
-    expect_error(with_render(R"({"mode": 1})"), {": render.mode: expected a string, got a number (1)"});
-    expect_error(with_materials("[]"), {": materials: expected an object, got an array"});
-    expect_error(with_materials(R"({"m": 1})"), {": materials.m: expected an object, got a number"});
-    expect_error(with_objects("{}"), {": objects: expected an array, got an object"});
-    expect_error(with_lights(R"({"type": "point"})"), {": lights: expected an array, got an object"});
-    expect_error(with_objects(R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": 3}])"),
+    expect_error(Parts{.render = R"({"jitter": "yes"})"}, {": render.jitter: expected true or false, got a string"});
+    expect_error(Parts{.render = R"({"mode": 1})"}, {": render.mode: expected a string, got a number (1)"});
+    expect_error(Parts{.materials = "[]"}, {": materials: expected an object, got an array"});
+    expect_error(Parts{.materials = R"({"m": 1})"}, {": materials.m: expected an object, got a number"});
+    expect_error(Parts{.objects = "{}"}, {": objects: expected an array, got an object"});
+    expect_error(Parts{.lights = R"({"type": "point"})"}, {": lights: expected an array, got an object"});
+    expect_error(Parts{.objects = R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": 3}])"},
                  {": objects[0].material: expected a string, got a number"});
-    expect_error(with_objects(R"([{"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0]], "material": "chalk"}])"),
+    expect_error(Parts{.objects = R"([{"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0]], "material": "chalk"}])"},
                  {": objects[0].vertices: expected an array of 3 points, got an array of 2 elements"});
-    expect_error(with_objects(R"([{"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], 7], "material": "chalk"}])"),
+    expect_error(Parts{.objects = R"([{"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], 7], "material": "chalk"}])"},
                  {": objects[0].vertices[2]: expected an array of 3 numbers, got a number"});
 }
 
 TEST_F(SceneLoaderTest, KeysThatAreNotIdentifiersAreQuotedInPaths) {
-    expect_error(with_materials(R"({"my glass": {"kd": -1}})"),
+    expect_error(Parts{.materials = R"({"my glass": {"kd": -1}})"},
                  {": materials[\"my glass\"].kd: expected a number >= 0, got -1"});
 }
 
 // ---- numbers ------------------------------------------------------------------------
 
 TEST_F(SceneLoaderTest, InfiniteNumbersAreRefusedWithTheirPath) {
-    expect_error(with_objects(R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1e999, "material": "chalk"}])"),
+    expect_error(Parts{.objects = R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1e999, "material": "chalk"}])"},
                  {": objects[0].radius: expected a finite number", "1e999"});
-    expect_error(with_objects(R"([{"type": "sphere", "center": [0, -1e999, 0], "radius": 1, "material": "chalk"}])"),
+    expect_error(Parts{.objects = R"([{"type": "sphere", "center": [0, -1e999, 0], "radius": 1, "material": "chalk"}])"},
                  {": objects[0].center[1]: expected a finite number", "-1e999"});
-    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "fov": 1e400})"),
+    expect_error(Parts{.camera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "fov": 1e400})"},
                  {": camera.fov: expected a finite number"});
 }
 
 TEST_F(SceneLoaderTest, HugeMagnitudesAreRefused) {
-    expect_error(with_objects(R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1e30, "material": "chalk"}])"),
+    expect_error(Parts{.objects = R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1e30, "material": "chalk"}])"},
                  {": objects[0].radius: expected a number of magnitude at most"});
 }
 
 TEST_F(SceneLoaderTest, RadiusMustBePositive) {
-    expect_error(with_objects(R"([{"type": "sphere", "center": [0, 0, 0], "radius": -1, "material": "chalk"}])"),
+    expect_error(Parts{.objects = R"([{"type": "sphere", "center": [0, 0, 0], "radius": -1, "material": "chalk"}])"},
                  {": objects[0].radius: expected a number > 0, got -1"});
-    expect_error(with_objects(R"([{"type": "sphere", "center": [0, 0, 0], "radius": 0, "material": "chalk"}])"),
+    expect_error(Parts{.objects = R"([{"type": "sphere", "center": [0, 0, 0], "radius": 0, "material": "chalk"}])"},
                  {": objects[0].radius: expected a number > 0, got 0"});
 }
 
 TEST_F(SceneLoaderTest, FieldOfViewIsStrictlyInsideZeroTo180) {
     for (const char* fov : {"0", "180", "-5", "200"}) {
-        expect_error(with_camera(fmt::format(R"({{"eye": [0, 1, 3], "look_at": [0, 1, 0], "fov": {}}})", fov)),
+        expect_error(Parts{.camera = fmt::format(R"({{"eye": [0, 1, 3], "look_at": [0, 1, 0], "fov": {}}})", fov)},
                      {": camera.fov: expected a number strictly between 0 and 180, got"});
     }
 }
 
 TEST_F(SceneLoaderTest, ImageSizeLimits) {
     const std::string side = std::to_string(vkrt::limits::kMaxImageSide);
-    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 0})"),
+    expect_error(Parts{.camera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 0})"},
                  {": camera.width: expected a whole number in [1, " + side + "], got 0"});
-    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "height": 0})"),
+    expect_error(Parts{.camera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "height": 0})"},
                  {": camera.height: expected a whole number in [1, "});
-    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 100000})"),
+    expect_error(Parts{.camera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 100000})"},
                  {": camera.width: expected a whole number in [1, " + side + "], got 100000"});
-    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": -3})"),
+    expect_error(Parts{.camera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": -3})"},
                  {": camera.width: expected a whole number", "got -3"});
-    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 30000, "height": 30000})"),
+    expect_error(Parts{.camera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 30000, "height": 30000})"},
                  {": camera: image of 30000x30000 pixels is larger than the limit of " +
                   std::to_string(vkrt::limits::kMaxImagePixels) + " pixels"});
 }
 
 TEST_F(SceneLoaderTest, RenderRanges) {
-    expect_error(with_render(R"({"aa": 0})"), {": render.aa: expected a whole number in [1, 64], got 0"});
-    expect_error(with_render(R"({"aa": 65})"), {": render.aa: expected a whole number in [1, 64], got 65"});
-    expect_error(with_render(R"({"max_depth": 65})"), {": render.max_depth: expected a whole number in [0, 64]"});
-    expect_error(with_render(R"({"spp": 0})"), {": render.spp: expected a whole number in [1, "});
-    expect_error(with_render(R"({"loop_budget": 65001})"),
+    expect_error(Parts{.render = R"({"aa": 0})"}, {": render.aa: expected a whole number in [1, 64], got 0"});
+    expect_error(Parts{.render = R"({"aa": 65})"}, {": render.aa: expected a whole number in [1, 64], got 65"});
+    expect_error(Parts{.render = R"({"max_depth": 65})"}, {": render.max_depth: expected a whole number in [0, 64]"});
+    expect_error(Parts{.render = R"({"spp": 0})"}, {": render.spp: expected a whole number in [1, "});
+    expect_error(Parts{.render = R"({"loop_budget": 65001})"},
                  {": render.loop_budget: expected a whole number in [1, 65000], got 65001"});
-    expect_error(with_render(R"({"seed": -1})"), {": render.seed: expected a whole number in [0, 4294967295], got -1"});
-    expect_error(with_render(R"({"seed": 4294967296})"), {": render.seed: expected a whole number in [0, 4294967295]"});
-    expect_error(with_render(R"({"ambient": [0, -0.5, 0]})"), {": render.ambient[1]: expected a number >= 0, got -0.5"});
-    expect_error(with_render(R"({"background": [0, 0]})"), {": render.background: expected an array of 3 numbers"});
+    expect_error(Parts{.render = R"({"seed": -1})"}, {": render.seed: expected a whole number in [0, 4294967295], got -1"});
+    expect_error(Parts{.render = R"({"seed": 4294967296})"}, {": render.seed: expected a whole number in [0, 4294967295]"});
+    expect_error(Parts{.render = R"({"ambient": [0, -0.5, 0]})"}, {": render.ambient[1]: expected a number >= 0, got -0.5"});
+    expect_error(Parts{.render = R"({"background": [0, 0]})"}, {": render.background: expected an array of 3 numbers"});
 }
 
 TEST_F(SceneLoaderTest, MaterialRanges) {
-    expect_error(with_materials(R"({"m": {"diffuse": [0.5, -0.1, 0]}})"),
+    expect_error(Parts{.materials = R"({"m": {"diffuse": [0.5, -0.1, 0]}})"},
                  {": materials.m.diffuse[1]: expected a number >= 0, got -0.1"});
-    expect_error(with_materials(R"({"m": {"emission": [0, 0, -1]}})"), {": materials.m.emission[2]: expected a number >= 0"});
-    expect_error(with_materials(R"({"m": {"kd": -1}})"), {": materials.m.kd: expected a number >= 0, got -1"});
-    expect_error(with_materials(R"({"m": {"ks": -0.5}})"), {": materials.m.ks: expected a number >= 0"});
-    expect_error(with_materials(R"({"m": {"shininess": -2}})"), {": materials.m.shininess: expected a number >= 0"});
-    expect_error(with_materials(R"({"m": {"ior": 0}})"), {": materials.m.ior: expected a number > 0, got 0"});
+    expect_error(Parts{.materials = R"({"m": {"emission": [0, 0, -1]}})"}, {": materials.m.emission[2]: expected a number >= 0"});
+    expect_error(Parts{.materials = R"({"m": {"kd": -1}})"}, {": materials.m.kd: expected a number >= 0, got -1"});
+    expect_error(Parts{.materials = R"({"m": {"ks": -0.5}})"}, {": materials.m.ks: expected a number >= 0"});
+    expect_error(Parts{.materials = R"({"m": {"shininess": -2}})"}, {": materials.m.shininess: expected a number >= 0"});
+    expect_error(Parts{.materials = R"({"m": {"ior": 0}})"}, {": materials.m.ior: expected a number > 0, got 0"});
 }
 
 TEST_F(SceneLoaderTest, LightRanges) {
-    expect_error(with_lights(R"([{"type": "point", "position": [0, 0, 0], "intensity": -1}])"),
+    expect_error(Parts{.lights = R"([{"type": "point", "position": [0, 0, 0], "intensity": -1}])"},
                  {": lights[0].intensity: expected a number >= 0, got -1"});
-    expect_error(with_lights(R"([{"type": "point", "position": [0, 0, 0], "color": [1, -1, 1]}])"),
+    expect_error(Parts{.lights = R"([{"type": "point", "position": [0, 0, 0], "color": [1, -1, 1]}])"},
                  {": lights[0].color[1]: expected a number >= 0"});
 }
 
 // ---- camera geometry ------------------------------------------------------------
 
 TEST_F(SceneLoaderTest, CameraGeometry) {
-    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "up": [0, 0, 0]})"),
+    expect_error(Parts{.camera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "up": [0, 0, 0]})"},
                  {": camera.up: expected a non-zero vector, got [0, 0, 0]"});
-    expect_error(with_camera(R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "up": [0, 0, -2]})"),
+    expect_error(Parts{.camera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "up": [0, 0, -2]})"},
                  {": camera.up: ", "parallel to the view direction"});
-    expect_error(with_camera(R"({"eye": [0, 5, 0], "look_at": [0, 1, 0]})"),
+    expect_error(Parts{.camera = R"({"eye": [0, 5, 0], "look_at": [0, 1, 0]})"},
                  {": camera.up: the default up [0, 1, 0] is parallel"});
-    expect_error(with_camera(R"({"eye": [1, 2, 3], "look_at": [1, 2, 3]})"),
+    expect_error(Parts{.camera = R"({"eye": [1, 2, 3], "look_at": [1, 2, 3]})"},
                  {": camera.look_at: look_at must differ from eye"});
 }
 
@@ -538,44 +509,44 @@ TEST_F(SceneLoaderTest, CameraGeometry) {
 
 TEST_F(SceneLoaderTest, UnknownMaterial) {
     expect_error(
-        with_objects(R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "chalk"},
+        Parts{.objects = R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "chalk"},
                          {"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "glass"},
-                         {"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "chalk2"}])"),
+                         {"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "chalk2"}])"},
         {": objects[2].material: unknown material 'chalk2' (defined: chalk, glass)"});
-    expect_error(with_materials("{}"), {": objects[0].material: unknown material 'chalk' (no materials are defined)"});
+    expect_error(Parts{.materials = "{}"}, {": objects[0].material: unknown material 'chalk' (no materials are defined)"});
 }
 
 TEST_F(SceneLoaderTest, UnknownTypes) {
-    expect_error(with_objects(R"([{"type": "cube", "material": "chalk"}])"),
+    expect_error(Parts{.objects = R"([{"type": "cube", "material": "chalk"}])"},
                  {": objects[0].type: unknown object type 'cube' (expected one of: sphere, triangle, quad)"});
-    expect_error(with_lights(R"([{"type": "spot", "position": [0, 0, 0]}])"),
+    expect_error(Parts{.lights = R"([{"type": "spot", "position": [0, 0, 0]}])"},
                  {": lights[0].type: unknown light type 'spot'"});
 }
 
 TEST_F(SceneLoaderTest, DegenerateGeometry) {
-    expect_error(with_objects(R"([{"type": "triangle", "vertices": [[0, 0, 0], [1, 1, 1], [2, 2, 2]], "material": "chalk"}])"),
+    expect_error(Parts{.objects = R"([{"type": "triangle", "vertices": [[0, 0, 0], [1, 1, 1], [2, 2, 2]], "material": "chalk"}])"},
                  {": objects[0].vertices: ", "zero area"});
-    expect_error(with_objects(R"([{"type": "triangle", "vertices": [[0.1, 0.2, 0.3], [0.2, 0.4, 0.6], [0.3, 0.6, 0.9]], "material": "chalk"}])"),
+    expect_error(Parts{.objects = R"([{"type": "triangle", "vertices": [[0.1, 0.2, 0.3], [0.2, 0.4, 0.6], [0.3, 0.6, 0.9]], "material": "chalk"}])"},
                  {": objects[0].vertices: ", "zero area"});
-    expect_error(with_objects(R"([{"type": "quad", "corner": [0, 0, 0], "edge1": [1, 0, 0], "edge2": [-2, 0, 0], "material": "chalk"}])"),
+    expect_error(Parts{.objects = R"([{"type": "quad", "corner": [0, 0, 0], "edge1": [1, 0, 0], "edge2": [-2, 0, 0], "material": "chalk"}])"},
                  {": objects[0].edge2: ", "parallel"});
-    expect_error(with_objects(R"([{"type": "quad", "corner": [0, 0, 0], "edge1": [0, 0, 0], "edge2": [0, 1, 0], "material": "chalk"}])"),
+    expect_error(Parts{.objects = R"([{"type": "quad", "corner": [0, 0, 0], "edge1": [0, 0, 0], "edge2": [0, 1, 0], "material": "chalk"}])"},
                  {": objects[0].edge1: expected a non-zero vector"});
-    expect_error(with_objects(R"([{"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]],
-                                   "normals": [[0, 0, 1], [0, 0, 0], [0, 0, 1]], "material": "chalk"}])"),
+    expect_error(Parts{.objects = R"([{"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]],
+                                   "normals": [[0, 0, 1], [0, 0, 0], [0, 0, 1]], "material": "chalk"}])"},
                  {": objects[0].normals[1]: expected a non-zero vector"});
 }
 
 // ---- not supported yet ------------------------------------------------------------
 
 TEST_F(SceneLoaderTest, LaterFeaturesAreRefusedClearly) {
-    expect_error(with_materials(R"({"glass": {"reflect": [0.5, 0.5, 0.5]}})"),
+    expect_error(Parts{.materials = R"({"glass": {"reflect": [0.5, 0.5, 0.5]}})"},
                  {": materials.glass.reflect: mirror reflection is not supported yet"});
-    expect_error(with_materials(R"({"glass": {"transmit": [0, 0, 1]}})"),
+    expect_error(Parts{.materials = R"({"glass": {"transmit": [0, 0, 1]}})"},
                  {": materials.glass.transmit: refraction is not supported yet"});
-    expect_error(with_render(R"({"mode": "global"})"), {": render.mode: ", "not supported yet"});
-    expect_error(with_render(R"({"mode": "fast"})"), {": render.mode: unknown mode 'fast'"});
-    expect_error(with_lights(R"([{"type": "area", "position": [0, 0, 0]}])"),
+    expect_error(Parts{.render = R"({"mode": "global"})"}, {": render.mode: ", "not supported yet"});
+    expect_error(Parts{.render = R"({"mode": "fast"})"}, {": render.mode: unknown mode 'fast'"});
+    expect_error(Parts{.lights = R"([{"type": "area", "position": [0, 0, 0]}])"},
                  {": lights[0].type: area lights are not supported yet"});
 }
 

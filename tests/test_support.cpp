@@ -2,9 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
 
 #include "gpu/vulkan_backend.hpp"
 #include "ref/ref_backend.hpp"
@@ -29,6 +33,30 @@ std::vector<std::filesystem::path> repo_scenes() {
     }
     std::sort(scenes.begin(), scenes.end());
     return scenes;
+}
+
+std::string shell_quote(const std::string& s) {
+    std::string out = "'";
+    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+ProgramRun run_vkrt(const std::string& args, const std::filesystem::path& dir) {
+    const auto err = dir / "stderr.txt";
+    // -k: even a program that ignores SIGTERM goes away.
+    const std::string command = "timeout -k 5 60 " + shell_quote(VKRT_EXE) + " " + args + " > " +
+                                shell_quote((dir / "stdout.txt").string()) + " 2> " + shell_quote(err.string());
+    const int status = std::system(command.c_str());
+    std::ifstream in(err);
+    ProgramRun run;
+    run.stderr_text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    EXPECT_NE(status, -1) << "could not run: " << command;
+    EXPECT_TRUE(WIFEXITED(status)) << "shell ended by a signal; stderr:\n" << run.stderr_text;
+    run.code = WEXITSTATUS(status);
+    EXPECT_NE(run.code, 124) << "timed out (hang): " << command << "\nstderr:\n" << run.stderr_text;
+    EXPECT_LT(run.code, 128) << "crashed (signal " << run.code - 128 << "): " << command << "\nstderr:\n"
+                             << run.stderr_text;
+    return run;
 }
 
 Scene load_at_size(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height) {
