@@ -32,10 +32,9 @@ void apply_overrides(const RenderArgs& args, Scene& scene) {
     if (args.height) scene.camera.height = *args.height;
     if (args.spp) scene.render.spp = *args.spp;
     if (args.seed) scene.render.seed = *args.seed;
-    const std::uint64_t pixels = std::uint64_t(scene.camera.width) * scene.camera.height;
-    if (pixels > limits::kMaxImagePixels) {
-        throw SceneError(fmt::format("--width/--height: image of {}x{} pixels is larger than the limit of {} pixels",
-                                     scene.camera.width, scene.camera.height, limits::kMaxImagePixels));
+    if (const std::string problem = limits::image_size_problem(scene.camera.width, scene.camera.height);
+        !problem.empty()) {
+        throw SceneError("--width/--height: " + problem);
     }
 }
 

@@ -189,15 +189,6 @@ RenderResult VulkanBackend::render(const SceneGpu& scene, SampleRange samples,
 
 }  // namespace
 
-std::vector<DeviceInfo> list_vulkan_devices() {
-    const VulkanInstance instance(false);
-    std::vector<DeviceInfo> infos;
-    for (const PhysicalDevice& d : instance.devices()) {
-        infos.push_back(d.info);
-    }
-    return infos;
-}
-
 std::unique_ptr<Backend> make_vulkan_backend(const VulkanOptions& options) {
     return std::make_unique<VulkanBackend>(options);
 }

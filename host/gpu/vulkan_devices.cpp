@@ -200,3 +200,16 @@ const PhysicalDevice& select_device(const std::vector<PhysicalDevice>& devices,
 }
 
 }  // namespace vkrt::gpu
+
+namespace vkrt {
+
+std::vector<DeviceInfo> list_vulkan_devices() {
+    const gpu::VulkanInstance instance(false);
+    std::vector<DeviceInfo> infos;
+    for (const gpu::PhysicalDevice& d : instance.devices()) {
+        infos.push_back(d.info);
+    }
+    return infos;
+}
+
+}  // namespace vkrt

@@ -67,10 +67,8 @@ Camera read_camera(const Node& n) {
     if (auto w = n.find("width")) c.width = whole32(*w, 1, limits::kMaxImageSide);
     if (auto h = n.find("height")) c.height = whole32(*h, 1, limits::kMaxImageSide);
 
-    const std::uint64_t pixels = std::uint64_t(c.width) * c.height;
-    if (pixels > limits::kMaxImagePixels) {
-        n.fail(fmt::format("image of {}x{} pixels is larger than the limit of {} pixels", c.width, c.height,
-                           limits::kMaxImagePixels));
+    if (const std::string problem = limits::image_size_problem(c.width, c.height); !problem.empty()) {
+        n.fail(problem);
     }
     const dvec3 view = c.look_at - c.eye;
     if (!is_nonzero(view)) {

@@ -2,6 +2,7 @@
 // Bounds on user input, shared by the scene loader and the command line so both
 // reject the same values with the same reasoning.
 #include <cstdint>
+#include <string>
 
 namespace vkrt::limits {
 
@@ -9,6 +10,14 @@ namespace vkrt::limits {
 // the largest allowed image (32 bytes a pixel) stay near 1 GiB.
 inline constexpr std::uint32_t kMaxImageSide = 32768;
 inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t(1) << 25;
+// Why an image of width x height pixels is refused; empty when it is allowed.
+// Each side is checked where it is read; this is the rule on their product.
+inline std::string image_size_problem(std::uint32_t width, std::uint32_t height) {
+    if (std::uint64_t(width) * height <= kMaxImagePixels) return {};
+    return "image of " + std::to_string(width) + "x" + std::to_string(height) +
+           " pixels is larger than the limit of " + std::to_string(kMaxImagePixels) + " pixels";
+}
+
 inline constexpr std::uint32_t kMaxAa = 64;
 // Pixel sums are 32-bit floats: at 65,536 identical samples their rounding error
 // measured 6.4e-4 (docs/cli.md). More needs compensated sums, not a bigger number.
