@@ -1,0 +1,83 @@
+// The command line's options that the bad-input tests do not reach: what a user
+// gets when everything is right.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "image/compare.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using namespace vkrt;
+namespace fs = std::filesystem;
+
+std::string read_file(const fs::path& file) {
+    std::ifstream in(file);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+fs::path scene(const std::string& name) { return test::source_dir() / "scenes" / (name + ".json"); }
+
+TEST(Cli, VersionAndHelp) {
+    const fs::path dir = test::temp_dir("cli_version");
+    EXPECT_EQ(test::run_vkrt("--version", dir).code, 0);
+    EXPECT_EQ(read_file(dir / "stdout.txt"), "vkrt " VKRT_VERSION "\n");
+    EXPECT_EQ(test::run_vkrt("render --help", dir).code, 0);
+    const std::string help = read_file(dir / "stdout.txt");
+    for (const char* option : {"--output", "--backend", "--device", "--width", "--height", "--spp", "--seed",
+                               "--threads", "--stats", "--validate", "--quiet"}) {
+        EXPECT_NE(help.find(option), std::string::npos) << option;
+    }
+}
+
+TEST(Cli, DevicesNamesLavapipe) {
+    const fs::path dir = test::temp_dir("cli_devices");
+    EXPECT_EQ(test::run_vkrt("devices", dir).code, 0);
+    EXPECT_NE(read_file(dir / "stdout.txt").find("(lavapipe: --device lavapipe)"), std::string::npos);
+}
+
+// Without -o the image is <scene name>.png in the current directory, and the log
+// names it; with -q nothing is printed at all.
+TEST(Cli, DefaultOutputNameAndQuiet) {
+    const fs::path dir = test::temp_dir("cli_default_output");
+    const fs::path previous = fs::current_path();
+    fs::current_path(dir);
+    const test::ProgramRun loud = test::run_vkrt(
+        "render " + test::shell_quote(scene("spheres_triangles").string()) + " --backend cpu --width 16 --height 12", dir);
+    const std::string log = read_file(dir / "stdout.txt");
+    fs::current_path(previous);
+    EXPECT_EQ(loud.code, 0) << loud.stderr_text;
+    EXPECT_TRUE(fs::exists(dir / "spheres_triangles.png"));
+    EXPECT_NE(log.find("wrote     spheres_triangles.png"), std::string::npos) << log;
+    EXPECT_NE(log.find("features  kept: spheres, triangles"), std::string::npos) << log;
+
+    const test::ProgramRun quiet = test::run_vkrt("render " + test::shell_quote(scene("spheres_triangles").string()) +
+                                                      " --backend cpu --width 16 --height 12 -q -o " +
+                                                      test::shell_quote((dir / "q.png").string()),
+                                                  dir);
+    EXPECT_EQ(quiet.code, 0);
+    EXPECT_EQ(read_file(dir / "stdout.txt"), "");
+    EXPECT_EQ(quiet.stderr_text, "");
+}
+
+// --threads changes how the reference splits the work, never the image; on the
+// Vulkan backend it is ignored with a warning.
+TEST(Cli, ThreadsDoNotChangeTheImage) {
+    const fs::path dir = test::temp_dir("cli_threads");
+    const std::string base = "render " + test::shell_quote(scene("default").string()) + " --width 40 --height 30 -q";
+    ASSERT_EQ(test::run_vkrt(base + " --backend cpu --threads 1 -o " + test::shell_quote((dir / "one.exr").string()), dir).code, 0);
+    ASSERT_EQ(test::run_vkrt(base + " --backend cpu --threads 3 -o " + test::shell_quote((dir / "three.exr").string()), dir).code, 0);
+    const ImageDiff d = compare_images(read_image(dir / "one.exr"), read_image(dir / "three.exr"));
+    EXPECT_EQ(d.max_abs, 0.0);
+
+    const test::ProgramRun ignored =
+        test::run_vkrt(base + " --threads 2 -o " + test::shell_quote((dir / "vk.png").string()), dir);
+    EXPECT_EQ(ignored.code, 0);
+    EXPECT_NE(ignored.stderr_text.find("warning: --threads applies to --backend cpu only"), std::string::npos)
+        << ignored.stderr_text;
+}
+
+}  // namespace
