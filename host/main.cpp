@@ -74,6 +74,10 @@ int main(int argc, char** argv) {
         ->check(whole_number(1, limits::kMaxSpp));
     r->add_option("--seed", render.seed, "Random seed, overrides the scene")
         ->check(whole_number(0, 0xffffffffu));
+    r->add_option("--grid", render.grid,
+                  "Uniform grid: auto (when the scene has enough primitives for it to pay), on or off; "
+                  "overrides the scene")
+        ->check(CLI::IsMember({"auto", "on", "off"}));
     r->add_option("--threads", render.threads, "CPU threads for the cpu backend (default: all)")
         ->check(whole_number(0, 1024));
     r->add_option("--stats", render.stats_file, "Write render statistics as JSON to this file");

@@ -24,7 +24,9 @@ layout(binding = 2) uniform usamplerBuffer sphere_texels;      // 2 texels per S
 layout(binding = 3) uniform usamplerBuffer triangle_texels;    // 7 texels per Triangle
 layout(binding = 4) uniform usamplerBuffer light_texels;       // 2 texels per PointLight
 layout(binding = 5, rgba32f) uniform imageBuffer accum;        // 1 texel per pixel
-layout(binding = 6, rgba32ui) uniform uimageBuffer counters;   // 1 texel per pixel
+layout(binding = 6, rgba32ui) uniform uimageBuffer counters;   // 2 texels per pixel (Counters)
+layout(binding = 7) uniform usamplerBuffer grid_cell_starts;    // r32ui, cells + 1 entries
+layout(binding = 8) uniform usamplerBuffer grid_refs;           // r32ui, one per reference
 layout(push_constant) uniform PassBlock { uvec4 pass; };   // x = sample index
 
 // The buffer accessors the kernel calls (host/ref/kernel.hpp has the C++ ones). Fields
@@ -49,6 +51,8 @@ Triangle load_triangle(uint i) {
 PointLight load_light(uint i) {
     return PointLight(fetch_vec4(light_texels, 2u * i), fetch_vec4(light_texels, 2u * i + 1u));
 }
+uint load_cell_start(uint i) { return texelFetch(grid_cell_starts, int(i)).x; }
+uint load_ref(uint i) { return texelFetch(grid_refs, int(i)).x; }
 
 #include "kernel/all.glsl"
 
@@ -60,8 +64,9 @@ void main() {
     }
     uint index = py * params.image.x + px;
     vec4 sums = imageLoad(accum, int(index));
-    uvec4 counts = imageLoad(counters, int(index));
+    Counters counts = Counters(imageLoad(counters, int(2u * index)), imageLoad(counters, int(2u * index + 1u)));
     accumulate_sample(render_sample(px, py, pass.x), sums, counts);
     imageStore(accum, int(index), sums);
-    imageStore(counters, int(index), counts);
+    imageStore(counters, int(2u * index), counts.rays);
+    imageStore(counters, int(2u * index + 1u), counts.work);
 }

@@ -56,8 +56,9 @@ Triangle smooth_triangle(vec3 p0, vec3 p1, vec3 p2, vec3 n0, vec3 n1, vec3 n2, s
 }
 
 // The arrays a Kernel reads, owned here so the spans stay valid. kernel() sets the
-// counts from the array sizes; every feature stays on (the Kernel's default) unless
-// a test turns it off.
+// counts from the array sizes; every feature but the grid stays on (the Kernel's
+// default) unless a test turns it off. These scenes are traced by brute force; the
+// grid has its own tests (grid_traversal_test.cpp).
 struct TestScene {
     std::vector<Material> materials;
     std::vector<Sphere> spheres;
@@ -66,6 +67,7 @@ struct TestScene {
 
     Kernel kernel() const {
         Kernel k;
+        k.HAS_GRID = false;
         k.materials = materials;
         k.spheres = spheres;
         k.triangles = triangles;
@@ -591,23 +593,23 @@ TEST(AccumulateSample, GoodSamplesAddRadianceAndCount) {
     const TestScene scene = tiny_view();
     Kernel k = tiny_kernel(scene);
     vec4 accum(0.0f);
-    uvec4 counters(0u);
+    kernel::Counters counters{};
     const Kernel::SampleResult hit = k.render_sample(1, 1, 0);
     const Kernel::SampleResult miss = k.render_sample(3, 0, 0);
     k.accumulate_sample(hit, accum, counters);
     k.accumulate_sample(miss, accum, counters);
     EXPECT_EQ(accum, vec4(hit.radiance + miss.radiance, 2.0f));
-    EXPECT_EQ(counters[kernel::COUNTER_EYE_RAYS], 2u);
-    EXPECT_EQ(counters[kernel::COUNTER_SHADOW_RAYS], 1u);
-    EXPECT_EQ(counters[kernel::COUNTER_TRUNCATED], 0u);
-    EXPECT_EQ(counters[kernel::COUNTER_NONFINITE], 0u);
+    EXPECT_EQ(counters.rays[kernel::RAYS_EYE], 2u);
+    EXPECT_EQ(counters.rays[kernel::RAYS_SHADOW], 1u);
+    EXPECT_EQ(counters.work[kernel::WORK_TRUNCATED], 0u);
+    EXPECT_EQ(counters.work[kernel::WORK_NONFINITE], 0u);
 }
 
 TEST(AccumulateSample, TruncatedSampleAddsNoRadianceAndNoSampleCount) {
     const TestScene scene = tiny_view();
     Kernel k = tiny_kernel(scene);
     vec4 accum(0.0f);
-    uvec4 counters(0u);
+    kernel::Counters counters{};
     k.accumulate_sample(k.render_sample(1, 1, 0), accum, counters);
     const vec4 after_good = accum;
     ASSERT_EQ(after_good.w, 1.0f);
@@ -619,10 +621,10 @@ TEST(AccumulateSample, TruncatedSampleAddsNoRadianceAndNoSampleCount) {
     EXPECT_TRUE(cut.truncated);
     k.accumulate_sample(cut, accum, counters);
     EXPECT_EQ(accum, after_good);
-    EXPECT_EQ(counters[kernel::COUNTER_EYE_RAYS], 2u);
-    EXPECT_EQ(counters[kernel::COUNTER_TRUNCATED], 1u);
-    EXPECT_EQ(counters[kernel::COUNTER_NONFINITE], 0u);
-    EXPECT_EQ(counters[kernel::COUNTER_SHADOW_RAYS], 1u + cut.shadow_rays);
+    EXPECT_EQ(counters.rays[kernel::RAYS_EYE], 2u);
+    EXPECT_EQ(counters.work[kernel::WORK_TRUNCATED], 1u);
+    EXPECT_EQ(counters.work[kernel::WORK_NONFINITE], 0u);
+    EXPECT_EQ(counters.rays[kernel::RAYS_SHADOW], 1u + cut.shadow_rays);
 
     // With no budget at all even a background pixel is cut.
     k.params.limits.x = 0;
@@ -630,29 +632,31 @@ TEST(AccumulateSample, TruncatedSampleAddsNoRadianceAndNoSampleCount) {
     EXPECT_TRUE(none.truncated);
     k.accumulate_sample(none, accum, counters);
     EXPECT_EQ(accum, after_good);
-    EXPECT_EQ(counters[kernel::COUNTER_EYE_RAYS], 3u);
-    EXPECT_EQ(counters[kernel::COUNTER_TRUNCATED], 2u);
+    EXPECT_EQ(counters.rays[kernel::RAYS_EYE], 3u);
+    EXPECT_EQ(counters.work[kernel::WORK_TRUNCATED], 2u);
 
     // The budget restored, the next sample counts again.
     k.params.limits.x = kernel::DEFAULT_LOOP_BUDGET;
     k.accumulate_sample(k.render_sample(1, 1, 3), accum, counters);
     EXPECT_EQ(accum.w, 2.0f);
-    EXPECT_EQ(counters[kernel::COUNTER_TRUNCATED], 2u);
+    EXPECT_EQ(counters.work[kernel::WORK_TRUNCATED], 2u);
 }
 
 TEST(AccumulateSample, NonFiniteSampleIsCountedNotSummed) {
     Kernel k;
     vec4 accum(1.0f, 2.0f, 3.0f, 1.0f);
-    uvec4 counters(1u, 0u, 0u, 0u);
+    kernel::Counters counters{uvec4(1u, 0u, 0u, 0u), uvec4(0u)};
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float inf = std::numeric_limits<float>::infinity();
-    k.accumulate_sample(Kernel::SampleResult(vec3(0.0f, nan, 0.0f), 2u, false), accum, counters);
-    k.accumulate_sample(Kernel::SampleResult(vec3(inf, 0.0f, 0.0f), 0u, false), accum, counters);
+    k.accumulate_sample(Kernel::SampleResult(vec3(0.0f, nan, 0.0f), 2u, 3u, 5u, false), accum, counters);
+    k.accumulate_sample(Kernel::SampleResult(vec3(inf, 0.0f, 0.0f), 0u, 0u, 1u, false), accum, counters);
     EXPECT_EQ(accum, vec4(1.0f, 2.0f, 3.0f, 1.0f));
-    EXPECT_EQ(counters, uvec4(3u, 2u, 0u, 2u));
+    EXPECT_EQ(counters.rays, uvec4(3u, 2u, 0u, 0u));
+    EXPECT_EQ(counters.work, uvec4(3u, 6u, 0u, 2u));
     // Truncation takes precedence: a cut sample is reported as cut, whatever its value.
-    k.accumulate_sample(Kernel::SampleResult(vec3(nan), 0u, true), accum, counters);
-    EXPECT_EQ(counters, uvec4(4u, 2u, 1u, 2u));
+    k.accumulate_sample(Kernel::SampleResult(vec3(nan), 0u, 0u, 0u, true), accum, counters);
+    EXPECT_EQ(counters.rays, uvec4(4u, 2u, 0u, 0u));
+    EXPECT_EQ(counters.work, uvec4(3u, 6u, 1u, 2u));
     EXPECT_EQ(accum, vec4(1.0f, 2.0f, 3.0f, 1.0f));
 }
 

@@ -94,7 +94,7 @@ TEST(VulkanBackend, TinyRenderHasExactSums) {
         for (std::uint32_t y = 0; y < kSize; ++y) {
             for (std::uint32_t x = 0; x < kSize; ++x) {
                 const glm::vec4 a = r.accum[y * kSize + x];
-                const glm::uvec4 c = r.counters[y * kSize + x];
+                const glm::uvec4 c = r.counters[y * kSize + x].rays;
                 SCOPED_TRACE("pixel " + std::to_string(x) + "," + std::to_string(y));
                 EXPECT_EQ(a.w, float(samples));
                 // No lights, no ambient, no emission: the sphere is black.
@@ -148,7 +148,7 @@ TEST(VulkanBackend, ManySamplesSpanSeveralBatches) {
     EXPECT_TRUE(std::is_sorted(reported.begin(), reported.end()));
     for (std::size_t i = 0; i < r.accum.size(); ++i) {
         EXPECT_EQ(r.accum[i].w, float(samples));
-        EXPECT_EQ(r.counters[i].x, samples);
+        EXPECT_EQ(r.counters[i].rays.x, samples);
     }
     EXPECT_EQ(backend->validation_messages(), 0u);
 }
@@ -191,8 +191,8 @@ TEST(VulkanBackend, SpecializationConstantsCompileTrianglesOut) {
             SCOPED_TRACE("pixel " + std::to_string(i));
             EXPECT_EQ(with.accum[i], glm::vec4(emission * float(samples), float(samples)));
             EXPECT_EQ(without.accum[i], glm::vec4(glm::vec3(kBackground) * float(samples), float(samples)));
-            EXPECT_EQ(with.counters[i], glm::uvec4(samples, 0, 0, 0));
-            EXPECT_EQ(without.counters[i], glm::uvec4(samples, 0, 0, 0));
+            EXPECT_EQ(with.counters[i].rays, glm::uvec4(samples, 0, 0, 0));
+            EXPECT_EQ(without.counters[i].rays, glm::uvec4(samples, 0, 0, 0));
         }
         EXPECT_EQ(backend->validation_messages(), 0u);
     }

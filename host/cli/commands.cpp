@@ -32,6 +32,9 @@ void apply_overrides(const RenderArgs& args, Scene& scene) {
     if (args.height) scene.camera.height = *args.height;
     if (args.spp) scene.render.spp = *args.spp;
     if (args.seed) scene.render.seed = *args.seed;
+    if (args.grid == "auto") scene.render.grid = GridSettings{GridMode::Auto, {0, 0, 0}};
+    if (args.grid == "on") scene.render.grid.mode = GridMode::On;  // keeps a resolution the scene gives
+    if (args.grid == "off") scene.render.grid.mode = GridMode::Off;
     if (const std::string problem = limits::image_size_problem(scene.camera.width, scene.camera.height);
         !problem.empty()) {
         throw SceneError("--width/--height: " + problem);
@@ -81,6 +84,15 @@ void print_summary(const RenderStats& s, const std::string& output) {
     fmt::print("features  kept: {}; left out: {}\n", list(s.features.kept()), list(s.features.left_out()));
     fmt::print("rays      {} ({} eye, {} shadow), {:.2f} Mrays/s\n", s.rays(), s.eye_rays, s.shadow_rays,
                s.render_seconds > 0.0 ? double(s.rays()) / s.render_seconds * 1e-6 : 0.0);
+    if (s.grid.used) {
+        fmt::print("grid      {}x{}x{} cells, {} references, {:.1f} MiB, built in {:.3f} s ({})\n",
+                   s.grid.resolution[0], s.grid.resolution[1], s.grid.resolution[2], s.grid.references,
+                   double(s.grid.bytes) / (1 << 20), s.grid.build_seconds, s.grid.reason);
+    } else {
+        fmt::print("grid      not used ({})\n", s.grid.reason);
+    }
+    fmt::print("per ray   {:.2f} cells visited, {:.2f} intersection tests\n", s.per_ray(s.cells_visited),
+               s.per_ray(s.intersection_tests));
     fmt::print("seconds   setup {:.3f}, render {:.3f}, total {:.3f}\n", s.flatten_seconds + s.setup_seconds,
                s.render_seconds, s.total_seconds);
     fmt::print("wrote     {}\n", output);
@@ -130,9 +142,11 @@ int run_render(const RenderArgs& args) {
     if (s.truncated_samples > 0) {
         throw std::runtime_error(fmt::format(
             "{} samples ran out of the per-invocation loop budget of {} iterations and were left out; "
-            "the image ({}) is incomplete. The scene has too many primitives for brute-force tracing in one "
-            "invocation (lavapipe stops loops silently at 65,535 iterations)",
-            s.truncated_samples, s.loop_budget, output));
+            "the image ({}) is incomplete (lavapipe stops loops silently at 65,535 iterations, so the kernel "
+            "stops first). {}",
+            s.truncated_samples, s.loop_budget, output,
+            s.grid.used ? "Grid cells along these rays hold too many primitives: try a finer render.grid resolution"
+                        : "The scene has too many primitives for brute-force tracing: try --grid on"));
     }
     return 0;
 }

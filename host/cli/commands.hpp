@@ -16,6 +16,7 @@ struct RenderArgs {
     std::optional<std::uint32_t> height;
     std::optional<std::uint32_t> spp;
     std::optional<std::uint32_t> seed;
+    std::string grid;    // empty: the scene's choice; else auto, on or off
     unsigned threads = 0;
     std::string stats_file;
     bool validate = false;

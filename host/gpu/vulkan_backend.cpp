@@ -23,6 +23,10 @@ using namespace gpu;
 using Clock = std::chrono::steady_clock;
 
 constexpr double kTargetSubmitSeconds = 0.25;
+
+// Scenes with fewer primitives render faster by brute force than through the grid
+// on lavapipe (measured: docs/grid.md, `vkrt bench --threshold`).
+constexpr std::uint32_t kBruteForceBelow = 16;
 constexpr std::uint32_t kMaxBatch = 256;
 // The dispatches read the sums and write them back: what each barrier before one covers.
 constexpr VkAccessFlags kShaderAccess = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
@@ -74,6 +78,12 @@ void check_counts(const SceneGpu& scene) {
     if (p.counts.w > scene.materials.size()) {
         fail("materials", p.counts.w, scene.materials.size());
     }
+    if (scene.features.has(Feature::HAS_GRID)) {
+        const std::uint64_t cells = std::uint64_t(p.grid_res.x) * p.grid_res.y * p.grid_res.z;
+        if (scene.grid_cell_starts.size() != cells + 1 || scene.grid_cell_starts.back() != scene.grid_refs.size()) {
+            throw GpuError("scene: the grid's cell starts do not match its resolution and references");
+        }
+    }
 }
 
 class VulkanBackend final : public Backend {
@@ -81,6 +91,13 @@ public:
     explicit VulkanBackend(const VulkanOptions& options) : context_(options) {}
 
     std::string name() const override { return "vulkan"; }
+    AccelPolicy accel_policy() const override {
+        // The grid arrays are uint texel buffers: bounded by the texel count a view
+        // may have and, for a device that would need them as storage buffers, by
+        // maxStorageBufferRange.
+        const VkPhysicalDeviceLimits& l = context_.properties().limits;
+        return {kBruteForceBelow, std::min<std::uint64_t>(l.maxTexelBufferElements, l.maxStorageBufferRange / 4)};
+    }
     std::string device_name() const override { return context_.properties().deviceName; }
     std::uint32_t validation_messages() const override { return context_.validation_messages(); }
 
@@ -121,13 +138,15 @@ RenderResult VulkanBackend::render(const SceneGpu& scene, SampleRange samples,
     const std::optional<VulkanBuffer> spheres = array_buffer(context_, "spheres", scene.spheres);
     const std::optional<VulkanBuffer> triangles = array_buffer(context_, "triangles", scene.triangles);
     const std::optional<VulkanBuffer> lights = array_buffer(context_, "lights", scene.lights);
+    const std::optional<VulkanBuffer> cell_starts = array_buffer(context_, "grid cell starts", scene.grid_cell_starts);
+    const std::optional<VulkanBuffer> refs = array_buffer(context_, "grid refs", scene.grid_refs);
     VulkanBuffer accum(context_, "accum", pixels * sizeof(glm::vec4), kSumsUsage);
-    VulkanBuffer counters(context_, "counters", pixels * sizeof(glm::uvec4), kSumsUsage);
+    VulkanBuffer counters(context_, "counters", pixels * sizeof(kernel::Counters), kSumsUsage);
 
     auto or_dummy = [&](const std::optional<VulkanBuffer>& b) { return b ? &*b : &dummy; };
     const std::vector<BufferView> views = write_descriptors(context_.device(), pipeline.set,
                       {&params, or_dummy(materials), or_dummy(spheres), or_dummy(triangles),
-                       or_dummy(lights), &accum, &counters});
+                       or_dummy(lights), &accum, &counters, or_dummy(cell_starts), or_dummy(refs)});
     context_.submit_and_wait([&](VkCommandBuffer cmd) {
         vkCmdFillBuffer(cmd, accum.get(), 0, VK_WHOLE_SIZE, 0);
         vkCmdFillBuffer(cmd, counters.get(), 0, VK_WHOLE_SIZE, 0);

@@ -17,7 +17,12 @@ VkDescriptorType descriptor_type(std::uint32_t binding) {
     }
 }
 VkFormat texel_format(std::uint32_t binding) {
-    return binding == kAccum ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R32G32B32A32_UINT;
+    switch (binding) {
+    case kAccum: return VK_FORMAT_R32G32B32A32_SFLOAT;
+    case kGridCellStarts:
+    case kGridRefs: return VK_FORMAT_R32_UINT;  // one uint a texel
+    default: return VK_FORMAT_R32G32B32A32_UINT;
+    }
 }
 
 }  // namespace

@@ -25,12 +25,16 @@ struct Kernel {
     std::span<const Sphere> spheres;
     std::span<const Triangle> triangles;
     std::span<const PointLight> lights;
+    std::span<const uint> grid_cell_starts;
+    std::span<const uint> grid_refs;
 
     // The accessors the kernel reads the scene through (render.comp has the GLSL ones).
     Material load_material(uint i) const { return materials[i]; }
     Sphere load_sphere(uint i) const { return spheres[i]; }
     Triangle load_triangle(uint i) const { return triangles[i]; }
     PointLight load_light(uint i) const { return lights[i]; }
+    uint load_cell_start(uint i) const { return grid_cell_starts[i]; }
+    uint load_ref(uint i) const { return grid_refs[i]; }
 
 #include "kernel/all.glsl"
 };

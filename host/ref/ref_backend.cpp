@@ -16,6 +16,10 @@ namespace {
 // one atomic counter.
 constexpr std::uint32_t kTileSize = 16;
 
+// Scenes with fewer primitives render faster by brute force than through the grid
+// (measured: docs/grid.md, `vkrt bench --threshold`).
+constexpr std::uint32_t kBruteForceBelow = 16;
+
 kernel::Kernel make_kernel(const SceneGpu& scene) {
     kernel::Kernel k;
 #define FEATURE(id, name) k.name = scene.features.has(std::uint32_t(id));
@@ -26,6 +30,8 @@ kernel::Kernel make_kernel(const SceneGpu& scene) {
     k.spheres = scene.spheres;
     k.triangles = scene.triangles;
     k.lights = scene.lights;
+    k.grid_cell_starts = scene.grid_cell_starts;
+    k.grid_refs = scene.grid_refs;
     return k;
 }
 
@@ -35,6 +41,7 @@ public:
         : threads_(threads != 0 ? threads : std::max(1u, std::thread::hardware_concurrency())) {}
 
     std::string name() const override { return "cpu"; }
+    AccelPolicy accel_policy() const override { return {kBruteForceBelow, 0xFFFFFFFFu}; }
     std::string device_name() const override {
         return "C++ reference, " + std::to_string(threads_) + " thread" + (threads_ == 1 ? "" : "s");
     }
@@ -46,7 +53,7 @@ public:
         out.width = scene.width();
         out.height = scene.height();
         out.accum.assign(scene.pixel_count(), glm::vec4(0.0f));
-        out.counters.assign(scene.pixel_count(), glm::uvec4(0u));
+        out.counters.assign(scene.pixel_count(), kernel::Counters{});
 
         const std::uint32_t tiles_x = (out.width + kTileSize - 1) / kTileSize;
         const std::uint32_t tiles_y = (out.height + kTileSize - 1) / kTileSize;

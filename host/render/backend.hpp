@@ -10,6 +10,8 @@
 
 #include <glm/vec4.hpp>
 
+#include "accel/accel_policy.hpp"
+#include "kernel_types.hpp"
 #include "scene/scene_gpu.hpp"
 
 namespace vkrt {
@@ -31,7 +33,7 @@ struct RenderResult {
     std::uint32_t width = 0;
     std::uint32_t height = 0;
     std::vector<glm::vec4> accum;      // rgb = radiance sum, a = samples summed
-    std::vector<glm::uvec4> counters;  // lanes: kernel::COUNTER_*
+    std::vector<kernel::Counters> counters;  // lanes: kernel::RAYS_*, kernel::WORK_*
     double setup_seconds = 0.0;        // building pipelines, uploading buffers
     double render_seconds = 0.0;       // the sample loop (GPU timestamps where available)
 };
@@ -43,6 +45,8 @@ public:
     virtual std::string device_name() const = 0;  // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
     virtual RenderResult render(const SceneGpu& scene, SampleRange samples,
                                 const ProgressCallback& progress = {}) = 0;
+    // When this backend prefers brute force to the grid, and its buffer limits.
+    virtual AccelPolicy accel_policy() const = 0;
     // Messages the Vulkan validation layer reported so far (0 when it is off).
     virtual std::uint32_t validation_messages() const { return 0; }
 };

@@ -23,11 +23,15 @@ RenderStats collect_stats(const SceneGpu& scene, const Backend& backend, const R
     s.width = result.width;
     s.height = result.height;
     s.samples_per_pixel = scene.samples_per_pixel;
-    for (const glm::uvec4& c : result.counters) {
-        s.eye_rays += c[kernel::COUNTER_EYE_RAYS];
-        s.shadow_rays += c[kernel::COUNTER_SHADOW_RAYS];
-        s.truncated_samples += c[kernel::COUNTER_TRUNCATED];
-        s.nonfinite_samples += c[kernel::COUNTER_NONFINITE];
+    for (const kernel::Counters& c : result.counters) {
+        s.eye_rays += c.rays[kernel::RAYS_EYE];
+        s.shadow_rays += c.rays[kernel::RAYS_SHADOW];
+        s.reflection_rays += c.rays[kernel::RAYS_REFLECTION];
+        s.refraction_rays += c.rays[kernel::RAYS_REFRACTION];
+        s.cells_visited += c.work[kernel::WORK_CELLS];
+        s.intersection_tests += c.work[kernel::WORK_TESTS];
+        s.truncated_samples += c.work[kernel::WORK_TRUNCATED];
+        s.nonfinite_samples += c.work[kernel::WORK_NONFINITE];
     }
     s.setup_seconds = result.setup_seconds;
     s.render_seconds = result.render_seconds;
@@ -35,13 +39,14 @@ RenderStats collect_stats(const SceneGpu& scene, const Backend& backend, const R
     s.buffers = scene.built_buffers();
     s.validation_messages = backend.validation_messages();
     s.loop_budget = scene.params.limits.x;
+    s.grid = scene.grid;
     return s;
 }
 
 RenderOutcome render_scene(const Scene& scene, Backend& backend, const ProgressCallback& progress) {
     using clock = std::chrono::steady_clock;
     const auto start = clock::now();
-    const SceneGpu gpu = build_scene_gpu(scene);
+    const SceneGpu gpu = build_scene_gpu(scene, backend.accel_policy());
     const auto flattened = clock::now();
     const RenderResult result = backend.render(gpu, SampleRange{0, gpu.samples_per_pixel}, progress);
     RenderOutcome out{resolve_image(result), collect_stats(gpu, backend, result)};

@@ -1,10 +1,13 @@
 #pragma once
 // The one path from a scene to an image, used by the program and the tests alike:
 // Scene -> SceneGpu -> backend -> per-pixel sums -> averaged linear image + stats.
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "accel/grid.hpp"
 #include "image/image.hpp"
 #include "render/backend.hpp"
 #include "scene/scene.hpp"
@@ -20,6 +23,10 @@ struct RenderStats {
     std::uint32_t samples_per_pixel = 0;
     std::uint64_t eye_rays = 0;
     std::uint64_t shadow_rays = 0;
+    std::uint64_t reflection_rays = 0;
+    std::uint64_t refraction_rays = 0;
+    std::uint64_t cells_visited = 0;       // grid cells stepped through, all rays
+    std::uint64_t intersection_tests = 0;  // ray-primitive tests, all rays
     std::uint64_t truncated_samples = 0;  // stopped by the loop budget: the image is wrong there
     std::uint64_t nonfinite_samples = 0;  // discarded for NaN or infinity
     double flatten_seconds = 0.0;         // Scene -> SceneGpu
@@ -31,7 +38,10 @@ struct RenderStats {
     std::uint32_t validation_messages = 0;
     std::uint32_t loop_budget = 0;        // loop iterations allowed per invocation
 
-    std::uint64_t rays() const { return eye_rays + shadow_rays; }
+    GridStats grid;
+
+    std::uint64_t rays() const { return eye_rays + shadow_rays + reflection_rays + refraction_rays; }
+    double per_ray(std::uint64_t n) const { return rays() != 0 ? double(n) / double(rays()) : 0.0; }
 };
 
 struct RenderOutcome {

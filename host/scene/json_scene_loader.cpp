@@ -85,9 +85,29 @@ Camera read_camera(const Node& n) {
     return c;
 }
 
+// "grid": "auto" | "on" | "off" | {"resolution": [x, y, z]} (docs/grid.md).
+GridSettings read_grid(const Node& n) {
+    GridSettings g;
+    if (n.raw().is_string()) {
+        const std::string mode = n.string();
+        if (mode == "auto") g.mode = GridMode::Auto;
+        else if (mode == "on") g.mode = GridMode::On;
+        else if (mode == "off") g.mode = GridMode::Off;
+        else n.fail(fmt::format("unknown grid mode {} (expected \"auto\", \"on\", \"off\" or an object with "
+                                "\"resolution\")", json::quote_user(mode)));
+        return g;
+    }
+    if (!n.raw().is_object()) n.fail_expected("\"auto\", \"on\", \"off\" or an object with \"resolution\"");
+    n.allow_only({"resolution"});
+    g.mode = GridMode::On;
+    const auto cells = n.required("resolution").elements(3, "an array of 3 whole numbers (cells per axis)");
+    for (int a = 0; a < 3; ++a) g.resolution[a] = whole32(cells[a], 1, limits::kMaxGridAxisCells);
+    return g;
+}
+
 RenderSettings read_render(const Node& n) {
     n.allow_only({"mode", "aa", "jitter", "shadows", "max_depth", "ambient", "background", "seed", "spp",
-                  "loop_budget"});
+                  "loop_budget", "grid"});
     RenderSettings r;
     if (auto mode = n.find("mode")) {
         const std::string m = mode->string();
@@ -104,6 +124,7 @@ RenderSettings read_render(const Node& n) {
     if (auto seed = n.find("seed")) r.seed = whole32(*seed, 0, std::numeric_limits<std::uint32_t>::max());
     if (auto spp = n.find("spp")) r.spp = whole32(*spp, 1, limits::kMaxSpp);
     if (auto budget = n.find("loop_budget")) r.loop_budget = whole32(*budget, 1, limits::kMaxLoopBudget);
+    if (auto grid = n.find("grid")) r.grid = read_grid(*grid);
     return r;
 }
 

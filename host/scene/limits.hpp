@@ -7,7 +7,7 @@
 namespace vkrt::limits {
 
 // An image side beyond this is a typo, not a render; the accumulation buffers of
-// the largest allowed image (32 bytes a pixel) stay near 1 GiB.
+// the largest allowed image (48 bytes a pixel: sums and counters) stay near 1.5 GiB.
 inline constexpr std::uint32_t kMaxImageSide = 32768;
 inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t(1) << 25;
 // Why an image of width x height pixels is refused; empty when it is allowed.
@@ -24,5 +24,8 @@ inline constexpr std::uint32_t kMaxAa = 64;
 inline constexpr std::uint32_t kMaxSpp = 1u << 16;
 inline constexpr std::uint32_t kMaxDepth = 64;
 inline constexpr std::uint32_t kMaxLoopBudget = 65000;  // below lavapipe's 65,535 cap
+// Cells per axis a scene may ask of the grid; the total is further capped to what
+// the device's buffers hold (host/accel/grid.cpp).
+inline constexpr std::uint32_t kMaxGridAxisCells = 1u << 16;
 
 }  // namespace vkrt::limits

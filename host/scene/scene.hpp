@@ -26,6 +26,16 @@ struct Camera {
 
 enum class RenderMode { Local };
 
+// The uniform grid (host/accel/grid.hpp). Auto builds it unless the scene is small
+// enough that brute force is faster on the chosen backend (a measured threshold).
+enum class GridMode { Auto, On, Off };
+
+struct GridSettings {
+    GridMode mode = GridMode::Auto;
+    // Cells per axis; zeros mean "choose by the heuristic" (docs/grid.md).
+    std::array<std::uint32_t, 3> resolution{0, 0, 0};
+};
+
 struct RenderSettings {
     RenderMode mode = RenderMode::Local;
     std::uint32_t aa = 1;          // aa x aa sub-pixel rays per pixel (paper's Fig. 6)
@@ -37,6 +47,7 @@ struct RenderSettings {
     std::uint32_t seed = 0;
     std::uint32_t spp = 0;         // samples per pixel; 0 means aa * aa
     std::uint32_t loop_budget = 0; // per-invocation loop iterations; 0 means the kernel default
+    GridSettings grid;
 
     std::uint32_t samples_per_pixel() const { return spp != 0 ? spp : aa * aa; }
 };

@@ -2,7 +2,10 @@
 
 #include "scene/vec_math.hpp"
 
+#include <chrono>
 #include <cmath>
+
+#include <fmt/format.h>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -57,6 +60,57 @@ kernel::Triangle flatten(const Triangle& t) {
 template <class T>
 std::size_t bytes(const std::vector<T>& v) { return v.size() * sizeof(T); }
 
+// Whether this render walks a grid, and why: the stats report the reason.
+bool want_grid(const Scene& scene, std::size_t primitives, const AccelPolicy& policy, std::string& reason) {
+    const GridSettings& settings = scene.render.grid;
+    if (primitives == 0) {
+        reason = "no primitives";
+        return false;
+    }
+    switch (settings.mode) {
+    case GridMode::Off:
+        reason = "off: the scene asks for brute force";
+        return false;
+    case GridMode::On:
+        reason = "on: the scene asks for it";
+        return true;
+    case GridMode::Auto: break;
+    }
+    if (primitives < policy.brute_force_below) {
+        reason = fmt::format("auto: {} primitives, below this backend's measured threshold of {} where the "
+                             "grid starts to beat brute force", primitives, policy.brute_force_below);
+        return false;
+    }
+    reason = fmt::format("auto: {} primitives, at or above this backend's threshold of {}", primitives,
+                         policy.brute_force_below);
+    return true;
+}
+
+void add_grid(const Scene& scene, const AccelPolicy& policy, SceneGpu& g) {
+    const auto start = std::chrono::steady_clock::now();
+    GridRequest request;
+    request.resolution = scene.render.grid.resolution;
+    request.max_entries = policy.max_buffer_entries;
+    request.eye = scene.camera.eye;
+    std::string note;
+    Grid grid = build_grid(g.spheres, g.triangles, request, note);
+    kernel::Params& p = g.params;
+    p.grid_min = to_vec4(grid.lo);
+    p.grid_max = to_vec4(grid.hi);
+    p.grid_cell = to_vec4(grid.cell);
+    p.grid_inv_cell = to_vec4(1.0 / grid.cell);
+    p.grid_res = uvec4(grid.resolution[0], grid.resolution[1], grid.resolution[2], 0u);
+    g.grid.used = true;
+    g.grid.resolution = grid.resolution;
+    g.grid.cells = grid.cell_count();
+    g.grid.references = grid.refs.size();
+    g.grid.bytes = grid.bytes();
+    if (!note.empty()) g.grid.reason += "; " + note;
+    g.grid_cell_starts = std::move(grid.cell_starts);
+    g.grid_refs = std::move(grid.refs);
+    g.grid.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 }  // namespace
 
 std::vector<BufferSize> SceneGpu::built_buffers() const {
@@ -68,10 +122,12 @@ std::vector<BufferSize> SceneGpu::built_buffers() const {
     add("spheres", bytes(spheres));
     add("triangles", bytes(triangles));
     add("point_lights", bytes(lights));
+    add("grid_cell_starts", bytes(grid_cell_starts));
+    add("grid_refs", bytes(grid_refs));
     return out;
 }
 
-SceneGpu build_scene_gpu(const Scene& scene) {
+SceneGpu build_scene_gpu(const Scene& scene, const AccelPolicy& policy) {
     SceneGpu g;
     g.features = analyze_features(scene);
     const RenderSettings& r = scene.render;
@@ -103,6 +159,10 @@ SceneGpu build_scene_gpu(const Scene& scene) {
         }
     }
     p.counts = uvec4(g.spheres.size(), g.triangles.size(), g.lights.size(), g.materials.size());
+
+    g.grid.used = want_grid(scene, g.spheres.size() + g.triangles.size(), policy, g.grid.reason);
+    if (g.grid.used) add_grid(scene, policy, g);
+    g.features.set(Feature::HAS_GRID, g.grid.used);
     return g;
 }
 

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "accel/accel_policy.hpp"
+#include "accel/grid.hpp"
 #include "kernel_types.hpp"
 #include "scene/features.hpp"
 #include "scene/scene.hpp"
@@ -25,6 +27,9 @@ struct SceneGpu {
     std::vector<kernel::Sphere> spheres;
     std::vector<kernel::Triangle> triangles;
     std::vector<kernel::PointLight> lights;
+    std::vector<std::uint32_t> grid_cell_starts;  // empty without the grid
+    std::vector<std::uint32_t> grid_refs;
+    GridStats grid;
     std::uint32_t samples_per_pixel = 1;
 
     std::uint32_t width() const { return params.image.x; }
@@ -35,6 +40,8 @@ struct SceneGpu {
     std::vector<BufferSize> built_buffers() const;
 };
 
-SceneGpu build_scene_gpu(const Scene& scene);
+// `policy` comes from the backend that will render (Backend::accel_policy); the
+// default builds the grid for any scene with primitives unless the scene says "off".
+SceneGpu build_scene_gpu(const Scene& scene, const AccelPolicy& policy = {});
 
 }  // namespace vkrt

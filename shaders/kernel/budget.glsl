@@ -6,6 +6,15 @@
 // false; the sample is then flagged as truncated instead of silently wrong.
 
 uint g_loop_iterations = 0u;
+// Work done for the stats report (Counters.work); not a limit.
+uint g_cells_visited = 0u;
+uint g_intersection_tests = 0u;
+
+void work_reset() {
+    g_loop_iterations = 0u;
+    g_cells_visited = 0u;
+    g_intersection_tests = 0u;
+}
 
 void loop_enter() {
     g_loop_iterations += 1u;

@@ -1,11 +1,29 @@
 // Constants shared by both hosts.
 
-// Lanes of the per-pixel counter buffer. Counting per pixel, not with atomics, keeps
-// the hot path contention-free; the host sums the lanes after read-back.
-const uint COUNTER_EYE_RAYS = 0u;
-const uint COUNTER_SHADOW_RAYS = 1u;
-const uint COUNTER_TRUNCATED = 2u;   // samples stopped by the loop budget
-const uint COUNTER_NONFINITE = 3u;   // samples discarded for a NaN or infinite value
+// Lanes of the per-pixel Counters (layout.glsl). Counting per pixel, not with atomics,
+// keeps the hot path contention-free; the host sums the lanes after read-back.
+// Counters.rays:
+const uint RAYS_EYE = 0u;
+const uint RAYS_SHADOW = 1u;
+const uint RAYS_REFLECTION = 2u;
+const uint RAYS_REFRACTION = 3u;
+// Counters.work:
+const uint WORK_CELLS = 0u;       // grid cells stepped through
+const uint WORK_TESTS = 1u;       // ray-primitive intersection tests
+const uint WORK_TRUNCATED = 2u;   // samples stopped by the loop budget
+const uint WORK_NONFINITE = 3u;   // samples discarded for a NaN or infinite value
+// Cells and tests cannot overflow a pixel's 32-bit lane: each is at most one loop
+// iteration, a sample has at most kMaxLoopBudget (65,000) of those, and a pixel at
+// most 65,536 samples: 65,000 * 65,536 < 2^32. (Only the cpu backend can lift the
+// budget, for benchmarks at one sample per pixel.)
+
+// A grid cell's primitive reference: the primitive's kind in the top bits, its index
+// into that kind's buffer in the rest.
+const uint REF_KIND_SHIFT = 30u;
+const uint REF_INDEX_MASK = (1u << REF_KIND_SHIFT) - 1u;
+const uint REF_SPHERE = 0u;
+const uint REF_TRIANGLE = 1u;
+const uint REF_NONE = 0xFFFFFFFFu;  // "no primitive": kind 3, which no primitive has
 
 // Mesa's lavapipe stops an invocation's loops silently after 65,535 iterations in
 // total (DESIGN.md). The kernel counts its own iterations the way lavapipe does

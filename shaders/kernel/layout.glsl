@@ -52,7 +52,20 @@ struct Params {
     uvec4 image;       // x width, y height, z aa (sub-pixels per side), w seed
     uvec4 counts;      // x spheres, y triangles, z point lights, w materials
     uvec4 limits;      // x loop-iteration budget per invocation, y max_depth, z/w unused
+    // The uniform grid (kernel/grid.glsl, host/accel/grid.cpp), when HAS_GRID: cell
+    // (i, j, k) spans grid_min + (i, j, k) * grid_cell to grid_min + (i+1, j+1, k+1) *
+    // grid_cell. grid_max is the box the rays are clipped to.
+    vec4 grid_min;       // xyz, w unused
+    vec4 grid_max;       // xyz, w unused
+    vec4 grid_cell;      // xyz cell size, w unused
+    vec4 grid_inv_cell;  // xyz 1 / cell size, w unused
+    uvec4 grid_res;      // xyz cells per axis, w unused
 };
 
 // Per-pixel accumulation: rgb = sum of sample radiance, a = number of samples summed.
-// Per-pixel counters (uvec4): see COUNTER_* in constants.glsl.
+
+// Per-pixel counters, lanes named in constants.glsl (RAYS_*, WORK_*).
+struct Counters {
+    uvec4 rays;
+    uvec4 work;
+};

@@ -4,11 +4,13 @@
 struct SampleResult {
     vec3 radiance;
     uint shadow_rays;
+    uint cells_visited;
+    uint intersection_tests;
     bool truncated;   // the loop budget ran out: the radiance is incomplete
 };
 
 SampleResult render_sample(uint px, uint py, uint sample_index) {
-    g_loop_iterations = 0u;
+    work_reset();
     Rng rng = rng_start(py * params.image.x + px, sample_index, params.image.w);
     vec2 sub = subpixel_position(sample_index, rng);
     Ray ray = camera_ray(float(px) + sub.x, float(py) + sub.y);
@@ -18,20 +20,22 @@ SampleResult render_sample(uint px, uint py, uint sample_index) {
     if (hit.t < INFINITY_T) {
         radiance = shade_local(ray, hit, shadow_rays);
     }
-    return SampleResult(radiance, shadow_rays, budget_exhausted());
+    return SampleResult(radiance, shadow_rays, g_cells_visited, g_intersection_tests, budget_exhausted());
 }
 
 // Adds a sample to its pixel's running sums. Truncated or non-finite samples add no
 // radiance and are not counted in accum's sample count, only in their counters, so
 // the host can report them and the average stays that of the good samples.
-void accumulate_sample(SampleResult s, INOUT(vec4) accum, INOUT(uvec4) counters) {
-    counters[COUNTER_EYE_RAYS] += 1u;
-    counters[COUNTER_SHADOW_RAYS] += s.shadow_rays;
+void accumulate_sample(SampleResult s, INOUT(vec4) accum, INOUT(Counters) counters) {
+    counters.rays[RAYS_EYE] += 1u;
+    counters.rays[RAYS_SHADOW] += s.shadow_rays;
+    counters.work[WORK_CELLS] += s.cells_visited;
+    counters.work[WORK_TESTS] += s.intersection_tests;
     float sum = s.radiance.x + s.radiance.y + s.radiance.z;
     if (s.truncated) {
-        counters[COUNTER_TRUNCATED] += 1u;
+        counters.work[WORK_TRUNCATED] += 1u;
     } else if (isnan(sum) || isinf(sum)) {
-        counters[COUNTER_NONFINITE] += 1u;
+        counters.work[WORK_NONFINITE] += 1u;
     } else {
         accum += vec4(s.radiance, 1.0f);
     }

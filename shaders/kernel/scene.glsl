@@ -1,9 +1,141 @@
-// Visibility queries over the scene's primitive buffers. Brute force over every
-// primitive for now; each primitive test is one budgeted loop iteration.
+// Visibility queries over the scene: the closest hit along a ray, and whether
+// anything blocks a shadow ray. With HAS_GRID they walk the uniform grid
+// (grid.glsl); without it they test every primitive (brute force), which is faster
+// for scenes of a few primitives (the host decides: host/accel/accel_policy.hpp).
+// Every primitive test is one budgeted loop iteration and one counted test.
+//
+// Each loop tests one kind of primitive only. SIMD hardware runs both sides of a
+// branch whose condition differs between lanes (lavapipe does so for every branch),
+// so a loop over mixed kinds would pay for a sphere test and a triangle test on
+// every iteration. The grid therefore lists each cell's spheres before its
+// triangles (host/accel/grid.cpp) and the kernel walks them in two loops.
 
-const uint PRIM_NONE = 0u;
-const uint PRIM_SPHERE = 1u;
-const uint PRIM_TRIANGLE = 2u;
+// The nearest hit so far: the primitive's reference and its distance.
+struct Nearest {
+    float t;          // the bound for further tests: t_max until something is hit
+    uint ref;         // REF_NONE until something is hit
+    TriangleHit tri;  // barycentrics, when ref is a triangle
+};
+
+void test_sphere(Ray ray, uint index, INOUT(Nearest) nearest) {
+    g_intersection_tests += 1u;
+    Sphere s = load_sphere(index);
+    float t = intersect_sphere(ray, vec3(s.center_radius), s.center_radius.w, 0.0f, nearest.t);
+    if (t < nearest.t) {
+        nearest.t = t;
+        nearest.ref = (REF_SPHERE << REF_KIND_SHIFT) | index;
+    }
+}
+
+void test_triangle(Ray ray, uint index, INOUT(Nearest) nearest) {
+    g_intersection_tests += 1u;
+    Triangle tri = load_triangle(index);
+    TriangleHit th = intersect_triangle(ray, vec3(tri.p0), vec3(tri.p1), vec3(tri.p2), 0.0f, nearest.t);
+    if (th.t < nearest.t) {
+        nearest.t = th.t;
+        nearest.ref = (REF_TRIANGLE << REF_KIND_SHIFT) | index;
+        nearest.tri = th;
+    }
+}
+
+// Tests the primitives listed for one grid cell: its spheres, then its triangles.
+// False means "stop the walk": the loop budget ran out, or `any_hit` is set and
+// something was hit.
+bool test_cell(Ray ray, uint cell, bool any_hit, INOUT(Nearest) nearest) {
+    g_cells_visited += 1u;
+    uint i = load_cell_start(cell);
+    uint end = load_cell_start(cell + 1u);
+    if (HAS_SPHERES) {
+        loop_enter();
+        for (; i < end; ++i) {
+            uint ref = load_ref(i);
+            if ((ref >> REF_KIND_SHIFT) != REF_SPHERE) {
+                break;
+            }
+            if (!loop_tick()) {
+                return false;
+            }
+            test_sphere(ray, ref & REF_INDEX_MASK, nearest);
+            if (any_hit && nearest.ref != REF_NONE) {
+                return false;
+            }
+        }
+    }
+    if (HAS_TRIANGLES) {
+        loop_enter();
+        for (; i < end; ++i) {
+            if (!loop_tick()) {
+                return false;
+            }
+            test_triangle(ray, load_ref(i) & REF_INDEX_MASK, nearest);
+            if (any_hit && nearest.ref != REF_NONE) {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+// Walks the grid along the ray. closest_hit (any_hit false) stops once the nearest
+// hit so far lies within the current cell: a primitive found in a cell may lie
+// beyond it (it spans several cells) while a nearer one waits in the next cell, so a
+// hit beyond the cell's exit is only kept as the bound for the tests that follow.
+// The result is the nearest hit among the primitives tested, which is the
+// brute-force result: every primitive the ray meets before that hit lies in a cell
+// the walk visited. occluded (any_hit true) stops at the first hit of any kind.
+void grid_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
+    GridWalk w = grid_walk_start(ray, nearest.t);
+    if (!w.inside) {
+        return;
+    }
+    loop_enter();
+    while (loop_tick()) {
+        if (!test_cell(ray, grid_cell_index(w.cell), any_hit, nearest)) {
+            return;
+        }
+        if (nearest.t <= min(w.t_next.x, min(w.t_next.y, w.t_next.z)) || !grid_walk_step(ray, w)) {
+            return;
+        }
+    }
+}
+
+// Every primitive, for scenes too small to gain from the grid.
+void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
+    if (HAS_SPHERES) {
+        loop_enter();
+        for (uint i = 0u; i < params.counts.x; ++i) {
+            if (!loop_tick()) {
+                return;
+            }
+            test_sphere(ray, i, nearest);
+            if (any_hit && nearest.ref != REF_NONE) {
+                return;
+            }
+        }
+    }
+    if (HAS_TRIANGLES) {
+        loop_enter();
+        for (uint i = 0u; i < params.counts.y; ++i) {
+            if (!loop_tick()) {
+                return;
+            }
+            test_triangle(ray, i, nearest);
+            if (any_hit && nearest.ref != REF_NONE) {
+                return;
+            }
+        }
+    }
+}
+
+Nearest trace(Ray ray, float t_max, bool any_hit) {
+    Nearest nearest = Nearest(t_max, REF_NONE, TriangleHit(INFINITY_T, 0.0f, 0.0f));
+    if (HAS_GRID) {
+        grid_trace(ray, any_hit, nearest);
+    } else {
+        brute_force_trace(ray, any_hit, nearest);
+    }
+    return nearest;
+}
 
 Hit sphere_hit(Ray ray, uint index, float t) {
     Sphere s = load_sphere(index);
@@ -29,78 +161,24 @@ Hit triangle_hit(Ray ray, uint index, TriangleHit th) {
     return Hit(th.t, s, g, tri.meta.x, front);
 }
 
+Hit make_hit(Ray ray, Nearest nearest) {
+    if (nearest.ref == REF_NONE) {
+        return no_hit();
+    }
+    uint index = nearest.ref & REF_INDEX_MASK;
+    if ((nearest.ref >> REF_KIND_SHIFT) == REF_SPHERE) {
+        return sphere_hit(ray, index, nearest.t);
+    }
+    return triangle_hit(ray, index, nearest.tri);
+}
+
 // The closest hit with t in (0, t_max).
 Hit closest_hit(Ray ray, float t_max) {
-    float closest = t_max;
-    uint kind = PRIM_NONE;
-    uint index = 0u;
-    TriangleHit best_tri = TriangleHit(INFINITY_T, 0.0f, 0.0f);
-    if (HAS_SPHERES) {
-        loop_enter();
-        for (uint i = 0u; i < params.counts.x; ++i) {
-            if (!loop_tick()) {
-                break;
-            }
-            Sphere s = load_sphere(i);
-            float t = intersect_sphere(ray, vec3(s.center_radius), s.center_radius.w, 0.0f, closest);
-            if (t < closest) {
-                closest = t;
-                kind = PRIM_SPHERE;
-                index = i;
-            }
-        }
-    }
-    if (HAS_TRIANGLES) {
-        loop_enter();
-        for (uint i = 0u; i < params.counts.y; ++i) {
-            if (!loop_tick()) {
-                break;
-            }
-            Triangle tri = load_triangle(i);
-            TriangleHit th = intersect_triangle(ray, vec3(tri.p0), vec3(tri.p1), vec3(tri.p2), 0.0f, closest);
-            if (th.t < closest) {
-                closest = th.t;
-                kind = PRIM_TRIANGLE;
-                index = i;
-                best_tri = th;
-            }
-        }
-    }
-    if (kind == PRIM_SPHERE) {
-        return sphere_hit(ray, index, closest);
-    }
-    if (kind == PRIM_TRIANGLE) {
-        return triangle_hit(ray, index, best_tri);
-    }
-    return no_hit();
+    return make_hit(ray, trace(ray, t_max, false));
 }
 
 // True when anything lies on the ray with t in (0, t_max): shadow rays stop at the
-// first blocker, whichever it is.
+// first blocker, whichever it is and wherever on the ray it lies.
 bool occluded(Ray ray, float t_max) {
-    if (HAS_SPHERES) {
-        loop_enter();
-        for (uint i = 0u; i < params.counts.x; ++i) {
-            if (!loop_tick()) {
-                return false;
-            }
-            Sphere s = load_sphere(i);
-            if (intersect_sphere(ray, vec3(s.center_radius), s.center_radius.w, 0.0f, t_max) < t_max) {
-                return true;
-            }
-        }
-    }
-    if (HAS_TRIANGLES) {
-        loop_enter();
-        for (uint i = 0u; i < params.counts.y; ++i) {
-            if (!loop_tick()) {
-                return false;
-            }
-            Triangle tri = load_triangle(i);
-            if (intersect_triangle(ray, vec3(tri.p0), vec3(tri.p1), vec3(tri.p2), 0.0f, t_max).t < t_max) {
-                return true;
-            }
-        }
-    }
-    return false;
+    return trace(ray, t_max, true).ref != REF_NONE;
 }

@@ -1,0 +1,83 @@
+#pragma once
+// The uniform grid of the paper's Fig. 7, built on the host and flattened into the two
+// arrays the kernel walks (shaders/kernel/grid.glsl): per-cell start offsets into one
+// concatenated list of primitive references. docs/grid.md describes the heuristic.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "kernel_types.hpp"
+
+namespace vkrt {
+
+// What the grid was for one render, as the stats report it.
+struct GridStats {
+    bool used = false;
+    std::string reason;                              // why it was, or was not, used
+    std::array<std::uint32_t, 3> resolution{0, 0, 0};
+    std::uint64_t cells = 0;
+    std::uint64_t references = 0;                    // primitive references over all cells
+    std::size_t bytes = 0;                           // both grid buffers
+    double build_seconds = 0.0;
+};
+
+using GridResolution = std::array<std::uint32_t, 3>;
+
+struct Aabb {
+    glm::dvec3 lo{0.0};
+    glm::dvec3 hi{0.0};
+};
+
+struct Grid {
+    // Float-representable corners and cell size: exactly the values the kernel gets.
+    glm::dvec3 lo{0.0};
+    glm::dvec3 hi{0.0};
+    glm::dvec3 cell{1.0};
+    GridResolution resolution{1, 1, 1};
+    std::vector<std::uint32_t> cell_starts;  // cells + 1 entries: a prefix sum of the cell sizes
+    std::vector<std::uint32_t> refs;         // kind << REF_KIND_SHIFT | index, cell by cell
+
+    std::uint64_t cell_count() const {
+        return std::uint64_t(resolution[0]) * resolution[1] * resolution[2];
+    }
+    std::size_t bytes() const { return (cell_starts.size() + refs.size()) * sizeof(std::uint32_t); }
+    glm::dvec3 pad{0.0};                     // added to every primitive's box on each side
+
+    // The cell index range [first, last] (inclusive, per axis) a box overlaps once
+    // padded: what the builder binned the box into.
+    std::array<GridResolution, 2> cells_overlapping(const Aabb& box) const;
+};
+
+// Cells per total primitive: Woo's rule, total cells = density * primitives, with the
+// cells per axis proportional to the box's extent on that axis.
+inline constexpr double kGridDensity = 4.0;
+
+// Cells per axis for `primitives` primitives in `box`, at most `max_cells` in all.
+// Axes with (nearly) no extent get one cell and leave the budget to the others.
+GridResolution grid_resolution(const Aabb& box, std::size_t primitives, double density, std::uint64_t max_cells);
+
+// The bounding box of a primitive as the kernel sees it (float data).
+Aabb bounds(const kernel::Sphere& s);
+Aabb bounds(const kernel::Triangle& t);
+
+struct GridRequest {
+    GridResolution resolution{0, 0, 0};  // zeros: by the heuristic
+    std::uint64_t max_entries = 0xFFFFFFFFu;  // per array, the device's limit
+    // Where rays from outside the grid start (the camera). A float ray's position is
+    // only known to about its distance travelled times 2^-23, so the boxes are padded
+    // by that much, lest the walk step past a primitive the ray really touches.
+    std::optional<glm::dvec3> eye;
+};
+
+// Builds the grid over every sphere and triangle. A resolution that would not fit
+// the device is reduced until it does; `note` then says so.
+Grid build_grid(std::span<const kernel::Sphere> spheres, std::span<const kernel::Triangle> triangles,
+                const GridRequest& request, std::string& note);
+
+}  // namespace vkrt

@@ -1,0 +1,83 @@
+// The grid must not change the image: every shipped scene, rendered with the grid and
+// by brute force, gives the same image (max abs difference <= 1e-5) on each backend.
+// Brute force on the Vulkan backend needs every primitive test of a ray within the
+// per-invocation loop budget (lavapipe stops longer loops), so scenes of more
+// primitives than that compare the Vulkan grid image with the reference's
+// brute-force image instead, under the cross-check's tolerance (crosscheck_test.cpp).
+// The reference runs brute force with the budget lifted.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "image/compare.hpp"
+#include "scene/load_scene.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using namespace vkrt;
+
+// Scenes with more primitives than this render brute force on the cpu backend only,
+// and at a quarter of the pixels, to keep the test in seconds.
+constexpr std::size_t kBruteForceOnVulkanMax = 20000;
+
+Scene with_grid(Scene s, GridMode mode) {
+    s.render.grid.mode = mode;
+    return s;
+}
+
+class GridImage : public ::testing::TestWithParam<std::filesystem::path> {};
+
+TEST_P(GridImage, GridAndBruteForceGiveTheSameImage) {
+    const std::size_t primitives = [&] {
+        const Scene s = load_scene(GetParam());
+        return s.spheres.size() + s.triangles.size();
+    }();
+    const bool big = primitives > kBruteForceOnVulkanMax;
+    const Scene scene = big ? test::load_at_size(GetParam(), 32, 24) : test::load_at_size(GetParam(), 64, 48);
+
+    Scene brute = with_grid(scene, GridMode::Off);
+    brute.render.loop_budget = 0xFFFFFFFFu;  // the reference only: it has no iteration cap
+    const RenderOutcome cpu_grid = test::render_cpu(with_grid(scene, GridMode::On));
+    const RenderOutcome cpu_brute = test::render_cpu(brute);
+    ASSERT_EQ(cpu_grid.stats.truncated_samples, 0u);
+    ASSERT_EQ(cpu_brute.stats.truncated_samples, 0u);
+    EXPECT_TRUE(cpu_grid.stats.grid.used);
+    EXPECT_FALSE(cpu_brute.stats.grid.used);
+    const ImageDiff cpu = compare_images(cpu_grid.image, cpu_brute.image, 1e-5);
+    EXPECT_LE(cpu.max_abs, 1e-5) << "reference backend";
+    // Same rays, same decisions, so the same shadow rays; far fewer tests.
+    EXPECT_EQ(cpu_grid.stats.shadow_rays, cpu_brute.stats.shadow_rays);
+
+    const RenderOutcome gpu_grid = test::render_vulkan(with_grid(scene, GridMode::On));
+    ASSERT_EQ(gpu_grid.stats.truncated_samples, 0u);
+    std::printf("%s: %zu primitives, grid %ux%ux%u, tests per ray %.1f (grid) vs %.1f (brute force), "
+                "max abs grid vs brute: cpu %.3g",
+                GetParam().filename().c_str(), primitives, cpu_grid.stats.grid.resolution[0],
+                cpu_grid.stats.grid.resolution[1], cpu_grid.stats.grid.resolution[2],
+                cpu_grid.stats.per_ray(cpu_grid.stats.intersection_tests),
+                cpu_brute.stats.per_ray(cpu_brute.stats.intersection_tests), cpu.max_abs);
+    if (!big) {
+        const RenderOutcome gpu_brute = test::render_vulkan(with_grid(scene, GridMode::Off));
+        ASSERT_EQ(gpu_brute.stats.truncated_samples, 0u);
+        const ImageDiff gpu = compare_images(gpu_grid.image, gpu_brute.image, 1e-5);
+        std::printf(", vulkan %.3g\n", gpu.max_abs);
+        EXPECT_LE(gpu.max_abs, 1e-5) << "Vulkan backend";
+    } else {
+        const ImageDiff cross = compare_images(gpu_grid.image, cpu_brute.image, 1e-3);
+        std::printf(", vulkan grid vs cpu brute force: %zu pixels over 1e-3\n", cross.pixels_over);
+        EXPECT_LE(cross.fraction_over(), 0.001);
+    }
+}
+
+std::string scene_name(const ::testing::TestParamInfo<std::filesystem::path>& info) {
+    std::string name = info.param.stem().string();
+    for (char& c : name) {
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    }
+    return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, GridImage, ::testing::ValuesIn(vkrt::test::repo_scenes()), scene_name);
+
+}  // namespace

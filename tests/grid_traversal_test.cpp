@@ -1,0 +1,285 @@
+// The kernel's grid walk (shaders/kernel/grid.glsl, through the reference backend's
+// view of it) against brute force: the same closest hit and the same shadow answers
+// for random rays through random scenes, and the robustness cases a 3D-DDA must
+// survive: +0/-0 and tiny direction components, origins inside, outside and exactly
+// on the grid's faces, edges and corners, rays that miss, NaN and infinite rays.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "accel/grid.hpp"
+#include "ref/kernel.hpp"
+
+namespace {
+
+using namespace vkrt;
+namespace kernel = vkrt::kernel;
+using kernel::Kernel;
+using kernel::vec3;
+using kernel::vec4;
+using kernel::uvec4;
+
+struct GridScene {
+    std::vector<kernel::Material> materials{kernel::Material{}};
+    std::vector<kernel::Sphere> spheres;
+    std::vector<kernel::Triangle> triangles;
+    Grid grid;
+
+    void build(GridRequest request = {}) {
+        std::string note;
+        grid = build_grid(spheres, triangles, request, note);
+    }
+
+    Kernel kernel(bool with_grid) const {
+        Kernel k;
+        k.HAS_GRID = with_grid;
+        k.materials = materials;
+        k.spheres = spheres;
+        k.triangles = triangles;
+        k.grid_cell_starts = grid.cell_starts;
+        k.grid_refs = grid.refs;
+        k.params.counts = uvec4(std::uint32_t(spheres.size()), std::uint32_t(triangles.size()), 0u, 1u);
+        k.params.limits.x = 0xFFFFFFFFu;
+        k.params.grid_min = vec4(vec3(grid.lo), 0.0f);
+        k.params.grid_max = vec4(vec3(grid.hi), 0.0f);
+        k.params.grid_cell = vec4(vec3(grid.cell), 0.0f);
+        k.params.grid_inv_cell = vec4(vec3(1.0 / grid.cell), 0.0f);
+        k.params.grid_res = uvec4(grid.resolution[0], grid.resolution[1], grid.resolution[2], 0u);
+        k.work_reset();
+        return k;
+    }
+};
+
+kernel::Triangle triangle(vec3 a, vec3 b, vec3 c, std::uint32_t id) {
+    kernel::Triangle t{};
+    t.p0 = vec4(a, 0.0f);
+    t.p1 = vec4(b, 0.0f);
+    t.p2 = vec4(c, 0.0f);
+    t.meta = uvec4(id, 0u, 0u, 0u);  // the material index tells the primitives apart
+    return t;
+}
+
+// Spheres and triangles of mixed sizes in [-10, 10]^3, some spanning many cells.
+GridScene random_scene(std::uint32_t seed, int spheres, int triangles) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> pos(-10.0f, 10.0f);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    GridScene s;
+    std::uint32_t id = 0;
+    for (int i = 0; i < spheres; ++i) {
+        const float r = unit(rng) < 0.05f ? 3.0f * unit(rng) + 0.5f : 0.4f * unit(rng) + 0.02f;
+        s.spheres.push_back(kernel::Sphere{vec4(pos(rng), pos(rng), pos(rng), r), uvec4(id++, 0u, 0u, 0u)});
+    }
+    for (int i = 0; i < triangles; ++i) {
+        const vec3 a(pos(rng), pos(rng), pos(rng));
+        const float size = unit(rng) < 0.05f ? 8.0f : 1.0f;
+        const vec3 b = a + size * vec3(unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f);
+        const vec3 c = a + size * vec3(unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f);
+        s.triangles.push_back(triangle(a, b, c, id++));
+    }
+    s.materials.resize(id);
+    return s;
+}
+
+Kernel::Ray make_ray(vec3 origin, vec3 dir) { return Kernel::Ray(origin, dir); }
+
+// Closest hit and shadow answer agree between the grid walk and brute force.
+::testing::AssertionResult same_answers(Kernel& grid, Kernel& brute, const Kernel::Ray& ray, float t_max) {
+    const Kernel::Hit a = grid.closest_hit(ray, t_max);
+    const Kernel::Hit b = brute.closest_hit(ray, t_max);
+    if (a.t != b.t || (a.t < t_max && a.material != b.material)) {
+        return ::testing::AssertionFailure() << "closest hit: grid t " << a.t << " (primitive " << a.material
+                                             << "), brute force t " << b.t << " (primitive " << b.material << ")";
+    }
+    const bool shadow_grid = grid.occluded(ray, t_max);
+    const bool shadow_brute = brute.occluded(ray, t_max);
+    if (shadow_grid != shadow_brute) {
+        return ::testing::AssertionFailure() << "occluded: grid " << shadow_grid << ", brute force " << shadow_brute;
+    }
+    return ::testing::AssertionSuccess();
+}
+
+std::string describe(const Kernel::Ray& r) {
+    char text[200];
+    std::snprintf(text, sizeof text, "ray (%.9g, %.9g, %.9g) + t (%.9g, %.9g, %.9g)", r.origin.x, r.origin.y,
+                  r.origin.z, r.dir.x, r.dir.y, r.dir.z);
+    return text;
+}
+
+TEST(GridTraversal, HundredThousandRandomRaysMatchBruteForce) {
+    GridScene s = random_scene(1, 400, 400);
+    s.build();
+    Kernel grid = s.kernel(true);
+    Kernel brute = s.kernel(false);
+    std::mt19937 rng(2);
+    std::uniform_real_distribution<float> pos(-14.0f, 14.0f);
+    std::normal_distribution<float> gauss;
+    std::uniform_int_distribution<int> kind(0, 9);
+    std::uniform_int_distribution<int> axis(0, 2);
+    int failures = 0;
+    for (int i = 0; i < 100000 && failures < 10; ++i) {
+        vec3 origin(pos(rng), pos(rng), pos(rng));
+        vec3 dir(gauss(rng), gauss(rng), gauss(rng));
+        switch (kind(rng)) {
+        case 0: {  // axis-aligned, the other components +0 or -0
+            const int a = axis(rng);
+            const float sign = gauss(rng) < 0.0f ? -1.0f : 1.0f;
+            dir = vec3(gauss(rng) < 0.0f ? -0.0f : 0.0f, gauss(rng) < 0.0f ? -0.0f : 0.0f,
+                       gauss(rng) < 0.0f ? -0.0f : 0.0f);
+            dir[a] = sign;
+            break;
+        }
+        case 1:  // one tiny component
+            dir[axis(rng)] = 1e-30f * gauss(rng);
+            break;
+        case 2: {  // grazing a sphere: aimed at a point on its silhouette
+            const kernel::Sphere& sp = s.spheres[std::size_t(i) % s.spheres.size()];
+            const vec3 c(sp.center_radius);
+            const vec3 to = glm::normalize(c - origin);
+            vec3 side = glm::normalize(glm::cross(to, vec3(0.3f, 1.0f, 0.1f)));
+            dir = c + sp.center_radius.w * side - origin;
+            break;
+        }
+        case 3:  // starting on a cell boundary plane
+            origin.x = float(s.grid.lo.x + s.grid.cell.x * double(i % s.grid.resolution[0]));
+            break;
+        default: break;
+        }
+        const float len = glm::length(dir);
+        if (!(len > 0.0f)) continue;
+        const Kernel::Ray ray = make_ray(origin, dir / len);
+        const float t_max = i % 3 == 0 ? 8.0f : kernel::INFINITY_T;
+        const ::testing::AssertionResult same = same_answers(grid, brute, ray, t_max);
+        if (!same) {
+            ADD_FAILURE() << describe(ray) << ": " << same.message();
+            ++failures;
+        }
+    }
+}
+
+TEST(GridTraversal, SkipsMostOfTheScene) {
+    GridScene s = random_scene(4, 3000, 0);
+    s.build();
+    Kernel grid = s.kernel(true);
+    grid.closest_hit(make_ray(vec3(-20, 0.1f, 0.2f), vec3(1, 0, 0)), kernel::INFINITY_T);
+    EXPECT_GT(grid.g_cells_visited, 1u);
+    EXPECT_LT(grid.g_intersection_tests, 300u) << "of 3000 spheres";
+}
+
+// A grid of unit cells over [0, 4]^3, one small sphere in each corner cell.
+GridScene cube_scene() {
+    GridScene s;
+    std::uint32_t id = 0;
+    for (float x : {0.5f, 3.5f}) {
+        for (float y : {0.5f, 3.5f}) {
+            for (float z : {0.5f, 3.5f}) {
+                s.spheres.push_back(kernel::Sphere{vec4(x, y, z, 0.5f), uvec4(id++, 0u, 0u, 0u)});
+            }
+        }
+    }
+    s.materials.resize(id);
+    GridRequest request;
+    request.resolution = {4, 4, 4};
+    s.build(request);
+    return s;
+}
+
+TEST(GridTraversal, AxisRaysWithPlusAndMinusZeroVisitTheSameCells) {
+    GridScene s = cube_scene();
+    ASSERT_EQ(s.grid.lo, glm::dvec3(0.0));
+    ASSERT_EQ(s.grid.cell, glm::dvec3(1.0));
+    for (float zero : {0.0f, -0.0f}) {
+        for (float sign : {1.0f, -1.0f}) {
+            Kernel k = s.kernel(true);
+            // Along x through the row of cells y = 1, z = 2: no sphere there.
+            const Kernel::Ray ray = make_ray(vec3(sign > 0 ? -1.0f : 5.0f, 1.5f, 2.5f), vec3(sign, zero, zero));
+            EXPECT_EQ(k.closest_hit(ray, kernel::INFINITY_T).t, kernel::INFINITY_T);
+            EXPECT_EQ(k.g_cells_visited, 4u) << "zero " << zero << " sign " << sign;
+        }
+    }
+}
+
+TEST(GridTraversal, OriginsOnFacesEdgesAndCornersOfTheGridAndItsCells) {
+    GridScene s = cube_scene();
+    Kernel grid = s.kernel(true);
+    Kernel brute = s.kernel(false);
+    const std::vector<vec3> origins = {
+        {0, 0, 0}, {4, 4, 4}, {0, 2, 2}, {4, 2, 2}, {2, 0, 2}, {2, 2, 4}, {1, 1, 1}, {2, 2, 2},
+        {0, 0, 2}, {4, 4, 1}, {1, 2, 3}, {3, 3, 0}, {-0.0f, -0.0f, -0.0f}, {0, 4, 0}};
+    std::vector<vec3> dirs;
+    for (float x : {-1.0f, -0.0f, 0.0f, 1.0f}) {
+        for (float y : {-1.0f, -0.0f, 0.0f, 1.0f}) {
+            for (float z : {-1.0f, -0.0f, 0.0f, 1.0f}) {
+                const vec3 d(x, y, z);
+                if (glm::length(d) > 0.0f) dirs.push_back(glm::normalize(d));
+            }
+        }
+    }
+    for (const vec3& o : origins) {
+        for (const vec3& d : dirs) {
+            const Kernel::Ray ray = make_ray(o, d);
+            EXPECT_TRUE(same_answers(grid, brute, ray, kernel::INFINITY_T)) << describe(ray);
+        }
+    }
+}
+
+TEST(GridTraversal, RaysThatMissTheGridVisitNoCell) {
+    GridScene s = cube_scene();
+    Kernel k = s.kernel(true);
+    // Beside the box, parallel to it; and pointing away from it.
+    k.work_reset();
+    EXPECT_EQ(k.closest_hit(make_ray(vec3(-1, 5, 2), vec3(1, 0, 0)), kernel::INFINITY_T).t, kernel::INFINITY_T);
+    EXPECT_EQ(k.g_cells_visited, 0u);
+    k.work_reset();
+    EXPECT_EQ(k.closest_hit(make_ray(vec3(-1, 2, 2), vec3(-1, 0, 0)), kernel::INFINITY_T).t, kernel::INFINITY_T);
+    EXPECT_EQ(k.g_cells_visited, 0u);
+    // Ending before the box.
+    k.work_reset();
+    EXPECT_FALSE(k.occluded(make_ray(vec3(-3, 0.5f, 0.5f), vec3(1, 0, 0)), 2.0f));
+    EXPECT_EQ(k.g_cells_visited, 0u);
+}
+
+TEST(GridTraversal, NonFiniteRaysTerminateWithoutAHit) {
+    GridScene s = cube_scene();
+    Kernel k = s.kernel(true);
+    k.params.limits.x = kernel::DEFAULT_LOOP_BUDGET;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    const std::vector<Kernel::Ray> rays = {
+        make_ray(vec3(2, 2, -1), vec3(nan, 0, 1)), make_ray(vec3(nan, 2, 2), vec3(0, 0, 1)),
+        make_ray(vec3(2, 2, -1), vec3(0, inf, 1)), make_ray(vec3(-inf, 2, 2), vec3(1, 0, 0)),
+        make_ray(vec3(2, 2, -1), vec3(0, 0, 0)),  // zero direction: parallel to every axis
+    };
+    for (const Kernel::Ray& r : rays) {
+        k.work_reset();
+        EXPECT_EQ(k.closest_hit(r, kernel::INFINITY_T).t, kernel::INFINITY_T) << describe(r);
+        EXPECT_FALSE(k.occluded(r, kernel::INFINITY_T)) << describe(r);
+        EXPECT_FALSE(k.budget_exhausted()) << describe(r);
+    }
+}
+
+TEST(GridTraversal, WalkEndsWithinTheCellsOfTheGrid) {
+    // A long diagonal through a fine, empty-ish grid: steps are bounded by the sum of
+    // the resolutions, whatever the direction.
+    GridScene s;
+    s.spheres.push_back(kernel::Sphere{vec4(0, 0, 0, 0.01f), uvec4(0u)});
+    s.spheres.push_back(kernel::Sphere{vec4(10, 10, 10, 0.01f), uvec4(0u)});
+    GridRequest request;
+    request.resolution = {50, 60, 70};
+    s.build(request);
+    Kernel k = s.kernel(true);
+    std::mt19937 rng(5);
+    std::normal_distribution<float> gauss;
+    for (int i = 0; i < 2000; ++i) {
+        k.work_reset();
+        const vec3 d = glm::normalize(vec3(gauss(rng), gauss(rng), gauss(rng)));
+        k.closest_hit(make_ray(vec3(5, 5, 5), d), kernel::INFINITY_T);
+        EXPECT_LE(k.g_cells_visited, 50u + 60u + 70u);
+    }
+}
+
+}  // namespace
