@@ -103,6 +103,7 @@ void print_summary(const RenderStats& s, const std::string& output) {
 int run_render(const RenderArgs& args) {
     const auto start = std::chrono::steady_clock::now();
     Scene scene = load_scene(args.scene);
+    for (const std::string& warning : scene.warnings) fmt::print(stderr, "warning: {}\n", warning);
     apply_overrides(args, scene);
     const std::string output = args.output.empty() ? default_output(args.scene) : args.output;
 

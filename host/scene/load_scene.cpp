@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "scene/json_scene_loader.hpp"
+#include "scene/nff_loader.hpp"
 #include "scene/scene_error.hpp"
 
 namespace vkrt {
@@ -12,7 +13,10 @@ Scene load_scene(const std::filesystem::path& file) {
     if (ext == ".json" || ext == ".jsonc") {
         return load_json_scene(file);
     }
-    throw SceneError(fmt::format("{}: unknown scene format '{}' (expected a .json scene file)",
+    if (ext == ".nff") {
+        return load_nff_scene(file);
+    }
+    throw SceneError(fmt::format("{}: unknown scene format '{}' (expected a .json, .jsonc or .nff scene file)",
                                  file.string(), ext));
 }
 

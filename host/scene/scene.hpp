@@ -92,6 +92,9 @@ struct Scene {
     std::vector<PointLight> lights;
     std::vector<Sphere> spheres;
     std::vector<Triangle> triangles;
+    // What the loader accepted but the renderer will not show as the file means it
+    // (e.g. an NFF mirror before mirrors exist); printed as warnings before rendering.
+    std::vector<std::string> warnings;
 };
 
 }  // namespace vkrt
