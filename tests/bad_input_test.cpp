@@ -90,6 +90,20 @@ std::vector<BadInput> cases() {
          scene(kCamera, kSphere, R"({"chalk": {"reflect": [1, 1, 1]}})"),
          {"materials.chalk.reflect", "not supported yet"}},
         {"file_does_not_exist", "", {"cannot open scene file"}},
+        {"unknown_object_type", scene(kCamera, R"([{"type": "cube", "material": "chalk"}])"),
+         {"objects[0].type", "unknown object type 'cube'", "torus_knot"}},
+        {"mesh_file_missing", scene(kCamera, R"([{"type": "mesh", "file": "no-such.obj", "material": "chalk"}])"),
+         {"objects[0].file", "no-such.obj: cannot open mesh file", "No such file"}},
+        {"random_spheres_none",
+         scene(kCamera, R"([{"type": "random_spheres", "count": 0, "min": [0, 0, 0], "max": [1, 1, 1],
+                             "radius": [0.1, 0.2], "materials": ["chalk"]}])"),
+         {"objects[0].count", "got 0"}},
+        {"torus_knot_too_many_triangles",
+         scene(kCamera, R"([{"type": "torus_knot", "segments": [100000, 1000], "material": "chalk"}])"),
+         {"objects[0].segments", "more than the limit"}},
+        {"transform_zero_scale",
+         scene(kCamera, R"([{"type": "torus_knot", "material": "chalk", "transform": {"scale": [1, 0, 1]}}])"),
+         {"objects[0].transform.scale[1]", "non-zero"}},
     };
 }
 

@@ -17,8 +17,11 @@
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 
+#include "scene/generators.hpp"
 #include "scene/json_reader.hpp"
 #include "scene/limits.hpp"
+#include "scene/material_lookup.hpp"
+#include "scene/obj_mesh.hpp"
 #include "scene/scene_error.hpp"
 #include "scene/vec_math.hpp"
 
@@ -181,8 +184,8 @@ void read_lights(const Node& n, std::vector<PointLight>& out) {
     }
 }
 
-std::uint32_t material_of(const Node& object, const MaterialIndex& materials) {
-    const Node node = object.required("material");
+// `node` holds a material's name.
+std::uint32_t material_named(const Node& node, const MaterialIndex& materials) {
     const std::string name = node.string();
     if (const auto it = materials.find(name); it != materials.end()) return it->second;
     std::string defined;
@@ -196,6 +199,10 @@ std::uint32_t material_of(const Node& object, const MaterialIndex& materials) {
     }
     node.fail(fmt::format("unknown material {} ({})", json::quote_user(name),
                           materials.empty() ? std::string("no materials are defined") : "defined: " + defined));
+}
+
+std::uint32_t material_of(const Node& object, const MaterialIndex& materials) {
+    return material_named(object.required("material"), materials);
 }
 
 Sphere read_sphere(const Node& n, const MaterialIndex& materials) {
@@ -249,6 +256,7 @@ void read_quad(const Node& n, const MaterialIndex& materials, std::vector<Triang
 }
 
 void read_objects(const Node& n, const MaterialIndex& materials, Scene& scene) {
+    const MaterialLookup lookup = [&materials](const Node& name) { return material_named(name, materials); };
     for (const Node& object : n.elements()) {
         const Node type = object.required("type");
         const std::string t = type.string();
@@ -258,8 +266,15 @@ void read_objects(const Node& n, const MaterialIndex& materials, Scene& scene) {
             scene.triangles.push_back(read_triangle(object, materials));
         } else if (t == "quad") {
             read_quad(object, materials, scene.triangles);
+        } else if (t == "mesh") {
+            read_mesh(object, lookup, scene);
+        } else if (t == "random_spheres") {
+            read_random_spheres(object, lookup, scene.spheres);
+        } else if (t == "torus_knot") {
+            read_torus_knot(object, lookup, scene);
         } else {
-            type.fail(fmt::format("unknown object type {} (expected one of: sphere, triangle, quad)",
+            type.fail(fmt::format("unknown object type {} (expected one of: sphere, triangle, quad, mesh, "
+                                  "random_spheres, torus_knot)",
                                   json::quote_user(t)));
         }
     }

@@ -1,0 +1,148 @@
+#include "scene/indexed_mesh.hpp"
+
+#include <cmath>
+#include <optional>
+#include <utility>
+
+#include <fmt/format.h>
+#include <glm/geometric.hpp>
+
+#include "scene/vec_math.hpp"
+
+namespace vkrt {
+
+using glm::dvec3;
+
+void transform_mesh(IndexedMesh& mesh, const Transform& t) {
+    for (dvec3& p : mesh.positions) p = t.apply_point(p);
+    for (dvec3& n : mesh.normals) {
+        if (is_nonzero(n)) n = t.apply_normal(n);
+    }
+    if (t.mirrors) {
+        for (IndexedMesh::Face& f : mesh.faces) {
+            std::swap(f.position[1], f.position[2]);
+            std::swap(f.normal[1], f.normal[2]);
+        }
+    }
+}
+
+bool is_degenerate(const dvec3& p0, const dvec3& p1, const dvec3& p2) {
+    return parallel_or_zero(p1 - p0, p2 - p0, kDegenerateSine);
+}
+
+namespace {
+
+// The unit normal of a non-degenerate triangle. Edges are normalized first so that
+// the cross product neither overflows for huge coordinates nor underflows for tiny.
+dvec3 face_normal(const dvec3& p0, const dvec3& p1, const dvec3& p2) {
+    return robust_normalize(glm::cross(robust_normalize(p1 - p0), robust_normalize(p2 - p0)));
+}
+
+// The angle at corner a of the triangle (a, b, c), in radians. atan2 of the sine
+// and cosine parts stays accurate near 0 and pi, where acos of a dot product does not.
+double corner_angle(const dvec3& a, const dvec3& b, const dvec3& c) {
+    const dvec3 u = robust_normalize(b - a);
+    const dvec3 v = robust_normalize(c - a);
+    return std::atan2(glm::length(glm::cross(u, v)), glm::dot(u, v));
+}
+
+}  // namespace
+
+std::vector<dvec3> angle_weighted_normals(const IndexedMesh& mesh) {
+    std::vector<dvec3> sum(mesh.positions.size(), dvec3(0.0));
+    std::vector<double> weight(mesh.positions.size(), 0.0);
+    for (const IndexedMesh::Face& f : mesh.faces) {
+        const dvec3 p[3] = {mesh.positions[f.position[0]], mesh.positions[f.position[1]],
+                            mesh.positions[f.position[2]]};
+        if (is_degenerate(p[0], p[1], p[2])) continue;
+        const dvec3 n = face_normal(p[0], p[1], p[2]);
+        for (int k = 0; k < 3; ++k) {
+            const double angle = corner_angle(p[k], p[(k + 1) % 3], p[(k + 2) % 3]);
+            sum[f.position[k]] += angle * n;
+            weight[f.position[k]] += angle;
+        }
+    }
+    std::vector<dvec3> out(sum.size(), dvec3(0.0));
+    for (std::size_t i = 0; i < sum.size(); ++i) {
+        // Faces that nearly cancel (a vertex on a fold that turns back on itself)
+        // leave a sum whose direction is rounding noise: no normal is better.
+        if (glm::length(sum[i]) > 1e-9 * weight[i]) out[i] = glm::normalize(sum[i]);
+    }
+    return out;
+}
+
+namespace {
+
+// The normals a face is shaded with: the mesh's own when it gives a usable one at
+// every corner, else the computed ones, else (where even those are missing) the
+// face's own, which makes that corner flat.
+std::array<dvec3, 3> corner_normals(const IndexedMesh& mesh, const IndexedMesh::Face& f,
+                                    const std::vector<dvec3>& computed, const dvec3 p[3]) {
+    std::array<dvec3, 3> out{};
+    bool given = true;
+    for (int k = 0; k < 3; ++k) {
+        given = given && f.normal[k] != IndexedMesh::kNoNormal && is_nonzero(mesh.normals[f.normal[k]]);
+    }
+    for (int k = 0; k < 3; ++k) {
+        if (given) {
+            out[k] = mesh.normals[f.normal[k]];
+        } else if (is_nonzero(computed[f.position[k]])) {
+            out[k] = computed[f.position[k]];
+        } else {
+            out[k] = face_normal(p[0], p[1], p[2]);
+        }
+    }
+    return out;
+}
+
+bool needs_computed_normals(const IndexedMesh& mesh) {
+    for (const IndexedMesh::Face& f : mesh.faces) {
+        for (std::uint32_t n : f.normal) {
+            if (n == IndexedMesh::kNoNormal || !is_nonzero(mesh.normals[n])) return true;
+        }
+    }
+    return false;
+}
+
+}  // namespace
+
+void add_mesh(const json::Node& object, IndexedMesh mesh, const Transform& t,
+              const std::optional<json::Node>& transform, const MeshOptions& options, Scene& scene) {
+    transform_mesh(mesh, t);
+    for (const dvec3& p : mesh.positions) {
+        if (max_abs(p) > json::kMaxMagnitude) {
+            const std::string message = fmt::format(
+                "the {}mesh has a vertex at {}, beyond the largest coordinate allowed ({})",
+                transform ? "transformed " : "", json::format_vec3(p), json::kMaxMagnitude);
+            if (transform) transform->fail(message);
+            object.fail(message);
+        }
+    }
+
+    std::vector<dvec3> computed;
+    if (options.smooth && needs_computed_normals(mesh)) computed = angle_weighted_normals(mesh);
+
+    std::size_t skipped = 0;
+    for (const IndexedMesh::Face& f : mesh.faces) {
+        const dvec3 p[3] = {mesh.positions[f.position[0]], mesh.positions[f.position[1]],
+                            mesh.positions[f.position[2]]};
+        if (is_degenerate(p[0], p[1], p[2])) {
+            ++skipped;
+            continue;
+        }
+        Triangle tri{{p[0], p[1], p[2]}, std::nullopt, options.material};
+        if (options.smooth) tri.normals = corner_normals(mesh, f, computed, p);
+        scene.triangles.push_back(tri);
+    }
+    if (skipped == mesh.faces.size()) {
+        object.fail(fmt::format("all {} triangles of the mesh have zero area{}", skipped,
+                                transform ? " after the transform" : ""));
+    }
+    if (skipped > 0) {
+        scene.warnings.push_back(fmt::format(
+            "{}: {}: skipped {} of {} triangles that have zero area (coinciding vertices or all on one line)",
+            object.file(), object.path(), skipped, mesh.faces.size()));
+    }
+}
+
+}  // namespace vkrt

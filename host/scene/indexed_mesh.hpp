@@ -1,0 +1,64 @@
+#pragma once
+// A triangle mesh with shared vertices, as OBJ files and the torus-knot generator
+// produce it, and its placement into a Scene: transform, skip degenerate triangles,
+// smooth normals. Vertices shared by index share their computed normal, which is
+// what makes a mesh look smooth across its edges.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "scene/json_reader.hpp"
+#include "scene/scene.hpp"
+#include "scene/transform.hpp"
+
+namespace vkrt {
+
+struct IndexedMesh {
+    static constexpr std::uint32_t kNoNormal = 0xFFFFFFFFu;
+
+    struct Face {
+        std::array<std::uint32_t, 3> position{};                          // into positions
+        std::array<std::uint32_t, 3> normal{kNoNormal, kNoNormal, kNoNormal};  // into normals
+    };
+
+    std::vector<glm::dvec3> positions;
+    std::vector<glm::dvec3> normals;  // given by the source (OBJ "vn"); may be empty
+    std::vector<Face> faces;          // front face = cross(p1 - p0, p2 - p0)
+};
+
+// Moves positions and normals (normals renormalized; zero ones stay zero) and, if
+// the transform mirrors, swaps two corners of every face so that the front faces
+// stay on the same side of the surface.
+void transform_mesh(IndexedMesh& mesh, const Transform& t);
+
+// A triangle this thin (the sine of its angle at v0 at most this) has no usable
+// normal in the kernel's single precision. The same bound as the JSON loader's
+// refusal of zero-area "triangle" objects.
+inline constexpr double kDegenerateSine = 1e-9;
+
+bool is_degenerate(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2);
+
+// Per position: the sum over the non-degenerate faces around it of the face's unit
+// normal weighted by the face's angle at that corner, normalized (Thürmer and
+// Wüthrich 1998, "Computing vertex normals from polygonal facets"). Unlike
+// weighting by area or by nothing, the result does not change when a neighbouring
+// face is split in two. A position with no usable sum gets a zero vector.
+std::vector<glm::dvec3> angle_weighted_normals(const IndexedMesh& mesh);
+
+struct MeshOptions {
+    bool smooth = false;  // per-vertex normals: the mesh's own, else angle-weighted
+    std::uint32_t material = 0;
+};
+
+// Transforms the mesh and appends its triangles to scene.triangles. Degenerate
+// triangles are skipped and counted in a scene warning; a mesh left with no
+// triangle at all, or moved beyond json::kMaxMagnitude, fails at `object` (the
+// JSON object that made it). `transform` is the object's "transform" node, if any,
+// for naming where a too-large result came from.
+void add_mesh(const json::Node& object, IndexedMesh mesh, const Transform& t,
+              const std::optional<json::Node>& transform, const MeshOptions& options, Scene& scene);
+
+}  // namespace vkrt

@@ -1,0 +1,263 @@
+// OBJ files are read in two passes over the text. Our own pass checks every line
+// that carries geometry and takes the numbers from it; tinyobjloader then reads the
+// structure (faces, their index forms v, v/t, v/t/n, v//n and negative relative
+// indices). The first pass exists because tinyobjloader reads a malformed number
+// ("nan", "1,5", "abc") as 0 without a word, and some valid ones wrongly ("0e400"
+// becomes NaN): a model would silently change shape instead of being refused.
+#include "scene/obj_mesh.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+#include <fmt/format.h>
+#include <tiny_obj_loader.h>
+
+#include "scene/scene_error.hpp"
+#include "scene/vec_math.hpp"
+
+namespace vkrt {
+namespace {
+
+using glm::dvec3;
+
+std::string read_text(const std::filesystem::path& file) {
+    // C stdio, as for scene files: errno says why a file cannot be opened.
+    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "rb"), &std::fclose);
+    if (!f) {
+        throw SceneError(fmt::format("{}: cannot open mesh file ({})", file.string(),
+                                     std::generic_category().message(errno)));
+    }
+    std::string text;
+    char buffer[1 << 16];
+    std::size_t n = 0;
+    while ((n = std::fread(buffer, 1, sizeof buffer, f.get())) > 0) text.append(buffer, n);
+    if (std::ferror(f.get())) {
+        throw SceneError(fmt::format("{}: cannot open mesh file (read failed: {})", file.string(),
+                                     std::generic_category().message(errno)));
+    }
+    return text;
+}
+
+// tinyobjloader keeps a face's vertex count in an unsigned char.
+constexpr std::size_t kMaxFaceVertices = 255;
+
+// What the first pass takes from the file.
+struct Scanned {
+    std::vector<dvec3> positions;
+    std::vector<dvec3> normals;
+    std::vector<std::size_t> face_lines;  // the line of each face, in file order
+};
+
+class Scanner {
+public:
+    explicit Scanner(const std::string& name) : name_(name) {}
+
+    Scanned scan(std::string_view text) {
+        std::size_t start = 0;
+        while (start < text.size()) {
+            std::size_t end = text.find('\n', start);
+            if (end == std::string_view::npos) end = text.size();
+            ++line_;
+            statement(text.substr(start, end - start));
+            start = end + 1;
+        }
+        return std::move(out_);
+    }
+
+private:
+    [[noreturn]] void fail(std::string_view message) const {
+        throw SceneError(fmt::format("{}:{}: {}", name_, line_, message));
+    }
+
+    void statement(std::string_view line) {
+        line = line.substr(0, line.find('#'));  // a comment runs to the end of the line
+        std::vector<std::string_view> words;
+        std::size_t at = 0;
+        while (true) {
+            at = line.find_first_not_of(" \t\r", at);
+            if (at == std::string_view::npos) break;
+            const std::size_t end = std::min(line.find_first_of(" \t\r", at), line.size());
+            words.push_back(line.substr(at, end - at));
+            at = end;
+        }
+        if (words.empty()) return;
+        if (words[0] == "v") {
+            out_.positions.push_back(triple(words, "v"));
+        } else if (words[0] == "vn") {
+            out_.normals.push_back(triple(words, "vn"));
+        } else if (words[0] == "f") {
+            const std::size_t n = words.size() - 1;
+            if (n < 3) fail(fmt::format("a face needs at least 3 vertices, got {}", n));
+            if (n > kMaxFaceVertices) {
+                fail(fmt::format("a face of {} vertices; at most {} are supported", n, kMaxFaceVertices));
+            }
+            out_.face_lines.push_back(line_);
+        }
+        // Every other statement (vt, g, o, s, usemtl, mtllib, l, p, ...) carries
+        // nothing we use.
+    }
+
+    // The first three numbers of a "v" or "vn" line; the rest (w, vertex colours)
+    // must be numbers too, but are not used.
+    dvec3 triple(const std::vector<std::string_view>& words, std::string_view keyword) const {
+        if (words.size() < 4) {
+            fail(fmt::format("expected 3 numbers after '{}', got {}", keyword, words.size() - 1));
+        }
+        dvec3 v(0.0);
+        for (std::size_t i = 1; i < words.size(); ++i) {
+            const double x = number(words[i]);
+            if (i <= 3) {
+                if (std::abs(x) > json::kMaxMagnitude) {
+                    fail(fmt::format("expected a number of magnitude at most {}, got {}", json::kMaxMagnitude,
+                                     json::quote_user(words[i])));
+                }
+                v[static_cast<int>(i - 1)] = x;
+            }
+        }
+        return v;
+    }
+
+    double number(std::string_view word) const {
+        std::string_view digits = word;
+        if (digits.size() > 1 && digits[0] == '+') digits.remove_prefix(1);  // from_chars takes no '+'
+        double x = 0.0;
+        const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), x);
+        if (end != digits.data() + digits.size() || ec == std::errc::invalid_argument) {
+            fail(fmt::format("expected a number, got {}", json::quote_user(word)));
+        }
+        if (ec == std::errc::result_out_of_range) {
+            // Either too large for a double or too small: strtod says which.
+            x = std::strtod(std::string(digits).c_str(), nullptr);
+        }
+        if (!std::isfinite(x)) fail(fmt::format("expected a finite number, got {}", json::quote_user(word)));
+        return x;
+    }
+
+    const std::string& name_;
+    std::size_t line_ = 0;
+    Scanned out_;
+};
+
+// tinyobjloader's messages end in newlines, sometimes several; one line is wanted.
+std::string one_line(const std::string& message) {
+    std::string out;
+    for (char c : message) {
+        if (c == '\n' || c == '\r') {
+            if (!out.empty() && out.back() != ' ') out += ' ';
+        } else {
+            out += c;
+        }
+    }
+    while (!out.empty() && out.back() == ' ') out.pop_back();
+    return out;
+}
+
+}  // namespace
+
+IndexedMesh load_obj(const std::filesystem::path& file) {
+    const std::string name = file.string();
+    const std::string text = read_text(file);
+    Scanned scanned = Scanner(name).scan(text);
+
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> materials;
+    std::string warning;
+    std::string error;
+    std::istringstream stream(text);
+    // No material reader: mtllib lines are skipped rather than opened (the scene
+    // gives the material). Its warnings are not shown: they concern materials, or
+    // indices out of range, which are checked below with the line named.
+    // No triangulation: its quads are split along the shorter diagonal and larger
+    // polygons by ear clipping that skips what it cannot use; a fan is predictable.
+    const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warning, &error, &stream,
+                                     /*readMatFn=*/nullptr, /*triangulate=*/false,
+                                     /*default_vcols_fallback=*/false);
+    if (!ok) throw SceneError(fmt::format("{}: {}", name, one_line(error)));
+
+    std::size_t faces = 0;
+    for (const tinyobj::shape_t& shape : shapes) faces += shape.mesh.num_face_vertices.size();
+    if (attrib.vertices.size() != 3 * scanned.positions.size() ||
+        attrib.normals.size() != 3 * scanned.normals.size() || faces != scanned.face_lines.size()) {
+        // Both passes read the same lines; a difference means they read it differently.
+        throw SceneError(fmt::format(
+            "{}: tinyobjloader read {} vertices, {} normals and {} faces where the file has {}, {} and {}", name,
+            attrib.vertices.size() / 3, attrib.normals.size() / 3, faces, scanned.positions.size(),
+            scanned.normals.size(), scanned.face_lines.size()));
+    }
+    if (faces == 0) throw SceneError(fmt::format("{}: the file has no faces (no 'f' lines)", name));
+
+    IndexedMesh mesh;
+    mesh.positions = std::move(scanned.positions);
+    mesh.normals = std::move(scanned.normals);
+    const auto position_of = [&](int index, std::size_t line) {
+        if (index < 0 || static_cast<std::size_t>(index) >= mesh.positions.size()) {
+            throw SceneError(fmt::format("{}:{}: a face refers to vertex {}, but the file has {} vertices", name, line,
+                                         index + 1, mesh.positions.size()));
+        }
+        return static_cast<std::uint32_t>(index);
+    };
+    const auto normal_of = [&](int index, std::size_t line) {
+        if (index == -1) return IndexedMesh::kNoNormal;  // the face gave none
+        if (index < 0 || static_cast<std::size_t>(index) >= mesh.normals.size()) {
+            throw SceneError(fmt::format("{}:{}: a face refers to normal {}, but the file has {} normals", name, line,
+                                         index + 1, mesh.normals.size()));
+        }
+        return static_cast<std::uint32_t>(index);
+    };
+
+    std::size_t face = 0;
+    for (const tinyobj::shape_t& shape : shapes) {
+        std::size_t first = 0;
+        for (const unsigned char count : shape.mesh.num_face_vertices) {
+            const std::size_t line = scanned.face_lines[face++];
+            const auto corner = [&](std::size_t k) { return shape.mesh.indices[first + k]; };
+            for (std::size_t k = 1; k + 1 < count; ++k) {
+                IndexedMesh::Face f;
+                const tinyobj::index_t c[3] = {corner(0), corner(k), corner(k + 1)};
+                for (int i = 0; i < 3; ++i) {
+                    f.position[i] = position_of(c[i].vertex_index, line);
+                    f.normal[i] = normal_of(c[i].normal_index, line);
+                }
+                mesh.faces.push_back(f);
+            }
+            first += count;
+        }
+    }
+    return mesh;
+}
+
+void read_mesh(const json::Node& n, const MaterialLookup& material, Scene& scene) {
+    n.allow_only({"type", "file", "material", "smooth", "transform"});
+    const json::Node file = n.required("file");
+    const std::string relative = file.string();
+    if (relative.empty()) file.fail("expected a file name, got an empty string");
+    const std::filesystem::path path = std::filesystem::path(n.file()).parent_path() / relative;
+
+    MeshOptions options;
+    options.material = material(n.required("material"));
+    if (auto smooth = n.find("smooth")) options.smooth = smooth->boolean();
+    const std::optional<json::Node> transform = n.find("transform");
+    const Transform t = transform ? read_transform(*transform) : Transform{};
+
+    IndexedMesh mesh;
+    try {
+        mesh = load_obj(path);
+    } catch (const SceneError& e) {
+        // The OBJ's own message ("<obj>:<line>: ...") after the scene's path to it.
+        file.fail(e.what());
+    }
+    add_mesh(n, std::move(mesh), t, transform, options, scene);
+}
+
+}  // namespace vkrt
