@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 
+#include "cli/bench.hpp"
 #include "cli/commands.hpp"
 #include "scene/limits.hpp"
 
@@ -46,6 +47,17 @@ CLI::Validator non_negative() {
             return {};
         },
         ">= 0");
+}
+
+// The command as typed, for the header of `vkrt bench`'s table.
+std::string command_line(int argc, char** argv) {
+    std::string line;
+    for (int i = 0; i < argc; ++i) {
+        const std::string word = argv[i];
+        if (i > 0) line += ' ';
+        line += word.find_first_of(" \t'\"") == std::string::npos ? word : "'" + word + "'";
+    }
+    return line;
 }
 
 }  // namespace
@@ -97,6 +109,32 @@ int main(int argc, char** argv) {
         ->check(non_negative())
         ->capture_default_str();
 
+    cli::BenchArgs bench;
+    bench.command_line = command_line(argc, argv);
+    CLI::App* b = app.add_subcommand("bench", "Measure rays per second: grid against brute force, vulkan against cpu");
+    b->add_option("--scene", bench.scenes,
+                  "Scene file to measure; repeat for more (default: the list in docs/bench.md, relative to the repo "
+                  "root)")
+        ->allow_extra_args(false);
+    b->add_option("--width", bench.width, "Image width")
+        ->check(whole_number(1, limits::kMaxImageSide))
+        ->capture_default_str();
+    b->add_option("--height", bench.height, "Image height")
+        ->check(whole_number(1, limits::kMaxImageSide))
+        ->capture_default_str();
+    b->add_option("--runs", bench.runs, "Runs per measurement; the median is reported")
+        ->check(whole_number(1, 1000))
+        ->capture_default_str();
+    b->add_option("--backend", bench.backend, "Backends to measure: vulkan, cpu or both")
+        ->check(CLI::IsMember({"vulkan", "cpu", "both"}))
+        ->capture_default_str();
+    b->add_option("--device", bench.device, "Vulkan device: index or name from `vkrt devices` (e.g. lavapipe)");
+    b->add_option("--csv", bench.csv, "Also write the measurements to this CSV file");
+    b->add_flag("--sweep", bench.sweep, "Measure 1k, 10k, 100k and 1M random spheres: cost against primitive count");
+    b->add_flag("--threshold", bench.threshold,
+                "Measure 1 to 256 random spheres, grid on and off: where the grid starts to win");
+    b->add_flag("-q,--quiet", bench.quiet, "No progress lines on standard error");
+
     app.add_subcommand("devices", "List the Vulkan devices");
 
     try {
@@ -106,16 +144,17 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         // One line and status 1, like every other mistake (docs/cli.md).
         if (app.get_subcommands().empty() && argc > 1 && argv[1][0] != '-') {
-            fmt::print(stderr, "error: unknown command '{}' (expected render, compare or devices)\n", argv[1]);
+            fmt::print(stderr, "error: unknown command '{}' (expected render, compare, bench or devices)\n", argv[1]);
             return 1;
         }
         fmt::print(stderr, "error: {} (see vkrt {}--help)\n", e.what(),
-                   r->parsed() ? "render " : c->parsed() ? "compare " : "");
+                   r->parsed() ? "render " : c->parsed() ? "compare " : b->parsed() ? "bench " : "");
         return 1;
     }
     try {
         if (r->parsed()) return cli::run_render(render);
         if (c->parsed()) return cli::run_compare(compare);
+        if (b->parsed()) return cli::run_bench(bench);
         return cli::run_devices();
     } catch (const std::exception& e) {
         fmt::print(stderr, "error: {}\n", e.what());

@@ -1,0 +1,362 @@
+#include "cli/bench.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+#include <utility>
+
+#include <fmt/format.h>
+#include <sys/utsname.h>
+
+#include "cli/bench_scenes.hpp"
+#include "cli/bench_table.hpp"
+#include "gpu/vulkan_backend.hpp"
+#include "kernel_types.hpp"
+#include "ref/ref_backend.hpp"
+#include "render/render.hpp"
+#include "scene/limits.hpp"
+#include "scene/load_scene.hpp"
+#include "scene/scene_error.hpp"
+
+namespace vkrt::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Relative to the repo root; docs/bench.md says where each comes from.
+const std::vector<std::string> kDefaultScenes = {
+    "scenes/gallery/h_random_spheres.json", "../shared/spd/nff/balls.nff", "../shared/spd/nff/tetra.nff",
+    "scenes/gallery/j_torus_knot.json",     "scenes/bench/ten_spheres.json",
+};
+const std::vector<std::uint64_t> kSweepCounts = {1000, 10000, 100000, 1000000};
+const std::vector<std::uint64_t> kThresholdCounts = {1, 2, 4, 8, 16, 32, 64, 128, 256};
+
+// Brute force renders at most this many pixel x primitive pairs (each eye ray tests
+// every primitive, and so does each shadow ray that is not blocked early). The
+// 2-core development machine's reference runs 3e7 (triangles) to 1e8 (spheres)
+// tests a second, so 1e8 keeps a brute-force render within a few seconds. Larger
+// scenes render brute force at a smaller image of the same view; the rates are per
+// ray, so they still compare with the grid's at full size.
+constexpr double kBrutePixelPrimitives = 1e8;
+
+// The loop budget lifted for the reference's brute force, which has no lavapipe
+// underneath to cut it (shaders/kernel/constants.glsl explains why the counters
+// still cannot overflow at one sample per pixel).
+constexpr std::uint32_t kUnlimitedLoopBudget = 0xFFFFFFFFu;
+
+constexpr const char* kLoopBudgetNa = "n/a (loop budget)";
+
+struct BenchScene {
+    std::string label;
+    Scene scene;
+};
+
+// One (backend, accel) column of a scene's measurement, filled run by run.
+struct Cell {
+    Backend* backend;
+    bool grid;
+    std::uint32_t width;
+    std::uint32_t height;
+    std::string not_measured;
+    std::vector<RenderStats> without_shadows;
+    std::vector<RenderStats> with_shadows;
+};
+
+std::uint64_t primitive_count(const Scene& s) { return s.spheres.size() + s.triangles.size(); }
+
+// The view of the full-size image, shrunk so that brute force stays within
+// kBrutePixelPrimitives.
+std::pair<std::uint32_t, std::uint32_t> brute_force_size(std::uint32_t width, std::uint32_t height,
+                                                         std::uint64_t primitives) {
+    const double pairs = double(width) * double(height) * double(std::max<std::uint64_t>(primitives, 1));
+    if (pairs <= kBrutePixelPrimitives) return {width, height};
+    const double scale = std::sqrt(kBrutePixelPrimitives / pairs);
+    return {std::max(1u, std::uint32_t(std::lround(width * scale))),
+            std::max(1u, std::uint32_t(std::lround(height * scale)))};
+}
+
+// Brute force on Vulkan runs only where one sample fits the kernel's loop budget:
+// the eye ray and one shadow ray per light each loop over every primitive, plus a
+// loop entry per primitive kind. Above that lavapipe would cut the loops silently,
+// so the kernel would stop the samples; the cell says n/a instead of running.
+bool fits_loop_budget(const Scene& s) {
+    const std::uint64_t per_query = primitive_count(s) + 4;
+    return (1 + s.lights.size()) * per_query + 16 <= kernel::DEFAULT_LOOP_BUDGET;
+}
+
+void configure(Scene& s, const Cell& cell, bool shadows) {
+    s.camera.width = cell.width;
+    s.camera.height = cell.height;
+    // One eye ray per pixel through its centre, shadows to every light and no
+    // secondary rays: exactly the two ray kinds the table reports.
+    s.render.spp = 1;
+    s.render.aa = 1;
+    s.render.jitter = false;
+    s.render.max_depth = 0;
+    s.render.shadows = shadows;
+    s.render.grid.mode = cell.grid ? GridMode::On : GridMode::Off;
+    const bool unlimited = !cell.grid && cell.backend->name() == "cpu";
+    s.render.loop_budget = unlimited ? kUnlimitedLoopBudget : 0;
+}
+
+double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+double median_of(const std::vector<RenderStats>& runs, double RenderStats::*field) {
+    std::vector<double> values;
+    for (const RenderStats& s : runs) values.push_back(s.*field);
+    return median(values);
+}
+
+BenchRow make_row(const BenchScene& bench_scene, const Cell& cell) {
+    BenchRow row;
+    row.scene = bench_scene.label;
+    row.primitives = primitive_count(bench_scene.scene);
+    row.backend = cell.backend->name();
+    row.accel = cell.grid ? "grid" : "brute";
+    row.width = cell.width;
+    row.height = cell.height;
+    row.not_measured = cell.not_measured;
+    if (!row.measured() || cell.with_shadows.empty()) return row;
+
+    const RenderStats& off = cell.without_shadows.front();
+    const RenderStats& on = cell.with_shadows.front();  // ray counts are the same in every run
+    row.eye_rays = off.eye_rays;
+    row.shadow_rays = on.shadow_rays;
+    row.rays = on.rays();
+    row.seconds_no_shadows = median_of(cell.without_shadows, &RenderStats::render_seconds);
+    row.seconds = median_of(cell.with_shadows, &RenderStats::render_seconds);
+    row.cells_per_ray = on.per_ray(on.cells_visited);
+    row.tests_per_ray = on.per_ray(on.intersection_tests);
+    row.grid_resolution = on.grid.resolution;
+    row.grid_bytes = on.grid.bytes;
+    std::vector<double> builds;
+    for (const auto* runs : {&cell.without_shadows, &cell.with_shadows}) {
+        for (const RenderStats& s : *runs) builds.push_back(s.grid.build_seconds);
+    }
+    row.grid_build_seconds = median(builds);
+    return row;
+}
+
+class Bench {
+public:
+    Bench(const BenchArgs& args, const std::vector<std::unique_ptr<Backend>>& backends)
+        : args_(args), backends_(backends) {}
+
+    std::vector<BenchRow> measure(BenchScene& s) {
+        std::vector<Cell> cells;
+        const auto [brute_width, brute_height] = brute_force_size(args_.width, args_.height, primitive_count(s.scene));
+        for (const auto& b : backends_) {
+            cells.push_back(Cell{b.get(), true, args_.width, args_.height, {}, {}, {}});
+            Cell brute{b.get(), false, brute_width, brute_height, {}, {}, {}};
+            if (b->name() == "vulkan" && !fits_loop_budget(s.scene)) brute.not_measured = kLoopBudgetNa;
+            cells.push_back(std::move(brute));
+        }
+        // Runs interleave the cells, so a machine that slows down for a while slows
+        // every cell alike and their ratios stay meaningful.
+        for (std::uint32_t run = 0; run < args_.runs; ++run) {
+            for (Cell& cell : cells) {
+                if (cell.not_measured.empty()) render_cell(s, cell, run);
+            }
+        }
+        std::vector<BenchRow> rows;
+        for (const Cell& cell : cells) rows.push_back(make_row(s, cell));
+        return rows;
+    }
+
+private:
+    void render_cell(BenchScene& s, Cell& cell, std::uint32_t run) {
+        const char* accel = cell.grid ? "grid" : "brute";
+        for (const bool shadows : {false, true}) {
+            configure(s.scene, cell, shadows);
+            RenderStats stats = render_scene(s.scene, *cell.backend).stats;
+            if (stats.truncated_samples > 0) {
+                cell.not_measured = kLoopBudgetNa;
+                note("bench: {}: {} {}: {} samples ran out of the loop budget; not measured", s.label,
+                     cell.backend->name(), accel, stats.truncated_samples);
+                return;
+            }
+            if (cell.grid && !stats.grid.used) warn_grid_not_built(s.label, cell.backend->name(), stats.grid.reason);
+            (shadows ? cell.with_shadows : cell.without_shadows).push_back(std::move(stats));
+        }
+        note("bench: {}: {} {} {}x{}, run {}/{}: {:.3f} s without shadows, {:.3f} s with", s.label,
+             cell.backend->name(), accel, cell.width, cell.height, run + 1, args_.runs,
+             cell.without_shadows.back().render_seconds, cell.with_shadows.back().render_seconds);
+    }
+
+    // A grid that was asked for but not built makes the "grid" row brute force; said
+    // once per scene and backend, since every run would say the same.
+    void warn_grid_not_built(const std::string& label, const std::string& backend, const std::string& reason) {
+        if (!grid_warned_.insert(label + "\n" + backend).second) return;
+        fmt::print(stderr, "warning: {}: the grid was not built on {}{}; its row measures brute force\n", label,
+                   backend, reason.empty() ? "" : " (" + reason + ")");
+    }
+
+    template <typename... T>
+    void note(fmt::format_string<T...> format, T&&... values) const {
+        if (!args_.quiet) fmt::print(stderr, "{}\n", fmt::format(format, std::forward<T>(values)...));
+    }
+
+    const BenchArgs& args_;
+    const std::vector<std::unique_ptr<Backend>>& backends_;
+    std::set<std::string> grid_warned_;
+};
+
+BenchScene load_bench_scene(const std::string& label, const fs::path& file, bool quiet) {
+    if (!quiet) fmt::print(stderr, "bench: loading {}\n", label);
+    BenchScene s{label, load_scene(file)};
+    for (const std::string& warning : s.scene.warnings) fmt::print(stderr, "warning: {}\n", warning);
+    return s;
+}
+
+std::string read_first_value(const char* file, const std::string& key) {
+    std::ifstream in(file);
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind(key, 0) != 0) continue;
+        const std::size_t colon = line.find(':');
+        if (colon == std::string::npos) continue;
+        const std::size_t start = line.find_first_not_of(" \t", colon + 1);
+        return start == std::string::npos ? std::string() : line.substr(start);
+    }
+    return {};
+}
+
+// What a pasted table needs to be read right: the CPU (both backends run on it
+// here), the Vulkan device and driver, and the command.
+void print_header(const BenchArgs& args, const std::vector<std::unique_ptr<Backend>>& backends) {
+    std::string cpu = read_first_value("/proc/cpuinfo", "model name");
+    if (cpu.empty()) cpu = "unknown CPU";
+    std::string memory;
+    if (const std::string kib = read_first_value("/proc/meminfo", "MemTotal"); !kib.empty()) {
+        memory = fmt::format(", {:.0f} GiB", std::stod(kib) / (1024.0 * 1024.0));
+    }
+    utsname os{};
+    const std::string system = ::uname(&os) == 0 ? fmt::format(", {} {} {}", os.sysname, os.release, os.machine) : "";
+    fmt::print("machine: {}, {} hardware threads{}{}\n", cpu, std::thread::hardware_concurrency(), memory, system);
+    for (const auto& b : backends) {
+        if (b->name() != "vulkan") continue;
+        std::string driver;
+        for (const DeviceInfo& d : list_vulkan_devices()) {
+            if (d.name == b->device_name()) driver = fmt::format(" [{}], driver {}", d.type, d.driver);
+        }
+        fmt::print("vulkan:  {}{}\n", b->device_name(), driver);
+    }
+    fmt::print("command: {}\n", args.command_line);
+    fmt::print("method:  1 eye ray per pixel, shadow rays to every light, no reflection or refraction; median of {} "
+               "run{}; render s = the sample loop (GPU timestamps on Vulkan); brute force at most {:g} pixel x "
+               "primitive pairs (docs/bench.md)\n\n",
+               args.runs, args.runs == 1 ? "" : "s", kBrutePixelPrimitives);
+}
+
+std::vector<BenchScene> load_listed_scenes(const BenchArgs& args) {
+    const bool defaults = args.scenes.empty();
+    const std::vector<std::string>& files = defaults ? kDefaultScenes : args.scenes;
+    // Every file is checked before the first render, not after minutes of benchmark.
+    for (const std::string& file : files) {
+        if (fs::is_regular_file(file)) continue;
+        throw std::runtime_error(
+            defaults ? fmt::format("{}: no such scene file (the default scenes are named relative to the repo root: "
+                                   "run vkrt bench from there, or name scenes with --scene)",
+                                   file)
+                     : fmt::format("{}: no such scene file", file));
+    }
+    std::vector<BenchScene> scenes;
+    for (const std::string& file : files) scenes.push_back(load_bench_scene(file, file, args.quiet));
+    return scenes;
+}
+
+std::vector<BenchScene> generated_scenes(const TempSceneDir& dir, const std::vector<std::uint64_t>& counts,
+                                         bool quiet) {
+    std::vector<BenchScene> scenes;
+    for (const std::uint64_t count : counts) {
+        const fs::path file = dir.write(fmt::format("random_spheres_{}.json", count), random_spheres_scene(count));
+        scenes.push_back(load_bench_scene(fmt::format("{} random sphere{}", count, count == 1 ? "" : "s"), file, quiet));
+    }
+    return scenes;
+}
+
+std::vector<std::unique_ptr<Backend>> make_backends(const BenchArgs& args) {
+    std::vector<std::unique_ptr<Backend>> backends;
+    if (args.backend != "cpu") backends.push_back(make_vulkan_backend(VulkanOptions{args.device, false}));
+    if (args.backend != "vulkan") backends.push_back(make_reference_backend());
+    return backends;
+}
+
+}  // namespace
+
+int run_bench(const BenchArgs& args) {
+    const auto start = std::chrono::steady_clock::now();
+    if (const std::string problem = limits::image_size_problem(args.width, args.height); !problem.empty()) {
+        throw SceneError("--width/--height: " + problem);
+    }
+    if (args.backend == "cpu" && !args.device.empty()) {
+        fmt::print(stderr, "warning: --device applies to the vulkan backend only; ignored\n");
+    }
+    // Scene files first (seconds at most, and where most mistakes are), then the
+    // CSV file and the devices: every mistake fails before the benchmark, not after.
+    const bool listed = (!args.sweep && !args.threshold) || !args.scenes.empty();
+    std::vector<BenchScene> scenes = listed ? load_listed_scenes(args) : std::vector<BenchScene>{};
+    std::optional<TempSceneDir> temp;
+    if (args.sweep || args.threshold) temp.emplace();
+    std::vector<BenchScene> sweep = args.sweep ? generated_scenes(*temp, kSweepCounts, args.quiet)
+                                               : std::vector<BenchScene>{};
+    std::vector<BenchScene> threshold = args.threshold ? generated_scenes(*temp, kThresholdCounts, args.quiet)
+                                                       : std::vector<BenchScene>{};
+    std::ofstream csv;
+    if (!args.csv.empty()) {
+        csv.open(args.csv);
+        if (!csv) throw std::runtime_error(fmt::format("{}: cannot write the CSV file", args.csv));
+    }
+    const std::vector<std::unique_ptr<Backend>> backends = make_backends(args);
+    print_header(args, backends);
+
+    Bench bench(args, backends);
+    std::vector<BenchRow> all;
+    auto run_group = [&](const char* title, std::vector<BenchScene>& group) {
+        if (group.empty()) return std::vector<BenchRow>{};
+        std::vector<BenchRow> rows;
+        for (BenchScene& s : group) {
+            std::vector<BenchRow> scene_rows = bench.measure(s);
+            rows.insert(rows.end(), scene_rows.begin(), scene_rows.end());
+        }
+        compare_rows(rows);
+        std::ostringstream table;
+        write_markdown(table, rows);
+        fmt::print("{}\n\n{}\n", title, table.str());
+        std::fflush(stdout);
+        all.insert(all.end(), rows.begin(), rows.end());
+        return rows;
+    };
+    run_group("Scenes", scenes);
+    run_group("Cost against primitive count (random spheres)", sweep);
+    const std::vector<BenchRow> threshold_rows = run_group("Grid against brute force on few primitives", threshold);
+    if (!threshold_rows.empty()) {
+        fmt::print("Where the grid starts to win (rays/s with shadows, all rays):\n");
+        for (const std::string& line : threshold_summary(threshold_rows)) fmt::print("- {}\n", line);
+        fmt::print("\n");
+    }
+
+    if (csv.is_open()) {
+        write_csv(csv, all);
+        csv.close();
+        if (!csv) throw std::runtime_error(fmt::format("{}: cannot write the CSV file", args.csv));
+    }
+    if (!args.quiet) {
+        fmt::print(stderr, "bench: done in {:.0f} s\n",
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    }
+    return 0;
+}
+
+}  // namespace vkrt::cli
