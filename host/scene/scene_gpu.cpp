@@ -69,10 +69,10 @@ bool want_grid(const Scene& scene, std::size_t primitives, const AccelPolicy& po
     }
     switch (settings.mode) {
     case GridMode::Off:
-        reason = "off: the scene asks for brute force";
+        reason = "off: requested (render.grid or --grid)";
         return false;
     case GridMode::On:
-        reason = "on: the scene asks for it";
+        reason = "on: requested (render.grid or --grid)";
         return true;
     case GridMode::Auto: break;
     }
