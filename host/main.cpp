@@ -87,9 +87,16 @@ int main(int argc, char** argv) {
     r->add_option("--seed", render.seed, "Random seed, overrides the scene")
         ->check(whole_number(0, 0xffffffffu));
     r->add_option("--grid", render.grid,
-                  "Uniform grid: auto (when the scene has enough primitives for it to pay), on or off; "
-                  "overrides the scene")
-        ->check(CLI::IsMember({"auto", "on", "off"}));
+                  "Uniform grid: auto (when the scene has enough primitives for it to pay), on, off, or a "
+                  "resolution NXxNYxNZ in cells (e.g. 46x46x3); overrides the scene")
+        ->check(CLI::Validator(
+            [](const std::string& text) {
+                return cli::parse_grid_option(text)
+                           ? std::string()
+                           : fmt::format("expected auto, on, off or NXxNYxNZ (each 1 to {}), got '{}'",
+                                         limits::kMaxGridAxisCells, text);
+            },
+            "auto|on|off|NXxNYxNZ"));
     r->add_option("--threads", render.threads, "CPU threads for the cpu backend (default: all)")
         ->check(whole_number(0, 1024));
     r->add_option("--stats", render.stats_file, "Write render statistics as JSON to this file");

@@ -2,6 +2,8 @@
 // gets when everything is right.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -78,6 +80,36 @@ TEST(Cli, ThreadsDoNotChangeTheImage) {
     EXPECT_EQ(ignored.code, 0);
     EXPECT_NE(ignored.stderr_text.find("warning: --threads applies to --backend cpu only"), std::string::npos)
         << ignored.stderr_text;
+}
+
+// --grid reaches the stats: off, a resolution, and auto's reason.
+TEST(Cli, GridOptionChoosesTheAcceleration) {
+    const fs::path dir = test::temp_dir("cli_grid");
+    const std::string base = "render " + test::shell_quote(scene("default").string()) +
+                             " --backend cpu --width 16 --height 12 -q -o " + test::shell_quote((dir / "x.png").string()) +
+                             " --stats " + test::shell_quote((dir / "s.json").string());
+    auto stats = [&] { return nlohmann::json::parse(read_file(dir / "s.json")); };
+
+    ASSERT_EQ(test::run_vkrt(base + " --grid 3x4x5", dir).code, 0);
+    EXPECT_EQ(stats()["grid"]["used"], true);
+    EXPECT_EQ(stats()["grid"]["resolution"], nlohmann::json::array({3, 4, 5}));
+    EXPECT_GT(stats()["work"]["cells_visited"].get<double>(), 0.0);
+
+    ASSERT_EQ(test::run_vkrt(base + " --grid off", dir).code, 0);
+    EXPECT_EQ(stats()["grid"]["used"], false);
+    EXPECT_EQ(stats()["work"]["cells_visited"], 0);
+
+    // The default scene has 7 primitives: below the threshold, auto says so.
+    ASSERT_EQ(test::run_vkrt(base, dir).code, 0);
+    EXPECT_EQ(stats()["grid"]["used"], false);
+    EXPECT_NE(stats()["grid"]["reason"].get<std::string>().find("7 primitives, below"), std::string::npos);
+
+    for (const char* bad : {"0x1x1", "4x4", "4x4x4x4", "fast", "70000x1x1", "4x4x"}) {
+        const test::ProgramRun run = test::run_vkrt(base + " --grid " + bad, dir);
+        EXPECT_EQ(run.code, 1) << bad;
+        EXPECT_NE(run.stderr_text.find("--grid: expected auto, on, off or NXxNYxNZ"), std::string::npos)
+            << run.stderr_text;
+    }
 }
 
 }  // namespace

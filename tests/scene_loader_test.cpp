@@ -223,6 +223,23 @@ TEST_F(SceneLoaderTest, SamplesPerPixelDefaultsToAaSquared) {
     EXPECT_EQ(s.render.samples_per_pixel(), 16u);
 }
 
+TEST_F(SceneLoaderTest, GridSettings) {
+    EXPECT_EQ(load(Parts{}.text()).render.grid.mode, vkrt::GridMode::Auto);
+    EXPECT_EQ(load(Parts{.render = R"({"grid": "off"})"}.text()).render.grid.mode, vkrt::GridMode::Off);
+    EXPECT_EQ(load(Parts{.render = R"({"grid": "on"})"}.text()).render.grid.mode, vkrt::GridMode::On);
+    EXPECT_EQ(load(Parts{.render = R"({"grid": "auto"})"}.text()).render.grid.mode, vkrt::GridMode::Auto);
+    const Scene s = load(Parts{.render = R"({"grid": {"resolution": [3, 4, 5]}})"}.text());
+    EXPECT_EQ(s.render.grid.mode, vkrt::GridMode::On);
+    EXPECT_EQ(s.render.grid.resolution, (std::array<std::uint32_t, 3>{3, 4, 5}));
+
+    expect_error(Parts{.render = R"({"grid": "fast"})"}, {"render.grid", "unknown grid mode 'fast'"});
+    expect_error(Parts{.render = R"({"grid": 3})"}, {"render.grid", "expected \"auto\""});
+    expect_error(Parts{.render = R"({"grid": {"resolution": [3, 4]}})"}, {"render.grid.resolution", "3 whole numbers"});
+    expect_error(Parts{.render = R"({"grid": {"resolution": [0, 4, 4]}})"}, {"render.grid.resolution[0]"});
+    expect_error(Parts{.render = R"({"grid": {"resolution": [4, 4, 70000]}})"}, {"render.grid.resolution[2]", "65536"});
+    expect_error(Parts{.render = R"({"grid": {"cells": [4, 4, 4]}})"}, {"render.grid", "unknown field 'cells'"});
+}
+
 TEST_F(SceneLoaderTest, LightDefaults) {
     const Scene s = load(Parts{.lights = R"([{"type": "point", "position": [1, 2, 3]}])"}.text());
     ASSERT_EQ(s.lights.size(), 1u);

@@ -32,9 +32,14 @@ void apply_overrides(const RenderArgs& args, Scene& scene) {
     if (args.height) scene.camera.height = *args.height;
     if (args.spp) scene.render.spp = *args.spp;
     if (args.seed) scene.render.seed = *args.seed;
-    if (args.grid == "auto") scene.render.grid = GridSettings{GridMode::Auto, {0, 0, 0}};
-    if (args.grid == "on") scene.render.grid.mode = GridMode::On;  // keeps a resolution the scene gives
-    if (args.grid == "off") scene.render.grid.mode = GridMode::Off;
+    if (!args.grid.empty()) {
+        const GridSettings grid = parse_grid_option(args.grid).value();  // checked by the parser
+        if (args.grid == "on") {
+            scene.render.grid.mode = GridMode::On;  // keeps a resolution the scene gives
+        } else {
+            scene.render.grid = grid;
+        }
+    }
     if (const std::string problem = limits::image_size_problem(scene.camera.width, scene.camera.height);
         !problem.empty()) {
         throw SceneError("--width/--height: " + problem);
@@ -99,6 +104,29 @@ void print_summary(const RenderStats& s, const std::string& output) {
 }
 
 }  // namespace
+
+std::optional<GridSettings> parse_grid_option(const std::string& text) {
+    if (text == "auto") return GridSettings{GridMode::Auto, {0, 0, 0}};
+    if (text == "on") return GridSettings{GridMode::On, {0, 0, 0}};
+    if (text == "off") return GridSettings{GridMode::Off, {0, 0, 0}};
+    GridSettings g{GridMode::On, {0, 0, 0}};
+    std::size_t pos = 0;
+    for (int a = 0; a < 3; ++a) {
+        if (a > 0) {
+            if (pos >= text.size() || text[pos] != 'x') return std::nullopt;
+            ++pos;
+        }
+        std::uint64_t value = 0;
+        const std::size_t begin = pos;
+        while (pos < text.size() && text[pos] >= '0' && text[pos] <= '9' && pos - begin < 6) {
+            value = value * 10 + std::uint64_t(text[pos++] - '0');
+        }
+        if (pos == begin || value < 1 || value > limits::kMaxGridAxisCells) return std::nullopt;
+        g.resolution[a] = static_cast<std::uint32_t>(value);
+    }
+    if (pos != text.size()) return std::nullopt;
+    return g;
+}
 
 int run_render(const RenderArgs& args) {
     const auto start = std::chrono::steady_clock::now();

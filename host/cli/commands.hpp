@@ -5,6 +5,8 @@
 #include <optional>
 #include <string>
 
+#include "scene/scene.hpp"
+
 namespace vkrt::cli {
 
 struct RenderArgs {
@@ -22,6 +24,10 @@ struct RenderArgs {
     bool validate = false;
     bool quiet = false;
 };
+
+// The --grid value: auto, on, off, or a resolution "NXxNYxNZ" (cells per axis,
+// each 1 to limits::kMaxGridAxisCells). Empty optional when the text is none of these.
+std::optional<GridSettings> parse_grid_option(const std::string& text);
 
 struct CompareArgs {
     std::string a;
