@@ -4,15 +4,11 @@
 #include "scene/json_scene_loader.hpp"
 
 #include <array>
-#include <cerrno>
 #include <cstdint>
-#include <cstdio>
 #include <functional>
 #include <limits>
 #include <map>
-#include <memory>
 #include <string>
-#include <system_error>
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
@@ -22,6 +18,7 @@
 #include "scene/limits.hpp"
 #include "scene/material_lookup.hpp"
 #include "scene/obj_mesh.hpp"
+#include "scene/read_text.hpp"
 #include "scene/scene_error.hpp"
 #include "scene/vec_math.hpp"
 
@@ -36,25 +33,6 @@ using json::Node;
 constexpr double kParallelSine = 1e-9;
 
 bool parallel_or_zero(const dvec3& a, const dvec3& b) { return vkrt::parallel_or_zero(a, b, kParallelSine); }
-
-std::string read_text(const std::filesystem::path& file, const std::string& name) {
-    // C stdio rather than iostreams: it reliably leaves errno set, so the message
-    // can say why (no such file, permission denied, is a directory).
-    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "rb"), &std::fclose);
-    if (!f) {
-        throw SceneError(fmt::format("{}: cannot open scene file ({})", name,
-                                     std::generic_category().message(errno)));
-    }
-    std::string text;
-    char buffer[1 << 16];
-    std::size_t n = 0;
-    while ((n = std::fread(buffer, 1, sizeof buffer, f.get())) > 0) text.append(buffer, n);
-    if (std::ferror(f.get())) {
-        throw SceneError(fmt::format("{}: cannot open scene file (read failed: {})", name,
-                                     std::generic_category().message(errno)));
-    }
-    return text;
-}
 
 std::uint32_t whole32(const Node& n, std::uint64_t lo, std::uint64_t hi) {
     return static_cast<std::uint32_t>(n.whole(lo, hi));
@@ -284,7 +262,7 @@ void read_objects(const Node& n, const MaterialIndex& materials, Scene& scene) {
 
 Scene load_json_scene(const std::filesystem::path& file) {
     const std::string name = file.string();
-    const std::string text = read_text(file, name);
+    const std::string text = read_text(file, name, "scene");
     const json::Json doc = json::parse_document(name, text);
     const Node root(name, doc, "");
     if (!doc.is_object()) {

@@ -5,15 +5,12 @@
 
 #include <algorithm>
 #include <array>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <cstdlib>
 #include <initializer_list>
 #include <map>
-#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -27,6 +24,7 @@
 #include "scene/json_reader.hpp"  // the JSON loader's magnitude limit and spelling of values
 #include "scene/limits.hpp"
 #include "scene/polygon.hpp"
+#include "scene/read_text.hpp"
 #include "scene/scene_error.hpp"
 #include "scene/vec_math.hpp"
 
@@ -54,24 +52,6 @@ bool is_keyword(std::string_view word) {
 double spd_light_intensity(std::size_t lights) {
     const double n = static_cast<double>(lights);
     return std::sqrt(n) / (n * 2.0);
-}
-
-std::string read_text(const std::filesystem::path& file, const std::string& name) {
-    // C stdio rather than iostreams, as in the JSON loader: it reliably leaves errno
-    // set, so the message can say why (no such file, permission denied, ...).
-    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "rb"), &std::fclose);
-    if (!f) {
-        throw SceneError(fmt::format("{}: cannot open scene file ({})", name, std::generic_category().message(errno)));
-    }
-    std::string text;
-    char buffer[1 << 16];
-    std::size_t n = 0;
-    while ((n = std::fread(buffer, 1, sizeof buffer, f.get())) > 0) text.append(buffer, n);
-    if (std::ferror(f.get())) {
-        throw SceneError(fmt::format("{}: cannot open scene file (read failed: {})", name,
-                                     std::generic_category().message(errno)));
-    }
-    return text;
 }
 
 // A number as C's strtod reads it (which NFF readers have always used): a leading
@@ -529,7 +509,7 @@ private:
 
 Scene load_nff_scene(const std::filesystem::path& file) {
     const std::string name = file.string();
-    const std::string text = read_text(file, name);
+    const std::string text = read_text(file, name, "scene");
     return NffReader(name, text).read(file);
 }
 

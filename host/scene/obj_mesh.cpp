@@ -7,12 +7,9 @@
 #include "scene/obj_mesh.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
-#include <memory>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -22,6 +19,7 @@
 #include <fmt/format.h>
 #include <tiny_obj_loader.h>
 
+#include "scene/read_text.hpp"
 #include "scene/scene_error.hpp"
 #include "scene/vec_math.hpp"
 
@@ -29,24 +27,6 @@ namespace vkrt {
 namespace {
 
 using glm::dvec3;
-
-std::string read_text(const std::filesystem::path& file) {
-    // C stdio, as for scene files: errno says why a file cannot be opened.
-    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "rb"), &std::fclose);
-    if (!f) {
-        throw SceneError(fmt::format("{}: cannot open mesh file ({})", file.string(),
-                                     std::generic_category().message(errno)));
-    }
-    std::string text;
-    char buffer[1 << 16];
-    std::size_t n = 0;
-    while ((n = std::fread(buffer, 1, sizeof buffer, f.get())) > 0) text.append(buffer, n);
-    if (std::ferror(f.get())) {
-        throw SceneError(fmt::format("{}: cannot open mesh file (read failed: {})", file.string(),
-                                     std::generic_category().message(errno)));
-    }
-    return text;
-}
 
 // tinyobjloader keeps a face's vertex count in an unsigned char.
 constexpr std::size_t kMaxFaceVertices = 255;
@@ -166,7 +146,7 @@ std::string one_line(const std::string& message) {
 
 IndexedMesh load_obj(const std::filesystem::path& file) {
     const std::string name = file.string();
-    const std::string text = read_text(file);
+    const std::string text = read_text(file, name, "mesh");
     Scanned scanned = Scanner(name).scan(text);
 
     tinyobj::attrib_t attrib;
