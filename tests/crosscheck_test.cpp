@@ -41,14 +41,6 @@ TEST_P(CrossCheck, VulkanMatchesReference) {
     EXPECT_GT(sum / double(cpu.image.rgb.size()), 0.01);
 }
 
-std::string scene_name(const ::testing::TestParamInfo<std::filesystem::path>& info) {
-    std::string name = info.param.stem().string();
-    for (char& c : name) {
-        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-    }
-    return name;
-}
-
-INSTANTIATE_TEST_SUITE_P(Scenes, CrossCheck, ::testing::ValuesIn(vkrt::test::repo_scenes()), scene_name);
+INSTANTIATE_TEST_SUITE_P(Scenes, CrossCheck, ::testing::ValuesIn(vkrt::test::repo_scenes()), test::scene_test_name);
 
 }  // namespace

@@ -26,11 +26,8 @@
 
 namespace {
 
+using namespace vkrt;
 namespace fs = std::filesystem;
-namespace test = vkrt::test;
-using vkrt::dvec3;
-using vkrt::Scene;
-using vkrt::SceneError;
 
 void expect_vec(const dvec3& actual, const dvec3& expected) {
     EXPECT_DOUBLE_EQ(actual.x, expected.x);

@@ -23,12 +23,8 @@
 
 namespace {
 
+using namespace vkrt;
 namespace fs = std::filesystem;
-namespace test = vkrt::test;
-using vkrt::dvec3;
-using vkrt::Scene;
-using vkrt::SceneError;
-using vkrt::Triangle;
 
 void expect_vec(const dvec3& actual, const dvec3& expected, double tolerance = 0.0) {
     if (tolerance == 0.0) {
@@ -96,11 +92,7 @@ protected:
             vkrt::load_json_scene(file);
         } catch (const SceneError& e) {
             const std::string message = e.what();
-            EXPECT_EQ(message.rfind(file.string() + ": objects[0]", 0), 0u) << message;
-            for (std::string_view piece : pieces) {
-                EXPECT_NE(message.find(piece), std::string::npos) << "missing '" << piece << "' in: " << message;
-            }
-            EXPECT_EQ(message.find('\n'), std::string::npos) << "not one line: " << message;
+            test::expect_error_message(message, file.string() + ": objects[0]", pieces);
             return message;
         }
         ADD_FAILURE() << "no SceneError for:\n" << obj << "\nwith fields: " << fields;

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
@@ -33,6 +34,23 @@ std::vector<std::filesystem::path> repo_scenes() {
     }
     std::sort(scenes.begin(), scenes.end());
     return scenes;
+}
+
+std::string scene_test_name(const ::testing::TestParamInfo<std::filesystem::path>& info) {
+    std::string name = info.param.stem().string();
+    for (char& c : name) {
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    }
+    return name;
+}
+
+void expect_error_message(const std::string& message, const std::string& prefix,
+                          std::initializer_list<std::string_view> pieces) {
+    EXPECT_EQ(message.rfind(prefix, 0), 0u) << message;
+    for (std::string_view piece : pieces) {
+        EXPECT_NE(message.find(piece), std::string::npos) << "missing '" << piece << "' in: " << message;
+    }
+    EXPECT_EQ(message.find('\n'), std::string::npos) << "not one line: " << message;
 }
 
 std::string shell_quote(const std::string& s) {

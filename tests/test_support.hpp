@@ -1,8 +1,14 @@
 #pragma once
-// Helpers shared by the tests that render whole scenes on both backends.
+// Helpers shared by the tests: temporary files, the shipped scenes, the program,
+// refusal messages, and renders on both backends.
+#include <cstdint>
 #include <filesystem>
+#include <initializer_list>
 #include <string>
+#include <string_view>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "render/render.hpp"
 #include "scene/scene.hpp"
@@ -17,6 +23,15 @@ std::filesystem::path temp_dir(const std::string& name);
 
 // Every scene shipped under scenes/ (recursively), sorted.
 std::vector<std::filesystem::path> repo_scenes();
+
+// A test name for a scene parameter (one of repo_scenes()): its stem, with every
+// character gtest does not allow in a name replaced by '_'.
+std::string scene_test_name(const ::testing::TestParamInfo<std::filesystem::path>& info);
+
+// Checks a refusal's message as the loaders promise it: it starts with `prefix`,
+// holds every piece, and is one line.
+void expect_error_message(const std::string& message, const std::string& prefix,
+                          std::initializer_list<std::string_view> pieces);
 
 // A scene file with its image size replaced, for fast renders.
 Scene load_at_size(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height);
