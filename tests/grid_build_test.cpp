@@ -5,8 +5,12 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
+#include <stdexcept>
 #include <random>
 #include <vector>
+
+#include <glm/vector_relational.hpp>
 
 #include "accel/grid.hpp"
 
@@ -198,6 +202,120 @@ TEST(GridBuild, FlatSceneAndSinglePrimitive) {
     const Grid single = build_grid(one.spheres, one.triangles, GridRequest{}, note);
     EXPECT_GE(single.cell_count(), 1u);
     expect_exact_binning(single, one);
+}
+
+TEST(GridBuild, CellsListedAreThoseTheBoxTouchesByGeometry) {
+    // Independent of cells_overlapping: a cell must hold a primitive when the cell's
+    // slab intersects the primitive's box on every axis, and may hold it only when it
+    // intersects the box grown by twice the padding.
+    const RandomScene s = random_scene(13, 120, 80);
+    std::string note;
+    const Grid g = build_grid(s.spheres, s.triangles, GridRequest{}, note);
+    std::vector<Aabb> boxes;
+    for (const auto& sp : s.spheres) boxes.push_back(bounds(sp));
+    for (const auto& t : s.triangles) boxes.push_back(bounds(t));
+    auto listed = [&](std::uint64_t cell, std::uint32_t i) {
+        const std::uint32_t ref = i < s.spheres.size()
+                                      ? (kernel::REF_SPHERE << kernel::REF_KIND_SHIFT) | i
+                                      : (kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | std::uint32_t(i - s.spheres.size());
+        return std::find(g.refs.begin() + g.cell_starts[cell], g.refs.begin() + g.cell_starts[cell + 1], ref) !=
+               g.refs.begin() + g.cell_starts[cell + 1];
+    };
+    for (std::uint32_t z = 0; z < g.resolution[2]; ++z) {
+        for (std::uint32_t y = 0; y < g.resolution[1]; ++y) {
+            for (std::uint32_t x = 0; x < g.resolution[0]; ++x) {
+                const dvec3 lo = g.lo + g.cell * dvec3(x, y, z);
+                const dvec3 hi = lo + g.cell;
+                const std::uint64_t cell = (std::uint64_t(z) * g.resolution[1] + y) * g.resolution[0] + x;
+                for (std::uint32_t i = 0; i < boxes.size(); ++i) {
+                    const Aabb& b = boxes[i];
+                    const bool touches = glm::all(glm::lessThanEqual(b.lo, hi)) && glm::all(glm::lessThanEqual(lo, b.hi));
+                    const bool near = glm::all(glm::lessThanEqual(b.lo - 2.0 * g.pad, hi)) &&
+                                      glm::all(glm::lessThanEqual(lo, b.hi + 2.0 * g.pad));
+                    if (touches) {
+                        ASSERT_TRUE(listed(cell, i)) << "primitive " << i << " missing from cell " << cell;
+                    }
+                    if (!near) {
+                        ASSERT_FALSE(listed(cell, i)) << "primitive " << i << " listed in far cell " << cell;
+                    }
+                }
+            }
+        }
+    }
+}
+
+TEST(GridBuild, TheGridBoxContainsEveryBoxWithItsPadding) {
+    // A ray grazing a primitive on the boundary must still clip to a non-empty
+    // interval, so the box leaves at least the padding around every primitive.
+    const RandomScene s = random_scene(19, 200, 200);
+    std::string note;
+    const Grid g = build_grid(s.spheres, s.triangles, GridRequest{}, note);
+    for (const auto& sp : s.spheres) {
+        const Aabb b = bounds(sp);
+        EXPECT_TRUE(glm::all(glm::lessThanEqual(g.lo, b.lo - 0.99 * g.pad)));
+        EXPECT_TRUE(glm::all(glm::greaterThanEqual(g.hi, b.hi + 0.99 * g.pad)));
+    }
+}
+
+TEST(GridBuild, RepeatedCoarseningKeepsEveryNoteAndNamesTheLimit) {
+    RandomScene s;
+    for (int i = 0; i < 30; ++i) {
+        const float x = float(i) * 0.01f;
+        s.triangles.push_back(triangle({x, 0, 0}, {10, x, 10}, {0, 10, 10 - x}));
+    }
+    std::string note;
+    GridRequest request;
+    request.resolution = {64, 64, 64};  // 262,144 cells: over the limit, and far too many copies
+    request.max_entries = 10000;
+    const Grid g = build_grid(s.spheres, s.triangles, request, note);
+    EXPECT_LE(g.refs.size(), 10000u);
+    EXPECT_NE(note.find("exceeds this device's buffer limit of 10000 entries"), std::string::npos) << note;
+    // More than one halving, each reported.
+    std::size_t halvings = 0;
+    for (std::size_t at = note.find("references, over this device's buffer limit of 10000"); at != std::string::npos;
+         at = note.find("references, over", at + 1)) {
+        ++halvings;
+    }
+    EXPECT_GE(halvings, 2u) << note;
+    expect_exact_binning(g, s);
+}
+
+TEST(GridBuild, ReferencesThatCannotFitAreAnErrorNotAHang) {
+    RandomScene s = random_scene(5, 40, 0);
+    std::string note;
+    GridRequest request;
+    request.max_entries = 10;  // 40 primitives need 40 references even in one cell
+    try {
+        build_grid(s.spheres, s.triangles, request, note);
+        FAIL() << "expected an error";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("40 primitives do not fit one grid: 40 references, over this device's "
+                                             "buffer limit of 10 entries"),
+                  std::string::npos)
+            << e.what();
+    }
+    request.max_entries = 1;  // not even one cell start beyond the first: still ends
+    EXPECT_THROW(build_grid(s.spheres, s.triangles, request, note), std::runtime_error);
+}
+
+TEST(GridBuild, TheHostLimitsCellsWhateverTheDeviceAllows) {
+    RandomScene s = random_scene(6, 10, 0);
+    std::string note;
+    GridRequest request;
+    request.resolution = {1024, 1024, 64};  // 2^26 cells
+    const Grid g = build_grid(s.spheres, s.triangles, request, note);
+    EXPECT_LE(g.cell_count(), std::uint64_t(1) << 25);
+    EXPECT_NE(note.find("exceeds vkrt's limit of 33554432 cells"), std::string::npos) << note;
+}
+
+TEST(GridBuild, NonFinitePrimitivesAreRejected) {
+    RandomScene s = random_scene(8, 3, 0);
+    s.spheres[1].center_radius.y = std::numeric_limits<float>::quiet_NaN();
+    std::string note;
+    EXPECT_THROW(build_grid(s.spheres, s.triangles, GridRequest{}, note), std::invalid_argument);
+    s = random_scene(8, 0, 3);
+    s.triangles[2].p2.z = std::numeric_limits<float>::infinity();
+    EXPECT_THROW(build_grid(s.spheres, s.triangles, GridRequest{}, note), std::invalid_argument);
 }
 
 TEST(GridBuild, NoPrimitivesGivesAnEmptyGrid) {

@@ -22,6 +22,10 @@ constexpr double kMaxAxisCells = 1 << 20;
 // heuristic never asks for more below 4 million primitives.
 constexpr std::uint64_t kMaxGridCells = std::uint64_t(1) << 25;
 
+// At most 2^28 references (1 GiB) whatever the device allows: the host holds the
+// array in memory, and the reference backend reads it from there.
+constexpr std::uint64_t kMaxGridRefs = std::uint64_t(1) << 28;
+
 // Relative padding of each primitive box: a thousandth of a cell, plus the float
 // rounding of positions at the scene's magnitude and the rays' reach (2^-20 is
 // eight float ULPs). Over-inclusion costs a test; under-inclusion loses a hit.
@@ -66,8 +70,9 @@ Aabb grid_box(const std::vector<Aabb>& boxes) {
     return box;
 }
 
-// Fits a resolution under the device's limit on the cell-starts array.
+// Fits a resolution under a limit on its cell count.
 GridResolution fit(GridResolution r, std::uint64_t max_cells) {
+    max_cells = std::max<std::uint64_t>(max_cells, 1);
     while (product(r) > max_cells) {
         const int a = int(std::max_element(r.begin(), r.end()) - r.begin());
         r[a] = std::max(1u, static_cast<std::uint32_t>(r[a] * 0.9));
@@ -77,15 +82,26 @@ GridResolution fit(GridResolution r, std::uint64_t max_cells) {
 
 }  // namespace
 
+// The loaders reject non-finite input; this guards the casts to cell indices, which
+// are undefined for NaN and infinity, against any other caller.
+Aabb finite_or_throw(const Aabb& box, const char* kind) {
+    for (int a = 0; a < 3; ++a) {
+        if (!std::isfinite(box.lo[a]) || !std::isfinite(box.hi[a])) {
+            throw std::invalid_argument(fmt::format("grid: a {} has a non-finite coordinate", kind));
+        }
+    }
+    return box;
+}
+
 Aabb bounds(const kernel::Sphere& s) {
     const dvec3 c = to_dvec3(s.center_radius);
     const double r = s.center_radius.w;
-    return {c - r, c + r};
+    return finite_or_throw({c - r, c + r}, "sphere");
 }
 
 Aabb bounds(const kernel::Triangle& t) {
     const dvec3 a = to_dvec3(t.p0), b = to_dvec3(t.p1), c = to_dvec3(t.p2);
-    return {glm::min(a, glm::min(b, c)), glm::max(a, glm::max(b, c))};
+    return finite_or_throw({glm::min(a, glm::min(b, c)), glm::max(a, glm::max(b, c))}, "triangle");
 }
 
 GridResolution grid_resolution(const Aabb& box, std::size_t primitives, double density, std::uint64_t max_cells) {
@@ -158,15 +174,24 @@ Grid build_grid(std::span<const kernel::Sphere> spheres, std::span<const kernel:
         return g;
     }
     const Aabb box = grid_box(boxes);
-    const std::uint64_t max_cells = std::min(request.max_entries - 1, kMaxGridCells);
+    const std::uint64_t max_refs = std::min(request.max_entries, kMaxGridRefs);
+    // The cell starts hold one entry more than there are cells.
+    const std::uint64_t max_cells = std::min(std::max<std::uint64_t>(request.max_entries, 2) - 1, kMaxGridCells);
+    const std::string cell_limit = max_cells == kMaxGridCells
+                                       ? fmt::format("vkrt's limit of {} cells", kMaxGridCells)
+                                       : fmt::format("this device's buffer limit of {} entries", request.max_entries);
+    const std::string ref_limit = max_refs == kMaxGridRefs
+                                      ? fmt::format("vkrt's limit of {} references", kMaxGridRefs)
+                                      : fmt::format("this device's buffer limit of {} entries", request.max_entries);
+    auto add_note = [&](const std::string& text) { note += (note.empty() ? "" : "; ") + text; };
     GridResolution res = request.resolution;
     if (product(res) == 0) {
         res = grid_resolution(box, boxes.size(), kGridDensity, max_cells);
     } else if (product(res) > max_cells) {
         const GridResolution asked = res;
         res = fit(res, max_cells);
-        note = fmt::format("grid resolution {}x{}x{} exceeds this device's buffer limit of {} entries; using {}x{}x{}",
-                           asked[0], asked[1], asked[2], request.max_entries, res[0], res[1], res[2]);
+        add_note(fmt::format("grid resolution {}x{}x{} exceeds {}; using {}x{}x{}", asked[0], asked[1], asked[2],
+                             cell_limit, res[0], res[1], res[2]));
     }
 
     const double magnitude = std::max({std::abs(box.lo.x), std::abs(box.lo.y), std::abs(box.lo.z),
@@ -176,15 +201,39 @@ Grid build_grid(std::span<const kernel::Sphere> spheres, std::span<const kernel:
     if (request.eye) reach += glm::length(*request.eye - glm::clamp(*request.eye, box.lo, box.hi));
     for (;;) {
         g.resolution = res;
+        // The grid box is the primitives' box grown by the padding, so that a ray
+        // grazing a primitive on the boundary still clips to a non-empty interval
+        // despite rounding in the slab test.
         for (int a = 0; a < 3; ++a) {
-            g.lo[a] = float_down(box.lo[a]);
-            g.cell[a] = float_up((box.hi[a] - g.lo[a]) / res[a]);
+            const double margin =
+                kCellPad * (box.hi[a] - box.lo[a]) / res[a] + (magnitude + reach) * kMagnitudePad;
+            g.lo[a] = float_down(box.lo[a] - margin);
+            g.cell[a] = float_up((box.hi[a] + margin - g.lo[a]) / res[a]);
             g.hi[a] = float_up(g.lo[a] + g.cell[a] * res[a]);
             g.pad[a] = kCellPad * g.cell[a] + (magnitude + reach) * kMagnitudePad;
         }
+        // The references each box adds, counted before anything is allocated: a
+        // resolution too fine for the limit is coarsened without building it.
+        std::uint64_t total = 0;
+        for (const Aabb& b : boxes) {
+            const auto [first, last] = g.cells_overlapping(b);
+            total += std::uint64_t(last[0] - first[0] + 1) * (last[1] - first[1] + 1) * (last[2] - first[2] + 1);
+        }
+        if (total > max_refs && product(res) > 1) {
+            // Coarser cells hold fewer copies of the large primitives.
+            const GridResolution before = res;
+            res = fit(res, product(res) / 2);
+            add_note(fmt::format("grid {}x{}x{} needs {} references, over {}; using {}x{}x{}", before[0], before[1],
+                                 before[2], total, ref_limit, res[0], res[1], res[2]));
+            continue;
+        }
+        if (total > max_refs) {
+            throw std::runtime_error(fmt::format("the scene's {} primitives do not fit one grid: {} references, over {}",
+                                                 boxes.size(), total, ref_limit));
+        }
         // Two passes: count each cell's references, then place them after the prefix sum.
         const std::uint64_t cells = g.cell_count();
-        std::vector<std::uint64_t> counts(cells + 1, 0);
+        std::vector<std::uint32_t> counts(cells + 1, 0);
         for (const Aabb& b : boxes) {
             const auto [first, last] = g.cells_overlapping(b);
             for (std::uint32_t z = first[2]; z <= last[2]; ++z) {
@@ -194,29 +243,15 @@ Grid build_grid(std::span<const kernel::Sphere> spheres, std::span<const kernel:
                 }
             }
         }
-        std::uint64_t total = 0;
+        std::uint32_t sum = 0;
         for (std::uint64_t c = 0; c <= cells; ++c) {
-            const std::uint64_t n = counts[c];
-            counts[c] = total;
-            total += n;
+            const std::uint32_t n = counts[c];
+            counts[c] = sum;
+            sum += n;
         }
-        if (total > request.max_entries && product(res) > 1) {
-            // Too many references for one buffer: coarser cells hold fewer copies of
-            // the large primitives.
-            const GridResolution before = res;
-            res = fit(res, std::max<std::uint64_t>(1, product(res) / 2));
-            note = fmt::format("grid {}x{}x{} needs {} references, over this device's buffer limit of {}; "
-                               "trying {}x{}x{}", before[0], before[1], before[2], total, request.max_entries,
-                               res[0], res[1], res[2]);
-            continue;
-        }
-        if (total > request.max_entries) {
-            throw std::runtime_error(fmt::format("the scene's {} primitives do not fit one grid buffer of {} entries",
-                                                 boxes.size(), request.max_entries));
-        }
-        g.cell_starts.assign(counts.begin(), counts.end());
+        std::vector<std::uint32_t> cursor(counts.begin(), counts.end() - 1);
+        g.cell_starts = std::move(counts);
         g.refs.assign(total, 0);
-        std::vector<std::uint64_t> cursor(counts.begin(), counts.end() - 1);
         for (std::size_t i = 0; i < boxes.size(); ++i) {
             const auto [first, last] = g.cells_overlapping(boxes[i]);
             for (std::uint32_t z = first[2]; z <= last[2]; ++z) {

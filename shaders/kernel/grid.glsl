@@ -70,7 +70,8 @@ GridWalk grid_walk_start(Ray ray, float t_max) {
     // The clamp absorbs rounding: p may land a hair outside the box or the cell. A
     // cell entered too early costs a few tests; one entered too late is covered by
     // the padding of the boxes the host binned.
-    w.cell = clamp(ivec3(floor((p - lo) * vec3(params.grid_inv_cell))), ivec3(0), res - 1);
+    // Clamped while still float: converting a float beyond int's range is undefined.
+    w.cell = ivec3(clamp(floor((p - lo) * vec3(params.grid_inv_cell)), vec3(0.0f), vec3(res - 1)));
     w.t_next = grid_t_next(ray, w);
     w.t_end = t_end;
     w.inside = true;
