@@ -19,11 +19,15 @@ static_assert(sizeof(Sphere) == 32);
 static_assert(sizeof(Triangle) == 112);
 static_assert(sizeof(Material) == 80);
 static_assert(sizeof(PointLight) == 32);
-static_assert(sizeof(Params) == 224);
+static_assert(sizeof(Params) == 240);
 static_assert(offsetof(Params, image) == 96 && offsetof(Params, limits) == 128);
 static_assert(offsetof(Params, grid_res) == 208);
-static_assert(sizeof(Counters) == 32);
+static_assert(sizeof(Counters) == 48);
 
-inline bool operator==(const Counters& a, const Counters& b) { return a.rays == b.rays && a.work == b.work; }
-inline Counters operator+(const Counters& a, const Counters& b) { return {a.rays + b.rays, a.work + b.work}; }
+inline bool operator==(const Counters& a, const Counters& b) {
+    return a.rays == b.rays && a.work == b.work && a.tree == b.tree;
+}
+inline Counters operator+(const Counters& a, const Counters& b) {
+    return {a.rays + b.rays, a.work + b.work, a.tree + b.tree};
+}
 }  // namespace vkrt::kernel

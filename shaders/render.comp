@@ -24,7 +24,7 @@ layout(binding = 2) uniform usamplerBuffer sphere_texels;      // 2 texels per S
 layout(binding = 3) uniform usamplerBuffer triangle_texels;    // 7 texels per Triangle
 layout(binding = 4) uniform usamplerBuffer light_texels;       // 2 texels per PointLight
 layout(binding = 5, rgba32f) uniform imageBuffer accum;        // 1 texel per pixel
-layout(binding = 6, rgba32ui) uniform uimageBuffer counters;   // 2 texels per pixel (Counters)
+layout(binding = 6, rgba32ui) uniform uimageBuffer counters;   // 3 texels per pixel (Counters)
 layout(binding = 7) uniform usamplerBuffer grid_cell_starts;    // r32ui, cells + 1 entries
 layout(binding = 8) uniform usamplerBuffer grid_refs;           // r32ui, one per reference
 layout(push_constant) uniform PassBlock { uvec4 pass; };   // x = sample index
@@ -64,9 +64,11 @@ void main() {
     }
     uint index = py * params.image.x + px;
     vec4 sums = imageLoad(accum, int(index));
-    Counters counts = Counters(imageLoad(counters, int(2u * index)), imageLoad(counters, int(2u * index + 1u)));
+    Counters counts = Counters(imageLoad(counters, int(3u * index)), imageLoad(counters, int(3u * index + 1u)),
+                               imageLoad(counters, int(3u * index + 2u)));
     accumulate_sample(render_sample(px, py, pass.x), sums, counts);
     imageStore(accum, int(index), sums);
-    imageStore(counters, int(2u * index), counts.rays);
-    imageStore(counters, int(2u * index + 1u), counts.work);
+    imageStore(counters, int(3u * index), counts.rays);
+    imageStore(counters, int(3u * index + 1u), counts.work);
+    imageStore(counters, int(3u * index + 2u), counts.tree);
 }

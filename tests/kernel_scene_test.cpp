@@ -428,7 +428,7 @@ TEST(ShadeLocal, SpecularAndDiffuseAreSeparateFeatures) {
 
 TEST(ShadeLocal, AmbientAndEmissionAddToTheLight) {
     ShadeSetup s;
-    s.scene.materials[0].emission = vec4(0.5f, 0.25f, 0.125f, 0.0f);
+    s.scene.materials[0].emission_fresnel = vec4(0.5f, 0.25f, 0.125f, 0.0f);
     Kernel k = s.scene.kernel();  // ambient and emission on
     k.params.ambient = vec4(0.5f, 1.0f, 2.0f, 0.0f);
     const Kernel::Hit hit = k.closest_hit(s.eye_ray, INFINITY_T);
@@ -443,7 +443,7 @@ TEST(ShadeLocal, AmbientAndEmissionAddToTheLight) {
 TEST(ShadeLocal, EmissionIsSeenFromTheFrontFaceOnly) {
     TestScene scene;
     Material m{};
-    m.emission = vec4(1.0f, 2.0f, 3.0f, 0.0f);
+    m.emission_fresnel = vec4(1.0f, 2.0f, 3.0f, 0.0f);
     scene.materials = {m};
     scene.spheres = {sphere(vec3(0, 0, 0), 2.0f, 0)};
     Kernel k = scene.kernel();
@@ -642,19 +642,30 @@ TEST(AccumulateSample, TruncatedSampleAddsNoRadianceAndNoSampleCount) {
     EXPECT_EQ(counters.work[kernel::WORK_TRUNCATED], 2u);
 }
 
+Kernel::SampleResult sample_result(vec3 radiance, std::uint32_t shadow_rays, std::uint32_t cells, std::uint32_t tests,
+                                   bool truncated) {
+    Kernel::SampleResult r{};
+    r.radiance = radiance;
+    r.shadow_rays = shadow_rays;
+    r.cells_visited = cells;
+    r.intersection_tests = tests;
+    r.truncated = truncated;
+    return r;
+}
+
 TEST(AccumulateSample, NonFiniteSampleIsCountedNotSummed) {
     Kernel k;
     vec4 accum(1.0f, 2.0f, 3.0f, 1.0f);
-    kernel::Counters counters{uvec4(1u, 0u, 0u, 0u), uvec4(0u)};
+    kernel::Counters counters{uvec4(1u, 0u, 0u, 0u), uvec4(0u), uvec4(0u)};
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float inf = std::numeric_limits<float>::infinity();
-    k.accumulate_sample(Kernel::SampleResult(vec3(0.0f, nan, 0.0f), 2u, 3u, 5u, false), accum, counters);
-    k.accumulate_sample(Kernel::SampleResult(vec3(inf, 0.0f, 0.0f), 0u, 0u, 1u, false), accum, counters);
+    k.accumulate_sample(sample_result(vec3(0.0f, nan, 0.0f), 2u, 3u, 5u, false), accum, counters);
+    k.accumulate_sample(sample_result(vec3(inf, 0.0f, 0.0f), 0u, 0u, 1u, false), accum, counters);
     EXPECT_EQ(accum, vec4(1.0f, 2.0f, 3.0f, 1.0f));
     EXPECT_EQ(counters.rays, uvec4(3u, 2u, 0u, 0u));
     EXPECT_EQ(counters.work, uvec4(3u, 6u, 0u, 2u));
     // Truncation takes precedence: a cut sample is reported as cut, whatever its value.
-    k.accumulate_sample(Kernel::SampleResult(vec3(nan), 0u, 0u, 0u, true), accum, counters);
+    k.accumulate_sample(sample_result(vec3(nan), 0u, 0u, 0u, true), accum, counters);
     EXPECT_EQ(counters.rays, uvec4(4u, 2u, 0u, 0u));
     EXPECT_EQ(counters.work, uvec4(3u, 6u, 1u, 2u));
     EXPECT_EQ(accum, vec4(1.0f, 2.0f, 3.0f, 1.0f));

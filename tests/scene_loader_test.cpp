@@ -107,13 +107,13 @@ TEST_F(SceneLoaderTest, ReadsEveryFieldOfAFullScene) {
       "camera": { "eye": [1, 2, 3], "look_at": [0, 1, 0], "up": [0, 0, 2], "fov": 55.5,
                   "width": 640, "height": 480 },
       "render": { "mode": "local", "aa": 3, "jitter": true, "shadows": false, "max_depth": 7,
-                  "ambient": [0.1, 0.2, 0.3], "background": [0.4, 0.5, 0.6], "seed": 4294967295,
+                  "min_weight": 0.25, "corners": true, "ambient": [0.1, 0.2, 0.3], "background": [0.4, 0.5, 0.6], "seed": 4294967295,
                   "spp": 16, "loop_budget": 1000 },
       /* zeta comes first in the file, so it is material 0 whatever the alphabet says */
       "materials": {
         "zeta": { "diffuse": [0.8, 0.7, 0.6], "kd": 0.9, "specular": [1, 1, 0.5], "ks": 0.25,
-                  "shininess": 50, "reflect": [0, 0, 0], "transmit": [0, 0, 0], "ior": 1.33,
-                  "emission": [2, 3, 4] },
+                  "shininess": 50, "reflect": [0.5, 0.25, 0], "transmit": [0, 0.75, 1], "ior": 1.33,
+                  "fresnel": false, "emission": [2, 3, 4] },
         "alpha": {}
       },
       "lights": [ { "type": "point", "position": [0, 1.9, 0], "color": [1, 0.5, 0.25], "intensity": 2.5 } ],
@@ -137,6 +137,8 @@ TEST_F(SceneLoaderTest, ReadsEveryFieldOfAFullScene) {
     EXPECT_TRUE(s.render.jitter);
     EXPECT_FALSE(s.render.shadows);
     EXPECT_EQ(s.render.max_depth, 7u);
+    EXPECT_DOUBLE_EQ(s.render.min_weight, 0.25);
+    EXPECT_TRUE(s.render.corners);
     expect_vec(s.render.ambient, {0.1, 0.2, 0.3});
     expect_vec(s.render.background, {0.4, 0.5, 0.6});
     EXPECT_EQ(s.render.seed, 4294967295u);
@@ -152,9 +154,11 @@ TEST_F(SceneLoaderTest, ReadsEveryFieldOfAFullScene) {
     expect_vec(zeta.specular, {1, 1, 0.5});
     EXPECT_DOUBLE_EQ(zeta.ks, 0.25);
     EXPECT_DOUBLE_EQ(zeta.shininess, 50);
-    expect_vec(zeta.reflect, {0, 0, 0});
-    expect_vec(zeta.transmit, {0, 0, 0});
+    expect_vec(zeta.reflect, {0.5, 0.25, 0});
+    expect_vec(zeta.transmit, {0, 0.75, 1});
     EXPECT_DOUBLE_EQ(zeta.ior, 1.33);
+    EXPECT_FALSE(zeta.fresnel);
+    EXPECT_TRUE(s.materials[1].fresnel);
     expect_vec(zeta.emission, {2, 3, 4});
     EXPECT_EQ(s.materials[1].name, "alpha");
 
@@ -193,6 +197,8 @@ TEST_F(SceneLoaderTest, FillsDefaults) {
     EXPECT_FALSE(s.render.jitter);
     EXPECT_TRUE(s.render.shadows);
     EXPECT_EQ(s.render.max_depth, 5u);
+    EXPECT_DOUBLE_EQ(s.render.min_weight, 1e-3);
+    EXPECT_FALSE(s.render.corners);
     expect_vec(s.render.ambient, {0, 0, 0});
     expect_vec(s.render.background, {0, 0, 0});
     EXPECT_EQ(s.render.seed, 0u);
@@ -483,6 +489,9 @@ TEST_F(SceneLoaderTest, RenderRanges) {
     expect_error(Parts{.render = R"({"aa": 0})"}, {": render.aa: expected a whole number in [1, 64], got 0"});
     expect_error(Parts{.render = R"({"aa": 65})"}, {": render.aa: expected a whole number in [1, 64], got 65"});
     expect_error(Parts{.render = R"({"max_depth": 65})"}, {": render.max_depth: expected a whole number in [0, 64]"});
+    expect_error(Parts{.render = R"({"min_weight": -0.1})"}, {": render.min_weight: expected a number >= 0, got -0.1"});
+    expect_error(Parts{.render = R"({"min_weight": 2})"}, {": render.min_weight: expected a number from 0 to 1, got 2"});
+    expect_error(Parts{.render = R"({"corners": 1})"}, {": render.corners: expected true or false"});
     expect_error(Parts{.render = R"({"spp": 0})"}, {": render.spp: expected a whole number in [1, "});
     expect_error(Parts{.render = R"({"loop_budget": 65001})"},
                  {": render.loop_budget: expected a whole number in [1, 65000], got 65001"});
@@ -557,10 +566,6 @@ TEST_F(SceneLoaderTest, DegenerateGeometry) {
 // ---- not supported yet ------------------------------------------------------------
 
 TEST_F(SceneLoaderTest, LaterFeaturesAreRefusedClearly) {
-    expect_error(Parts{.materials = R"({"glass": {"reflect": [0.5, 0.5, 0.5]}})"},
-                 {": materials.glass.reflect: mirror reflection is not supported yet"});
-    expect_error(Parts{.materials = R"({"glass": {"transmit": [0, 0, 1]}})"},
-                 {": materials.glass.transmit: refraction is not supported yet"});
     expect_error(Parts{.render = R"({"mode": "global"})"}, {": render.mode: ", "not supported yet"});
     expect_error(Parts{.render = R"({"mode": "fast"})"}, {": render.mode: unknown mode 'fast'"});
     expect_error(Parts{.lights = R"([{"type": "area", "position": [0, 0, 0]}])"},

@@ -165,7 +165,7 @@ SceneGpu glowing_triangle_scene(bool has_triangles) {
     scene.features.set(Feature::HAS_TRIANGLES, has_triangles);
     scene.features.set(Feature::HAS_EMISSION, true);
     scene.params.counts = glm::uvec4(0, 1, 0, 1);
-    scene.materials[0].emission = glm::vec4(1.0f, 0.5f, 0.125f, 0.0f);
+    scene.materials[0].emission_fresnel = glm::vec4(1.0f, 0.5f, 0.125f, 0.0f);
     // At z = -2 the view spans [-2, 2] in x and y; the front face, cross(p1 - p0,
     // p2 - p0) = +z, looks at the camera.
     kernel::Triangle tri{};

@@ -87,8 +87,13 @@ void print_summary(const RenderStats& s, const std::string& output) {
         return names.empty() ? std::string("(none)") : fmt::format("{}", fmt::join(names, ", "));
     };
     fmt::print("features  kept: {}; left out: {}\n", list(s.features.kept()), list(s.features.left_out()));
-    fmt::print("rays      {} ({} eye, {} shadow), {:.2f} Mrays/s\n", s.rays(), s.eye_rays, s.shadow_rays,
+    fmt::print("rays      {} ({} eye of which {} hit, {} shadow, {} reflection, {} refraction), {:.2f} Mrays/s\n",
+               s.rays(), s.eye_rays, s.eye_hits, s.shadow_rays, s.reflection_rays, s.refraction_rays,
                s.render_seconds > 0.0 ? double(s.rays()) / s.render_seconds * 1e-6 : 0.0);
+    if (s.dropped_low_weight + s.dropped_stack_full > 0) {
+        fmt::print("ray tree  {} secondary rays left out for weighing under render.min_weight, {} for a full stack\n",
+                   s.dropped_low_weight, s.dropped_stack_full);
+    }
     if (s.grid.used) {
         fmt::print("grid      {}x{}x{} cells, {} references, {:.1f} MiB, built in {:.3f} s ({})\n",
                    s.grid.resolution[0], s.grid.resolution[1], s.grid.resolution[2], s.grid.references,

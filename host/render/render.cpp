@@ -4,7 +4,31 @@
 
 namespace vkrt {
 
-Image resolve_image(const RenderResult& result) {
+namespace {
+
+Image average_corners(const RenderResult& result) {
+    const std::uint32_t w = result.width - 1, h = result.height - 1;
+    Image image(w, h);
+    auto radiance = [&](std::uint32_t x, std::uint32_t y) {
+        const glm::vec4& sum = result.accum[std::size_t(y) * result.width + x];
+        return sum.a > 0.0f ? glm::vec3(sum) / sum.a : glm::vec3(0.0f);
+    };
+    for (std::uint32_t y = 0; y < h; ++y) {
+        for (std::uint32_t x = 0; x < w; ++x) {
+            const glm::vec3 c = 0.25f * (radiance(x, y) + radiance(x + 1, y) + radiance(x, y + 1) + radiance(x + 1, y + 1));
+            const std::size_t p = std::size_t(y) * w + x;
+            image.rgb[p * 3 + 0] = c.r;
+            image.rgb[p * 3 + 1] = c.g;
+            image.rgb[p * 3 + 2] = c.b;
+        }
+    }
+    return image;
+}
+
+}  // namespace
+
+Image resolve_image(const RenderResult& result, bool corners) {
+    if (corners) return average_corners(result);
     Image image(result.width, result.height);
     for (std::size_t p = 0; p < result.accum.size(); ++p) {
         const glm::vec4& sum = result.accum[p];
@@ -28,6 +52,9 @@ RenderStats collect_stats(const SceneGpu& scene, const Backend& backend, const R
         s.shadow_rays += c.rays[kernel::RAYS_SHADOW];
         s.reflection_rays += c.rays[kernel::RAYS_REFLECTION];
         s.refraction_rays += c.rays[kernel::RAYS_REFRACTION];
+        s.eye_hits += c.tree[kernel::TREE_EYE_HITS];
+        s.dropped_low_weight += c.tree[kernel::TREE_DROPPED_WEIGHT];
+        s.dropped_stack_full += c.tree[kernel::TREE_DROPPED_STACK];
         s.cells_visited += c.work[kernel::WORK_CELLS];
         s.intersection_tests += c.work[kernel::WORK_TESTS];
         s.truncated_samples += c.work[kernel::WORK_TRUNCATED];
@@ -49,7 +76,9 @@ RenderOutcome render_scene(const Scene& scene, Backend& backend, const ProgressC
     const SceneGpu gpu = build_scene_gpu(scene, backend.accel_policy());
     const auto flattened = clock::now();
     const RenderResult result = backend.render(gpu, SampleRange{0, gpu.samples_per_pixel}, progress);
-    RenderOutcome out{resolve_image(result), collect_stats(gpu, backend, result)};
+    RenderOutcome out{resolve_image(result, gpu.corners), collect_stats(gpu, backend, result)};
+    out.stats.width = out.image.width;
+    out.stats.height = out.image.height;
     out.stats.flatten_seconds = std::chrono::duration<double>(flattened - start).count();
     out.stats.total_seconds = std::chrono::duration<double>(clock::now() - start).count();
     return out;

@@ -25,6 +25,9 @@ struct RenderStats {
     std::uint64_t shadow_rays = 0;
     std::uint64_t reflection_rays = 0;
     std::uint64_t refraction_rays = 0;
+    std::uint64_t eye_hits = 0;             // eye rays that hit something
+    std::uint64_t dropped_low_weight = 0;   // secondary rays not traced: weight below min_weight
+    std::uint64_t dropped_stack_full = 0;   // secondary rays not traced: the ray stack was full
     std::uint64_t cells_visited = 0;       // grid cells stepped through, all rays
     std::uint64_t intersection_tests = 0;  // ray-primitive tests, all rays
     std::uint64_t truncated_samples = 0;  // stopped by the loop budget: the image is wrong there
@@ -50,7 +53,9 @@ struct RenderOutcome {
 };
 
 // Each pixel's sum divided by its count of good samples (black where there is none).
-Image resolve_image(const RenderResult& result);
+// The average radiance of each pixel; with `corners`, of each pixel's four corner
+// rays (the result is one row and one column larger than the image).
+Image resolve_image(const RenderResult& result, bool corners = false);
 
 RenderStats collect_stats(const SceneGpu& scene, const Backend& backend, const RenderResult& result);
 

@@ -54,11 +54,15 @@ FeatureSet analyze_features(const Scene& scene) {
     for (const auto& t : scene.triangles) used[t.material] = true;
     bool specular = false;
     bool emission = false;
+    bool reflection = false;
+    bool refraction = false;
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         const Material& m = scene.materials[i];
         if (!used[i]) continue;
         specular = specular || (m.ks > 0.0 && is_nonzero(m.specular));
         emission = emission || is_nonzero(m.emission);
+        reflection = reflection || is_nonzero(m.reflect);
+        refraction = refraction || is_nonzero(m.transmit);
     }
 
     f.set(Feature::HAS_SPHERES, !scene.spheres.empty());
@@ -71,7 +75,11 @@ FeatureSet analyze_features(const Scene& scene) {
     f.set(Feature::HAS_SPECULAR, specular && has_lights);
     f.set(Feature::HAS_AMBIENT, is_nonzero(scene.render.ambient) && has_geometry);
     f.set(Feature::HAS_EMISSION, emission);
-    f.set(Feature::HAS_JITTER, scene.render.jitter);
+    f.set(Feature::HAS_JITTER, scene.render.jitter && !scene.render.corners);
+    // Glass reflects too: its reflection rays run under HAS_REFRACTION.
+    const bool secondary = scene.render.max_depth > 0 && has_geometry;
+    f.set(Feature::HAS_REFLECTION, secondary && reflection);
+    f.set(Feature::HAS_REFRACTION, secondary && refraction);
     return f;
 }
 

@@ -23,6 +23,11 @@ inline constexpr std::uint32_t kFeatureCount = 0
 #undef FEATURE
     ;
 
+// The ids index arrays: they must run 0, 1, 2, ... without gaps.
+#define FEATURE(id, name) static_assert((id) < kFeatureCount, #name ": feature ids must be dense");
+#include "kernel/features.glsl"
+#undef FEATURE
+
 class FeatureSet {
 public:
     bool has(Feature f) const { return on_[static_cast<std::uint32_t>(f)]; }

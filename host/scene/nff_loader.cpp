@@ -128,6 +128,8 @@ Material to_material(const Surface& s) {
     m.shininess = shine;
     m.reflect = dvec3(ks);
     m.transmit = dvec3(t);
+    // The SPD weigh reflection by Ks and refraction by T, whatever the angle.
+    m.fresnel = false;
     // The SPD write ior 0 for opaque surfaces; nothing refracts there, so 1 (no
     // bending) stands in and the material stays valid for the refraction to come.
     m.ior = ior > 0.0 ? ior : 1.0;
@@ -140,10 +142,14 @@ public:
 
     Scene read(const std::filesystem::path& file) {
         scene_.source = file;
-        // No anti-aliasing yet: the SPD rule (rays through the 513 x 513 pixel
-        // corners, averaged) arrives with a later issue; the file's resolution
-        // and one ray per pixel centre until then. Ambient stays 0: NFF has none.
+        // The SPD test rules (../shared/spd/README.md): rays through the pixel
+        // corners, four averaged; a ray tree of depth 5 counting the eye ray, so 4
+        // generations after it; every reflection and refraction ray traced, however
+        // little it weighs. Ambient stays 0: NFF has none.
         scene_.render.aa = 1;
+        scene_.render.corners = true;
+        scene_.render.max_depth = 4;
+        scene_.render.min_weight = 0.0;
         for (Line l; lines_.next(l);) read_entity(l);
         if (view_line_ == 0) {
             throw SceneError(fmt::format(
@@ -366,13 +372,6 @@ private:
         return *surface_->material;
     }
 
-    // Counts what the renderer cannot show yet, for one warning line each at the end.
-    void note_primitive(std::uint32_t material) {
-        const Material& m = scene_.materials[material];
-        if (m.ks > 0.0) ++mirrors_;
-        if (is_nonzero(m.transmit)) ++transparent_;
-    }
-
     // ---- objects --------------------------------------------------------------------
 
     void read_sphere(const Line& l) {
@@ -383,7 +382,6 @@ private:
         if (!(s.radius > 0.0)) fail(l.number, fmt::format("'s' radius: expected a number > 0, got {}", l.fields[4]));
         s.material = material_for(l);
         scene_.spheres.push_back(s);
-        note_primitive(s.material);
     }
 
     // 'p n' or 'pp n', then n vertex lines: split into triangles that keep the
@@ -442,7 +440,6 @@ private:
             if (crossed_polygons_ == 0) first_crossed_line_ = l.number;
             ++crossed_polygons_;
         }
-        if (!split.triangles.empty()) note_primitive(material);
     }
 
     // Cones and cylinders arrive with a later issue, which reads them here into a
@@ -463,19 +460,6 @@ private:
         const auto many = [](std::size_t count, std::string_view one, std::string_view more) {
             return fmt::format("{} {}", count, count == 1 ? one : more);
         };
-        const std::string mirrors = many(mirrors_, "primitive uses", "primitives use") + " mirror reflection (Ks > 0)";
-        if (mirrors_ > 0 && transparent_ > 0) {
-            warnings.push_back(fmt::format("{}: {} and {} transparent (T > 0), which vkrt does not render yet; they "
-                                           "are shaded as opaque, without mirror reflection",
-                                           name_, mirrors, many(transparent_, "is", "are")));
-        } else if (mirrors_ > 0) {
-            warnings.push_back(
-                fmt::format("{}: {}, which vkrt does not render yet; they are shaded without it", name_, mirrors));
-        } else if (transparent_ > 0) {
-            warnings.push_back(fmt::format("{}: {} transparent (T > 0), which vkrt does not render yet; they are "
-                                           "shaded as opaque",
-                                           name_, many(transparent_, "primitive is", "primitives are")));
-        }
         if (degenerate_triangles_ > 0) {
             warnings.push_back(fmt::format("{}: left out {} of {} (the first at line {}); they cover nothing",
                                            name_, many(degenerate_triangles_, "zero-area triangle", "zero-area triangles"),
@@ -496,8 +480,6 @@ private:
     std::vector<bool> coloured_;  // per light: given with a colour
     std::optional<Surface> surface_;
     std::map<std::array<double, 8>, std::uint32_t> materials_;  // 'f' values -> material index
-    std::size_t mirrors_ = 0;
-    std::size_t transparent_ = 0;
     std::size_t degenerate_triangles_ = 0;
     std::size_t degenerate_polygons_ = 0;
     std::size_t first_degenerate_line_ = 0;

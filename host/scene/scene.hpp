@@ -41,7 +41,9 @@ struct RenderSettings {
     std::uint32_t aa = 1;          // aa x aa sub-pixel rays per pixel (paper's Fig. 6)
     bool jitter = false;           // random position inside each sub-pixel
     bool shadows = true;
-    std::uint32_t max_depth = 5;   // reflection/refraction depth (used once mirrors land)
+    std::uint32_t max_depth = 5;   // reflection/refraction generations after the eye ray
+    double min_weight = 1e-3;      // secondary rays weighing less are not traced (0: all are)
+    bool corners = false;          // one ray through each pixel corner, four averaged (SPD)
     dvec3 ambient{0.0};
     dvec3 background{0.0};
     std::uint32_t seed = 0;
@@ -62,6 +64,7 @@ struct Material {
     dvec3 reflect{0.0};
     dvec3 transmit{0.0};
     double ior = 1.5;
+    bool fresnel = true;  // glass splits transmit by the Fresnel reflectance (else constant weights)
     dvec3 emission{0.0};
 };
 

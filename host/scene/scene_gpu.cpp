@@ -23,14 +23,17 @@ vec4 to_vec4(const dvec3& v, double w = 0.0) {
 
 // The camera frame is built in double and rounded once, so the kernel's rays do not
 // inherit the error of a float cross product and tan().
-void set_camera(const Camera& cam, kernel::Params& p) {
+void set_camera(const Camera& cam, bool corners, kernel::Params& p) {
     const dvec3 forward = robust_normalize(cam.look_at - cam.eye);
     const dvec3 right = glm::normalize(glm::cross(forward, robust_normalize(cam.up)));
     const dvec3 up = glm::cross(right, forward);
     const double pixel = 2.0 * std::tan(glm::radians(cam.fov) / 2.0) / cam.height;
     const dvec3 step_right = right * pixel;
     const dvec3 step_down = -up * pixel;
-    const dvec3 corner = forward - step_right * (cam.width / 2.0) - step_down * (cam.height / 2.0);
+    dvec3 corner = forward - step_right * (cam.width / 2.0) - step_down * (cam.height / 2.0);
+    // Ray (x, y) of the corner grid goes through corner (x - 0.5, y - 0.5) + the
+    // sample's offset of 0.5: the image's pixel corner (x, y).
+    if (corners) corner -= (step_right + step_down) * 0.5;
     p.cam_eye = to_vec4(cam.eye);
     p.cam_corner = to_vec4(corner);
     p.cam_right = to_vec4(step_right);
@@ -40,7 +43,7 @@ void set_camera(const Camera& cam, kernel::Params& p) {
 kernel::Material flatten(const Material& m) {
     return kernel::Material(to_vec4(m.diffuse, m.kd), to_vec4(m.specular, m.ks),
                             to_vec4(m.reflect, m.shininess), to_vec4(m.transmit, m.ior),
-                            to_vec4(m.emission));
+                            to_vec4(m.emission, m.fresnel ? 1.0 : 0.0));
 }
 
 kernel::Triangle flatten(const Triangle& t) {
@@ -131,14 +134,17 @@ SceneGpu build_scene_gpu(const Scene& scene, const AccelPolicy& policy) {
     SceneGpu g;
     g.features = analyze_features(scene);
     const RenderSettings& r = scene.render;
-    g.samples_per_pixel = r.samples_per_pixel();
+    g.samples_per_pixel = r.corners ? 1 : r.samples_per_pixel();
+    g.corners = r.corners;
 
     kernel::Params& p = g.params;
-    set_camera(scene.camera, p);
+    set_camera(scene.camera, r.corners, p);
     p.ambient = to_vec4(r.ambient);
     p.background = to_vec4(r.background);
-    p.image = uvec4(scene.camera.width, scene.camera.height, r.aa, r.seed);
+    p.image = r.corners ? uvec4(scene.camera.width + 1, scene.camera.height + 1, 1u, r.seed)
+                        : uvec4(scene.camera.width, scene.camera.height, r.aa, r.seed);
     p.limits = uvec4(r.loop_budget != 0 ? r.loop_budget : kernel::DEFAULT_LOOP_BUDGET, r.max_depth, 0u, 0u);
+    p.ray_tree = vec4(static_cast<float>(r.min_weight), 0.0f, 0.0f, 0.0f);
 
     // Buffers only the left-out features read are not built (and so not uploaded).
     const bool any_geometry = !scene.spheres.empty() || !scene.triangles.empty();

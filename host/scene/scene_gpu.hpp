@@ -31,7 +31,12 @@ struct SceneGpu {
     std::vector<std::uint32_t> grid_refs;
     GridStats grid;
     std::uint32_t samples_per_pixel = 1;
+    // The SPD rule (render.corners): the kernel traces one ray through each pixel
+    // corner, a (width + 1) x (height + 1) grid, and each output pixel averages its
+    // four corners (resolve_image).
+    bool corners = false;
 
+    // The grid of rays the kernel traces: the image, or its corners.
     std::uint32_t width() const { return params.image.x; }
     std::uint32_t height() const { return params.image.y; }
     std::size_t pixel_count() const { return std::size_t(width()) * height(); }

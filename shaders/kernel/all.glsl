@@ -11,4 +11,5 @@
 #include "grid.glsl"
 #include "scene.glsl"
 #include "shade.glsl"
+#include "specular.glsl"
 #include "sample.glsl"

@@ -12,6 +12,10 @@ const uint WORK_CELLS = 0u;       // grid cells stepped through
 const uint WORK_TESTS = 1u;       // ray-primitive intersection tests
 const uint WORK_TRUNCATED = 2u;   // samples stopped by the loop budget
 const uint WORK_NONFINITE = 3u;   // samples discarded for a NaN or infinite value
+// Counters.tree:
+const uint TREE_EYE_HITS = 0u;       // eye rays that hit something (an SPD count)
+const uint TREE_DROPPED_WEIGHT = 1u; // secondary rays not traced: weight below params.ray_tree.x
+const uint TREE_DROPPED_STACK = 2u;  // secondary rays not traced: the pending-ray stack was full
 // Cells and tests cannot overflow a pixel's 32-bit lane: each is at most one loop
 // iteration, a sample has at most kMaxLoopBudget (65,000) of those, and a pixel at
 // most 65,536 samples: 65,000 * 65,536 < 2^32. (Only the cpu backend can lift the
@@ -29,6 +33,10 @@ const uint REF_NONE = 0xFFFFFFFFu;  // "no primitive": kind 3, which no primitiv
 // total (DESIGN.md). The kernel counts its own iterations the way lavapipe does
 // (budget.glsl) against a budget below that cap, with room to spare.
 const uint DEFAULT_LOOP_BUDGET = 60000u;
+
+// Pending rays of the reflection/refraction tree (sample.glsl): one per generation
+// is enough, so max_depth 8 never overflows the stack.
+const uint RAY_STACK_SIZE = 8u;
 
 const float INFINITY_T = 3.0e38f;   // "no hit yet"; finite so comparisons stay ordered
 

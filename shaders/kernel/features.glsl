@@ -3,6 +3,7 @@
 //   GLSL   -> a boolean specialization constant with constant_id = id (default true),
 //   kernel -> a bool member of the reference Kernel struct,
 //   host   -> the Feature enum and its names (host/scene/features.hpp).
+// Ids are dense, 0 to count - 1 (host/scene/features.hpp checks).
 // A feature that is false is compiled out of the pipeline by the driver, and the
 // buffers only it reads are neither built nor uploaded.
 FEATURE(0, HAS_SPHERES)
@@ -15,3 +16,5 @@ FEATURE(6, HAS_AMBIENT)
 FEATURE(7, HAS_EMISSION)
 FEATURE(8, HAS_JITTER)
 FEATURE(9, HAS_GRID)
+FEATURE(10, HAS_REFLECTION)   // mirror rays (material reflect)
+FEATURE(11, HAS_REFRACTION)   // refraction rays, and the reflection rays of glass (material transmit)

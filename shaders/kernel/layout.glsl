@@ -30,7 +30,8 @@ struct Material {
     vec4 specular_ks;        // rgb specular colour, w = ks
     vec4 reflect_shininess;  // rgb mirror reflectance, w = Phong exponent
     vec4 transmit_ior;       // rgb transmittance, w = index of refraction
-    vec4 emission;           // rgb emitted radiance (front face only), w unused
+    vec4 emission_fresnel;   // rgb emitted radiance (front face only), w = 1: Fresnel-weighted
+                             // reflection/refraction, 0: the constant weights reflect and transmit
 };
 
 // A point light: position in xyz; rgb = colour * intensity.
@@ -51,7 +52,8 @@ struct Params {
     vec4 background;   // rgb radiance of rays that hit nothing, w unused
     uvec4 image;       // x width, y height, z aa (sub-pixels per side), w seed
     uvec4 counts;      // x spheres, y triangles, z point lights, w materials
-    uvec4 limits;      // x loop-iteration budget per invocation, y max_depth, z/w unused
+    uvec4 limits;      // x loop-iteration budget per invocation, y max_depth (reflection and
+                       // refraction generations after the eye ray), z/w unused
     // The uniform grid (kernel/grid.glsl, host/accel/grid.cpp), when HAS_GRID: cell
     // (i, j, k) spans grid_min + (i, j, k) * grid_cell to grid_min + (i+1, j+1, k+1) *
     // grid_cell. grid_max is the box the rays are clipped to.
@@ -60,6 +62,9 @@ struct Params {
     vec4 grid_cell;      // xyz cell size, w unused
     vec4 grid_inv_cell;  // xyz 1 / cell size, w unused
     uvec4 grid_res;      // xyz cells per axis, w unused
+    // The reflection/refraction tree (sample.glsl): x the weight below which a
+    // secondary ray is dropped (0: never), yzw unused.
+    vec4 ray_tree;
 };
 
 // Per-pixel accumulation: rgb = sum of sample radiance, a = number of samples summed.
@@ -68,4 +73,5 @@ struct Params {
 struct Counters {
     uvec4 rays;
     uvec4 work;
+    uvec4 tree;
 };

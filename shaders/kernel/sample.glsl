@@ -4,23 +4,151 @@
 struct SampleResult {
     vec3 radiance;
     uint shadow_rays;
+    uint reflection_rays;
+    uint refraction_rays;
+    uint eye_hits;         // 1 when the eye ray hit something
+    uint dropped_weight;   // secondary rays left out for their low weight
+    uint dropped_stack;    // secondary rays left out because the stack was full
     uint cells_visited;
     uint intersection_tests;
     bool truncated;   // the loop budget ran out: the radiance is incomplete
 };
 
+// A ray waiting to be traced, with the factor its radiance is weighed by in the
+// pixel and its generation (0 for the eye ray).
+struct PendingRay {
+    Ray ray;
+    vec3 weight;
+    uint depth;
+};
+
+// The rays of the reflection/refraction tree still to trace. GLSL has no recursion,
+// so the tree is walked depth first by a loop that goes on with one child of each
+// hit and stacks the other: the stack holds at most one ray per generation, so
+// max_depth up to RAY_STACK_SIZE never overflows it (nor does any depth of mirrors
+// alone, which never branch); beyond that a ray that finds it full is dropped and
+// counted.
+struct RayQueue {
+    PendingRay next;   // the ray traced after this hit, when has_next
+    bool has_next;
+    uint top;
+    PendingRay stack[RAY_STACK_SIZE];
+};
+
+// Queues a secondary ray, unless its weight is below the threshold
+// (params.ray_tree.x; 0 keeps every ray, as the SPD rules ask). True if queued.
+bool queue_ray(PendingRay r, INOUT(RayQueue) q, INOUT(SampleResult) s) {
+    if (max(r.weight.x, max(r.weight.y, r.weight.z)) < params.ray_tree.x) {
+        s.dropped_weight += 1u;
+        return false;
+    }
+    if (!q.has_next) {
+        q.next = r;
+        q.has_next = true;
+    } else if (q.top < RAY_STACK_SIZE) {
+        q.stack[q.top] = r;
+        q.top += 1u;
+    } else {
+        s.dropped_stack += 1u;
+        return false;
+    }
+    return true;
+}
+
+// The children of a hit on a mirror or glass: a reflection ray when the material
+// reflects or transmits (the SPD rule: glass reflects too), a refraction ray when it
+// transmits and the light is not totally reflected. Without Fresnel weighting the
+// weights are the material's reflect and transmit colours (the paper's and the
+// SPD's model; total internal reflection sends transmit's share along the
+// reflection); with it, glass splits transmit by the Fresnel reflectance R:
+// reflect + R * transmit reflected, (1 - R) * transmit refracted.
+void spawn_children(PendingRay cur, Hit hit, INOUT(RayQueue) q, INOUT(SampleResult) s) {
+    Material m = load_material(hit.material);
+    vec3 reflect_weight = vec3(m.reflect_shininess);
+    vec3 transmit = vec3(m.transmit_ior);
+    bool transmits = HAS_REFRACTION && any(greaterThan(transmit, vec3(0.0f)));
+    bool reflects = (HAS_REFLECTION && any(greaterThan(reflect_weight, vec3(0.0f)))) || transmits;
+    if (!reflects || cur.depth >= params.limits.y) {
+        return;
+    }
+    precise vec3 p = cur.ray.origin + hit.t * cur.ray.dir;
+    uint depth = cur.depth + 1u;
+    if (transmits) {
+        // Entering through the front face goes from outside (index 1) into the
+        // material; leaving through the back face goes the other way.
+        float ior = m.transmit_ior.w;
+        Refraction r = refract_fresnel(cur.ray.dir, hit.normal, hit.front_face ? 1.0f / ior : ior);
+        bool fresnel = m.emission_fresnel.w != 0.0f;
+        float share = r.total ? 1.0f : (fresnel ? r.reflectance : 0.0f);
+        reflect_weight += share * transmit;
+        if (!r.total) {
+            Ray refracted = Ray(offset_ray_origin(p, -hit.geo_normal), r.dir);
+            vec3 w = cur.weight * transmit * (fresnel ? 1.0f - r.reflectance : 1.0f);
+            if (queue_ray(PendingRay(refracted, w, depth), q, s)) {
+                s.refraction_rays += 1u;
+            }
+        }
+    }
+    Ray mirrored = Ray(offset_ray_origin(p, hit.geo_normal), mirror_direction(cur.ray.dir, hit.normal));
+    if (queue_ray(PendingRay(mirrored, cur.weight * reflect_weight, depth), q, s)) {
+        s.reflection_rays += 1u;
+    }
+}
+
+// Traces one ray of the tree and adds its weighed local shading, or the background.
+Hit trace_and_shade(PendingRay r, INOUT(SampleResult) s) {
+    Hit hit = closest_hit(r.ray, INFINITY_T);
+    if (hit.t < INFINITY_T) {
+        if (r.depth == 0u) {
+            s.eye_hits = 1u;
+        }
+        s.radiance += r.weight * shade_local(r.ray, hit, s.shadow_rays);
+    } else {
+        s.radiance += r.weight * vec3(params.background);
+    }
+    return hit;
+}
+
+// The whole tree below the eye ray, depth first.
+void trace_ray_tree(PendingRay eye, INOUT(SampleResult) s) {
+    PendingRay cur = eye;
+    RayQueue q;
+    q.next = eye;
+    q.top = 0u;
+    loop_enter();
+    while (loop_tick()) {
+        q.has_next = false;
+        Hit hit = trace_and_shade(cur, s);
+        if (hit.t < INFINITY_T) {
+            spawn_children(cur, hit, q, s);
+        }
+        if (q.has_next) {
+            cur = q.next;
+        } else if (q.top > 0u) {
+            q.top -= 1u;
+            cur = q.stack[q.top];
+        } else {
+            break;
+        }
+    }
+}
+
 SampleResult render_sample(uint px, uint py, uint sample_index) {
     work_reset();
+    SampleResult s = SampleResult(vec3(0.0f), 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, false);
     Rng rng = rng_start(py * params.image.x + px, sample_index, params.image.w);
     vec2 sub = subpixel_position(sample_index, rng);
-    Ray ray = camera_ray(float(px) + sub.x, float(py) + sub.y);
-    uint shadow_rays = 0u;
-    vec3 radiance = vec3(params.background);
-    Hit hit = closest_hit(ray, INFINITY_T);
-    if (hit.t < INFINITY_T) {
-        radiance = shade_local(ray, hit, shadow_rays);
+    PendingRay eye = PendingRay(camera_ray(float(px) + sub.x, float(py) + sub.y), vec3(1.0f), 0u);
+    // A scene without mirrors or glass skips the tree's loop and its stack.
+    if (HAS_REFLECTION || HAS_REFRACTION) {
+        trace_ray_tree(eye, s);
+    } else {
+        trace_and_shade(eye, s);
     }
-    return SampleResult(radiance, shadow_rays, g_cells_visited, g_intersection_tests, budget_exhausted());
+    s.cells_visited = g_cells_visited;
+    s.intersection_tests = g_intersection_tests;
+    s.truncated = budget_exhausted();
+    return s;
 }
 
 // Adds a sample to its pixel's running sums. Truncated or non-finite samples add no
@@ -29,8 +157,13 @@ SampleResult render_sample(uint px, uint py, uint sample_index) {
 void accumulate_sample(SampleResult s, INOUT(vec4) accum, INOUT(Counters) counters) {
     counters.rays[RAYS_EYE] += 1u;
     counters.rays[RAYS_SHADOW] += s.shadow_rays;
+    counters.rays[RAYS_REFLECTION] += s.reflection_rays;
+    counters.rays[RAYS_REFRACTION] += s.refraction_rays;
     counters.work[WORK_CELLS] += s.cells_visited;
     counters.work[WORK_TESTS] += s.intersection_tests;
+    counters.tree[TREE_EYE_HITS] += s.eye_hits;
+    counters.tree[TREE_DROPPED_WEIGHT] += s.dropped_weight;
+    counters.tree[TREE_DROPPED_STACK] += s.dropped_stack;
     float sum = s.radiance.x + s.radiance.y + s.radiance.z;
     if (s.truncated) {
         counters.work[WORK_TRUNCATED] += 1u;

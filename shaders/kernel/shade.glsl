@@ -9,7 +9,7 @@ vec3 shade_local(Ray ray, Hit hit, INOUT(uint) shadow_rays) {
     vec3 diffuse = vec3(m.diffuse_kd) * m.diffuse_kd.w;
     vec3 color = vec3(0.0f);
     if (HAS_EMISSION && hit.front_face) {
-        color += vec3(m.emission);
+        color += vec3(m.emission_fresnel);
     }
     if (HAS_AMBIENT) {
         color += vec3(params.ambient) * diffuse;
