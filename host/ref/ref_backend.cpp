@@ -21,6 +21,8 @@ constexpr std::uint32_t kTileSize = 16;
 // grid was 0.92x brute force at 16 spheres and 1.13x at 32 (docs/grid.md).
 constexpr std::uint32_t kBruteForceBelow = 32;
 
+}  // namespace
+
 kernel::Kernel make_kernel(const SceneGpu& scene) {
     kernel::Kernel k;
 #define FEATURE(id, name) k.name = scene.features.has(std::uint32_t(id));
@@ -35,6 +37,8 @@ kernel::Kernel make_kernel(const SceneGpu& scene) {
     k.grid_refs = scene.grid_refs;
     return k;
 }
+
+namespace {
 
 class ReferenceBackend final : public Backend {
 public:

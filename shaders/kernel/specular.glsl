@@ -3,7 +3,8 @@
 // (Hit.normal), `d` the unit direction of the arriving ray.
 
 vec3 mirror_direction(vec3 d, vec3 n) {
-    return d - (2.0f * dot(d, n)) * n;
+    precise vec3 r = d - (2.0f * dot(d, n)) * n;
+    return r;
 }
 
 struct Refraction {
@@ -19,15 +20,16 @@ struct Refraction {
 // away from ior 1.5 and, on the denser side, needs the transmitted angle anyway.
 // At and beyond the critical angle all energy is reflected.
 Refraction refract_fresnel(vec3 d, vec3 n, float eta) {
-    float cos_i = clamp(-dot(d, n), 0.0f, 1.0f);
-    float sin2_t = eta * eta * (1.0f - cos_i * cos_i);
+    precise float cos_i = clamp(-dot(d, n), 0.0f, 1.0f);
+    precise float sin2_t = eta * eta * (1.0f - cos_i * cos_i);
     if (!(sin2_t < 1.0f)) {
         return Refraction(vec3(0.0f), 1.0f, true);
     }
-    float cos_t = sqrt(1.0f - sin2_t);
+    precise float cos_t = sqrt(1.0f - sin2_t);
     // Dividing the textbook forms by n_transmitted leaves only eta.
-    float r_s = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    float r_p = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    vec3 t = eta * d + (eta * cos_i - cos_t) * n;
-    return Refraction(normalize(t), 0.5f * (r_s * r_s + r_p * r_p), false);
+    precise float r_s = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    precise float r_p = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    precise vec3 t = eta * d + (eta * cos_i - cos_t) * n;
+    precise float reflectance = 0.5f * (r_s * r_s + r_p * r_p);
+    return Refraction(t / sqrt(dot(t, t)), reflectance, false);
 }

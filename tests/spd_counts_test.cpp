@@ -1,0 +1,71 @@
+// The SPD ray counts (../shared/spd/README.md): rendered under the SPD rules, which
+// is what loading an .nff file sets up (513 x 513 corner rays, depth 5, nothing
+// pruned), every scene's eye rays that hit, reflection, refraction and shadow rays
+// land within 10% of the published table, on both backends. Full size: the SPD
+// scenes render in about a second each here.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "scene/load_scene.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using namespace vkrt;
+
+struct Published {
+    const char* scene;
+    std::uint64_t eye_hits, reflection, refraction, shadow;
+};
+
+// Eric Haines' published counts, as ../shared/spd/README.md gives them.
+constexpr Published kBalls{"balls", 263169, 175095, 0, 954368};
+constexpr Published kGears{"gears", 245086, 304643, 207564, 2246955};
+constexpr Published kMount{"mount", 173125, 354769, 354769, 412922};
+constexpr Published kTeapot{"teapot", 161120, 225248, 0, 407656};
+constexpr Published kTetra{"tetra", 49788, 0, 0, 46112};
+
+void expect_within_10_percent(const char* what, std::uint64_t got, std::uint64_t published) {
+    const double tolerance = 0.10 * double(published);
+    EXPECT_LE(std::abs(double(got) - double(published)), tolerance)
+        << what << ": vkrt " << got << ", published " << published;
+}
+
+void expect_counts(const RenderOutcome& out, const Published& p) {
+    SCOPED_TRACE(std::string(p.scene) + " on " + out.stats.backend);
+    EXPECT_EQ(out.stats.eye_rays, 513u * 513u);
+    expect_within_10_percent("eye rays that hit", out.stats.eye_hits, p.eye_hits);
+    expect_within_10_percent("reflection rays", out.stats.reflection_rays, p.reflection);
+    expect_within_10_percent("refraction rays", out.stats.refraction_rays, p.refraction);
+    expect_within_10_percent("shadow rays", out.stats.shadow_rays, p.shadow);
+    EXPECT_EQ(out.stats.dropped_low_weight + out.stats.dropped_stack_full, 0u) << "the SPD prune nothing";
+    EXPECT_EQ(out.stats.truncated_samples, 0u);
+    EXPECT_EQ(out.image.width, 512u);
+}
+
+Scene spd(const Published& p) {
+    return load_scene(test::source_dir() / ".." / "shared" / "spd" / "nff" / (std::string(p.scene) + ".nff"));
+}
+
+std::string scene_name(const ::testing::TestParamInfo<Published>& param) { return param.param.scene; }
+
+class SpdCounts : public ::testing::TestWithParam<Published> {};
+
+TEST_P(SpdCounts, ReferenceBackendMatchesThePublishedTable) {
+    expect_counts(test::render_cpu(spd(GetParam())), GetParam());
+}
+
+INSTANTIATE_TEST_SUITE_P(Spd, SpdCounts, ::testing::Values(kBalls, kGears, kMount, kTeapot, kTetra), scene_name);
+
+// Lavapipe takes two to three times as long: three scenes, with and without glass.
+class SpdCountsVulkan : public ::testing::TestWithParam<Published> {};
+
+TEST_P(SpdCountsVulkan, VulkanMatchesThePublishedTable) {
+    expect_counts(test::render_vulkan(spd(GetParam())), GetParam());
+}
+
+INSTANTIATE_TEST_SUITE_P(Spd, SpdCountsVulkan, ::testing::Values(kMount, kTeapot, kTetra), scene_name);
+
+}  // namespace
