@@ -309,11 +309,12 @@ void expect_cone_around_y(const std::vector<Triangle>& tris, double r0, double r
 }
 
 TEST_F(NffTest, DifferentRadiiMakeASmoothConeOfTriangles) {
-    // A frustum: radius 2 at the base, 1 at the top, height 3. Each of the 16 sides
-    // is two triangles.
+    // A frustum: radius 2 at the base, 1 at the top, height 3; each side two
+    // triangles. Seen from kView's eye 3 units off at 6 rows, it needs 8 sides.
     const Scene s = load(kView + "f 1 1 1 1 0 10 0 1\nc 0 0 0 2 0 3 0 1\n");
     EXPECT_TRUE(s.cylinders.empty());
-    ASSERT_EQ(s.triangles.size(), 2 * kConeSegments);
+    EXPECT_EQ(cone_segments({0, 0, 0}, 2, {0, 3, 0}, 1, s.camera), 8u);
+    ASSERT_EQ(s.triangles.size(), 2 * 8u);
     expect_cone_around_y(s.triangles, 2.0, 1.0, 3.0);
     for (const Triangle& t : s.triangles) EXPECT_EQ(t.material, 0u);
 }
@@ -321,11 +322,35 @@ TEST_F(NffTest, DifferentRadiiMakeASmoothConeOfTriangles) {
 TEST_F(NffTest, AConeWithAnApexHasOneTriangleASide) {
     // Apex radius 0 (the NFF cone), and the reverse: the tip at the base.
     const Scene s = load(kView + "f 1 1 1 1 0 10 0 1\nc 0 0 0 1.5 0 2 0 0\n");
-    ASSERT_EQ(s.triangles.size(), kConeSegments);
+    const std::uint32_t sides = cone_segments({0, 0, 0}, 1.5, {0, 2, 0}, 0, s.camera);
+    ASSERT_EQ(s.triangles.size(), sides);
     expect_cone_around_y(s.triangles, 1.5, 0.0, 2.0);
     const Scene tip_down = load(kView + "f 1 1 1 1 0 10 0 1\nc\n0 0 0 0\n0 2 0 1.5\n");
-    ASSERT_EQ(tip_down.triangles.size(), kConeSegments);
+    ASSERT_EQ(tip_down.triangles.size(), sides);
     expect_cone_around_y(tip_down.triangles, 0.0, 1.5, 2.0);
+}
+
+TEST(ConeMesh, SidesKeepTheSilhouetteWithinHalfAPixel) {
+    // A camera at the origin looking down -z, 90 degrees over 100 rows: a pixel is
+    // 0.02 units tall at distance 1.
+    vkrt::Camera cam;
+    cam.fov = 90.0;
+    cam.height = 100;
+    const double pixel_at_1 = 2.0 / 100.0;
+    auto gap = [](double r, std::uint32_t n) { return r * (1.0 - std::cos(std::acos(-1.0) / n)); };
+    // Far and thin: the fewest sides.
+    EXPECT_EQ(cone_segments({0, 0, -100}, 0.1, {0, 1, -100}, 0.05, cam), kMinConeSegments);
+    // Near and fat: capped at the most.
+    EXPECT_EQ(cone_segments({0, 0, -2.05}, 2.0, {0, 1, -2.05}, 0.0, cam), kMaxConeSegments);
+    // In between: the fewest that meet the half-pixel bound at the nearest point of
+    // the axis (here the base, 10 away) less the radius: 12.
+    const std::uint32_t n = cone_segments({0, 0, -10}, 2.0, {0, 0, -20}, 1.0, cam);
+    const double pixel = (10.0 - 2.0) * pixel_at_1;
+    EXPECT_EQ(n, 12u);
+    EXPECT_LE(gap(2.0, n), 0.5 * pixel);
+    EXPECT_GT(gap(2.0, n - 1), 0.5 * pixel);
+    // The nearest point of a long cone seen from its side is in its middle, not at an end.
+    EXPECT_EQ(cone_segments({-50, 0, -10}, 2.0, {50, 0, -10}, 1.5, cam), n);
 }
 
 TEST(ConeMesh, AnyAxisGivesTheSameConeTurned) {
@@ -520,8 +545,9 @@ struct SpdExpectation {
 
 // Counts from shared/spd/README.md: one triangle per 'p 3' or 'pp 3', two per
 // quadrilateral, n - 2 per n-gon (gears: 9,217 quadrilaterals and 128 faces of 144
-// vertices, 9,345 polygons); a cylinder per 'c' of equal radii; 2 * kConeSegments
-// smooth triangles per cone frustum (tree's 4,095 cones all have two non-zero radii).
+// vertices, 9,345 polygons); a cylinder per 'c' of equal radii; 2 smooth triangles
+// per side of a cone frustum (tree's 4,095 cones all have two non-zero radii; 4,068
+// of them get 6 sides, the 27 nearest the eye 7 to 15: 49,292 triangles).
 const std::map<std::string, SpdExpectation>& spd_expectations() {
     static const std::map<std::string, SpdExpectation> e{
         {"balls", {.spheres = 7381, .triangles = 2, .lights = 3}},
@@ -535,8 +561,8 @@ const std::map<std::string, SpdExpectation>& spd_expectations() {
         {"tetra", {.triangles = 4096, .lights = 1}},
         {"tree",
          {.spheres = 4095,
-          .triangles = 2 + 4095 * 2 * kConeSegments,
-          .smooth_triangles = 4095 * 2 * kConeSegments,
+          .triangles = 2 + 49292,
+          .smooth_triangles = 49292,
           .lights = 7}},
     };
     return e;

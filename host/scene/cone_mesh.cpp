@@ -1,5 +1,6 @@
 #include "scene/cone_mesh.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -8,6 +9,18 @@
 #include "scene/vec_math.hpp"
 
 namespace vkrt {
+
+std::uint32_t cone_segments(const dvec3& base, double r0, const dvec3& apex, double r1, const Camera& camera) {
+    const dvec3 along = apex - base;
+    const double s = std::clamp(glm::dot(camera.eye - base, along) / glm::dot(along, along), 0.0, 1.0);
+    const double r = std::max(r0, r1);
+    const double distance = std::max(glm::length(camera.eye - (base + s * along)) - r, 0.0);
+    // The height of a pixel at that distance (square pixels, vertical field of view).
+    const double pixel = distance * 2.0 * std::tan(camera.fov * std::numbers::pi / 360.0) / camera.height;
+    std::uint32_t n = kMinConeSegments;
+    while (n < kMaxConeSegments && r * (1.0 - std::cos(std::numbers::pi / n)) > kConeSilhouettePixels * pixel) ++n;
+    return n;
+}
 
 std::vector<Triangle> tessellate_cone(const dvec3& base, double r0, const dvec3& apex, double r1,
                                       std::uint32_t material, std::uint32_t segments) {

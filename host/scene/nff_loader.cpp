@@ -499,7 +499,13 @@ private:
         if (radius[0] == radius[1]) {
             scene_.cylinders.push_back(Cylinder{centre[0], centre[1], radius[0], false, material});
         } else {
-            const std::vector<Triangle> cone = tessellate_cone(centre[0], radius[0], centre[1], radius[1], material);
+            // Sides enough for the file's own view; a 'c' before the view block (NFF
+            // puts the view first) gets the most.
+            const std::uint32_t segments =
+                view_line_ != 0 ? cone_segments(centre[0], radius[0], centre[1], radius[1], scene_.camera)
+                                : kMaxConeSegments;
+            const std::vector<Triangle> cone =
+                tessellate_cone(centre[0], radius[0], centre[1], radius[1], material, segments);
             scene_.triangles.insert(scene_.triangles.end(), cone.begin(), cone.end());
         }
         note_primitive(material);
