@@ -27,6 +27,8 @@ layout(binding = 5, rgba32f) uniform imageBuffer accum;        // 1 texel per pi
 layout(binding = 6, rgba32ui) uniform uimageBuffer counters;   // 3 texels per pixel (Counters)
 layout(binding = 7) uniform usamplerBuffer grid_cell_starts;    // r32ui, cells + 1 entries
 layout(binding = 8) uniform usamplerBuffer grid_refs;           // r32ui, one per reference
+layout(binding = 9) uniform usamplerBuffer ring_texels;         // 3 texels per Ring
+layout(binding = 10) uniform usamplerBuffer cylinder_texels;    // 3 texels per Cylinder
 layout(push_constant) uniform PassBlock { uvec4 pass; };   // x = sample index
 
 // The buffer accessors the kernel calls (host/ref/kernel.hpp has the C++ ones). Fields
@@ -50,6 +52,15 @@ Triangle load_triangle(uint i) {
 }
 PointLight load_light(uint i) {
     return PointLight(fetch_vec4(light_texels, 2u * i), fetch_vec4(light_texels, 2u * i + 1u));
+}
+Ring load_ring(uint i) {
+    uint b = 3u * i;
+    return Ring(fetch_vec4(ring_texels, b), fetch_vec4(ring_texels, b + 1u), texelFetch(ring_texels, int(b + 2u)));
+}
+Cylinder load_cylinder(uint i) {
+    uint b = 3u * i;
+    return Cylinder(fetch_vec4(cylinder_texels, b), fetch_vec4(cylinder_texels, b + 1u),
+                    texelFetch(cylinder_texels, int(b + 2u)));
 }
 uint load_cell_start(uint i) { return texelFetch(grid_cell_starts, int(i)).x; }
 uint load_ref(uint i) { return texelFetch(grid_refs, int(i)).x; }

@@ -4,12 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <random>
 #include <vector>
 
+#include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
 
 #include "accel/grid.hpp"
@@ -30,15 +33,30 @@ kernel::Triangle triangle(glm::vec3 a, glm::vec3 b, glm::vec3 c) {
     return t;
 }
 
+kernel::Ring ring(glm::vec3 c, glm::vec3 n, float inner, float outer) {
+    return kernel::Ring{kernel::vec4(c, inner), kernel::vec4(glm::normalize(n), outer), kernel::uvec4(0u)};
+}
+
+kernel::Cylinder cylinder(glm::vec3 base, glm::vec3 top, float r, bool capped) {
+    return kernel::Cylinder{kernel::vec4(base, r), kernel::vec4(top, capped ? 1.0f : 0.0f), kernel::uvec4(0u)};
+}
+
 struct RandomScene {
     std::vector<kernel::Sphere> spheres;
     std::vector<kernel::Triangle> triangles;
+    std::vector<kernel::Ring> rings;
+    std::vector<kernel::Cylinder> cylinders;
+
+    GridPrimitives primitives() const { return {spheres, triangles, rings, cylinders}; }
+    std::size_t size() const { return spheres.size() + triangles.size() + rings.size() + cylinders.size(); }
 };
 
+// Spheres and triangles, and a quarter as many rings and cylinders of each.
 RandomScene random_scene(std::uint32_t seed, int spheres, int triangles) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> pos(-10.0f, 10.0f);
     std::uniform_real_distribution<float> size(0.01f, 2.0f);
+    std::uniform_real_distribution<float> dir(-1.0f, 1.0f);
     RandomScene s;
     for (int i = 0; i < spheres; ++i) s.spheres.push_back(sphere({pos(rng), pos(rng), pos(rng)}, size(rng)));
     for (int i = 0; i < triangles; ++i) {
@@ -46,6 +64,14 @@ RandomScene random_scene(std::uint32_t seed, int spheres, int triangles) {
         const glm::vec3 d1(size(rng), size(rng), -size(rng));
         const glm::vec3 d2(-size(rng), size(rng), size(rng));
         s.triangles.push_back(triangle(a, a + d1, a + d2));
+    }
+    for (int i = 0; i < (spheres + triangles) / 4; ++i) {
+        const float outer = size(rng);
+        s.rings.push_back(ring({pos(rng), pos(rng), pos(rng)}, {dir(rng), dir(rng), dir(rng) + 0.01f}, 0.3f * outer,
+                               outer));
+        const glm::vec3 base(pos(rng), pos(rng), pos(rng));
+        s.cylinders.push_back(
+            cylinder(base, base + 2.0f * glm::vec3(dir(rng), dir(rng), dir(rng) + 0.01f), 0.5f * size(rng), i % 2 == 0));
     }
     return s;
 }
@@ -107,6 +133,12 @@ void expect_exact_binning(const Grid& g, const RandomScene& s) {
     for (std::uint32_t i = 0; i < s.triangles.size(); ++i) {
         bin(bounds(s.triangles[i]), (kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | i);
     }
+    for (std::uint32_t i = 0; i < s.rings.size(); ++i) {
+        bin(bounds(s.rings[i]), (kernel::REF_RING << kernel::REF_KIND_SHIFT) | i);
+    }
+    for (std::uint32_t i = 0; i < s.cylinders.size(); ++i) {
+        bin(bounds(s.cylinders[i]), (kernel::REF_CYLINDER << kernel::REF_KIND_SHIFT) | i);
+    }
     for (std::uint64_t c = 0; c < n; ++c) {
         const std::vector<std::uint32_t> got(g.refs.begin() + g.cell_starts[c], g.refs.begin() + g.cell_starts[c + 1]);
         ASSERT_EQ(got, want[c]) << "cell " << c;
@@ -116,7 +148,7 @@ void expect_exact_binning(const Grid& g, const RandomScene& s) {
 TEST(GridBuild, EveryPrimitiveIsInExactlyTheCellsItsBoxOverlaps) {
     const RandomScene s = random_scene(7, 300, 200);
     std::string note;
-    const Grid g = build_grid(s.spheres, s.triangles, GridRequest{}, note);
+    const Grid g = build_grid(s.primitives(), GridRequest{}, note);
     EXPECT_TRUE(note.empty()) << note;
     EXPECT_GT(cells(g.resolution), 1000u);
     expect_exact_binning(g, s);
@@ -127,7 +159,7 @@ TEST(GridBuild, CellsCoverEveryBoxWithPadding) {
     // cells by the same arithmetic the kernel uses for a point.
     const RandomScene s = random_scene(11, 500, 0);
     std::string note;
-    const Grid g = build_grid(s.spheres, s.triangles, GridRequest{}, note);
+    const Grid g = build_grid(s.primitives(), GridRequest{}, note);
     for (const kernel::Sphere& sp : s.spheres) {
         const Aabb b = bounds(sp);
         const auto [first, last] = g.cells_overlapping(b);
@@ -151,14 +183,14 @@ TEST(GridBuild, RequestedResolutionIsUsedAndClampedToTheDeviceLimit) {
     std::string note;
     GridRequest request;
     request.resolution = {3, 4, 5};
-    const Grid g = build_grid(s.spheres, s.triangles, request, note);
+    const Grid g = build_grid(s.primitives(), request, note);
     EXPECT_EQ(g.resolution, (GridResolution{3, 4, 5}));
     EXPECT_TRUE(note.empty());
     expect_exact_binning(g, s);
 
     request.resolution = {100, 100, 100};
     request.max_entries = 20001;  // 20,000 cells at most
-    const Grid clamped = build_grid(s.spheres, s.triangles, request, note);
+    const Grid clamped = build_grid(s.primitives(), request, note);
     EXPECT_LE(clamped.cell_count() + 1, 20001u);
     EXPECT_LE(clamped.refs.size(), 20001u);
     EXPECT_NE(note.find("exceeds this device's buffer limit"), std::string::npos) << note;
@@ -177,7 +209,7 @@ TEST(GridBuild, TooManyReferencesCoarsensTheGrid) {
     GridRequest request;
     request.resolution = {40, 40, 20};  // 32,000 cells, each holding every triangle
     request.max_entries = 40000;
-    const Grid g = build_grid(s.spheres, s.triangles, request, note);
+    const Grid g = build_grid(s.primitives(), request, note);
     EXPECT_LE(g.refs.size(), 40000u);
     EXPECT_LT(g.cell_count(), 32000u);
     EXPECT_NE(note.find("references"), std::string::npos) << note;
@@ -192,14 +224,14 @@ TEST(GridBuild, FlatSceneAndSinglePrimitive) {
         flat.triangles.push_back(triangle({x, y, 0}, {x + 1, y, 0}, {x, y + 1, 0}));
     }
     std::string note;
-    const Grid g = build_grid(flat.spheres, flat.triangles, GridRequest{}, note);
+    const Grid g = build_grid(flat.primitives(), GridRequest{}, note);
     EXPECT_EQ(g.resolution[2], 1u);
     EXPECT_GT(g.cell[2], 0.0);
     expect_exact_binning(g, flat);
 
     RandomScene one;
     one.spheres.push_back(sphere({1e5f, -1e5f, 3.0f}, 0.5f));
-    const Grid single = build_grid(one.spheres, one.triangles, GridRequest{}, note);
+    const Grid single = build_grid(one.primitives(), GridRequest{}, note);
     EXPECT_GE(single.cell_count(), 1u);
     expect_exact_binning(single, one);
 }
@@ -210,14 +242,27 @@ TEST(GridBuild, CellsListedAreThoseTheBoxTouchesByGeometry) {
     // intersects the box grown by twice the padding.
     const RandomScene s = random_scene(13, 120, 80);
     std::string note;
-    const Grid g = build_grid(s.spheres, s.triangles, GridRequest{}, note);
+    const Grid g = build_grid(s.primitives(), GridRequest{}, note);
     std::vector<Aabb> boxes;
-    for (const auto& sp : s.spheres) boxes.push_back(bounds(sp));
-    for (const auto& t : s.triangles) boxes.push_back(bounds(t));
+    std::vector<std::uint32_t> refs;
+    for (std::uint32_t i = 0; i < s.spheres.size(); ++i) {
+        boxes.push_back(bounds(s.spheres[i]));
+        refs.push_back((kernel::REF_SPHERE << kernel::REF_KIND_SHIFT) | i);
+    }
+    for (std::uint32_t i = 0; i < s.triangles.size(); ++i) {
+        boxes.push_back(bounds(s.triangles[i]));
+        refs.push_back((kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | i);
+    }
+    for (std::uint32_t i = 0; i < s.rings.size(); ++i) {
+        boxes.push_back(bounds(s.rings[i]));
+        refs.push_back((kernel::REF_RING << kernel::REF_KIND_SHIFT) | i);
+    }
+    for (std::uint32_t i = 0; i < s.cylinders.size(); ++i) {
+        boxes.push_back(bounds(s.cylinders[i]));
+        refs.push_back((kernel::REF_CYLINDER << kernel::REF_KIND_SHIFT) | i);
+    }
     auto listed = [&](std::uint64_t cell, std::uint32_t i) {
-        const std::uint32_t ref = i < s.spheres.size()
-                                      ? (kernel::REF_SPHERE << kernel::REF_KIND_SHIFT) | i
-                                      : (kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | std::uint32_t(i - s.spheres.size());
+        const std::uint32_t ref = refs[i];
         return std::find(g.refs.begin() + g.cell_starts[cell], g.refs.begin() + g.cell_starts[cell + 1], ref) !=
                g.refs.begin() + g.cell_starts[cell + 1];
     };
@@ -249,12 +294,67 @@ TEST(GridBuild, TheGridBoxContainsEveryBoxWithItsPadding) {
     // interval, so the box leaves at least the padding around every primitive.
     const RandomScene s = random_scene(19, 200, 200);
     std::string note;
-    const Grid g = build_grid(s.spheres, s.triangles, GridRequest{}, note);
-    for (const auto& sp : s.spheres) {
-        const Aabb b = bounds(sp);
+    const Grid g = build_grid(s.primitives(), GridRequest{}, note);
+    std::vector<Aabb> boxes;
+    for (const auto& sp : s.spheres) boxes.push_back(bounds(sp));
+    for (const auto& r : s.rings) boxes.push_back(bounds(r));
+    for (const auto& c : s.cylinders) boxes.push_back(bounds(c));
+    for (const Aabb& b : boxes) {
         EXPECT_TRUE(glm::all(glm::lessThanEqual(g.lo, b.lo - 0.99 * g.pad)));
         EXPECT_TRUE(glm::all(glm::greaterThanEqual(g.hi, b.hi + 0.99 * g.pad)));
     }
+}
+
+TEST(GridBuild, EachCellListsItsPrimitivesGroupedByKindInTheKernelsOrder) {
+    // The kernel walks a cell in one loop per kind, each ending at the first reference
+    // of another kind: a cell whose kinds were interleaved would lose primitives.
+    const RandomScene s = random_scene(23, 200, 200);
+    std::string note;
+    const Grid g = build_grid(s.primitives(), GridRequest{}, note);
+    std::array<bool, 4> seen{};
+    for (std::uint64_t c = 0; c < g.cell_count(); ++c) {
+        for (std::uint32_t i = g.cell_starts[c]; i + 1 < g.cell_starts[c + 1]; ++i) {
+            ASSERT_LE(g.refs[i], g.refs[i + 1]) << "cell " << c;  // kind, then index, ascending
+        }
+        for (std::uint32_t i = g.cell_starts[c]; i < g.cell_starts[c + 1]; ++i) {
+            seen[g.refs[i] >> kernel::REF_KIND_SHIFT] = true;
+        }
+    }
+    EXPECT_EQ(seen, (std::array<bool, 4>{true, true, true, true}));
+    for (std::uint32_t ref : g.refs) EXPECT_NE(ref, kernel::REF_NONE);
+}
+
+TEST(GridBounds, RingBoxIsItsOuterDiscsExactly) {
+    // Normal along z: the disc spans the full outer radius in x and y, nothing in z.
+    const Aabb flat = bounds(ring({1, 2, 3}, {0, 0, 1}, 0.5f, 2.0f));
+    EXPECT_EQ(flat.lo, dvec3(-1, 0, 3));
+    EXPECT_EQ(flat.hi, dvec3(3, 4, 3));
+    // Normal (0, 0.6, 0.8) as floats, outer 5: half-extents 5 in x, 5 * 0.8 = 4 in y,
+    // 5 * 0.6 = 3 in z, up to the floats' rounding of the normal.
+    const Aabb tilted = bounds(ring({0, 0, 0}, {0, 3, 4}, 0.0f, 5.0f));
+    EXPECT_DOUBLE_EQ(tilted.hi.x, 5.0);
+    EXPECT_NEAR(tilted.hi.y, 4.0, 1e-6);
+    EXPECT_NEAR(tilted.hi.z, 3.0, 1e-6);
+    EXPECT_EQ(tilted.lo, -tilted.hi);
+    // The inner radius does not shrink the box: the disc's rim is the annulus's.
+    EXPECT_EQ(bounds(ring({0, 0, 0}, {0, 3, 4}, 4.9f, 5.0f)).hi, tilted.hi);
+}
+
+TEST(GridBounds, CylinderBoxIsItsEndDiscsUnited) {
+    // Along y from (0, 1, 0) to (0, 4, 0), radius 2: discs in the planes y = 1 and y = 4.
+    const Aabb up = bounds(cylinder({0, 1, 0}, {0, 4, 0}, 2.0f, false));
+    EXPECT_EQ(up.lo, dvec3(-2, 1, -2));
+    EXPECT_EQ(up.hi, dvec3(2, 4, 2));
+    // Pointing down the axis reversed gives the same box.
+    const Aabb down = bounds(cylinder({0, 4, 0}, {0, 1, 0}, 2.0f, true));
+    EXPECT_EQ(down.lo, up.lo);
+    EXPECT_EQ(down.hi, up.hi);
+    // A diagonal in the xy plane: each disc reaches r / sqrt(2) in x and y, r in z.
+    const Aabb diag = bounds(cylinder({0, 0, 0}, {3, 3, 0}, 1.0f, false));
+    EXPECT_NEAR(diag.lo.x, -std::sqrt(0.5), 1e-12);
+    EXPECT_NEAR(diag.hi.y, 3.0 + std::sqrt(0.5), 1e-12);
+    EXPECT_DOUBLE_EQ(diag.hi.z, 1.0);
+    EXPECT_DOUBLE_EQ(diag.lo.z, -1.0);
 }
 
 TEST(GridBuild, RepeatedCoarseningKeepsEveryNoteAndNamesTheLimit) {
@@ -267,7 +367,7 @@ TEST(GridBuild, RepeatedCoarseningKeepsEveryNoteAndNamesTheLimit) {
     GridRequest request;
     request.resolution = {64, 64, 64};  // 262,144 cells: over the limit, and far too many copies
     request.max_entries = 10000;
-    const Grid g = build_grid(s.spheres, s.triangles, request, note);
+    const Grid g = build_grid(s.primitives(), request, note);
     EXPECT_LE(g.refs.size(), 10000u);
     EXPECT_NE(note.find("exceeds this device's buffer limit of 10000 entries"), std::string::npos) << note;
     // More than one halving, each reported.
@@ -284,18 +384,18 @@ TEST(GridBuild, ReferencesThatCannotFitAreAnErrorNotAHang) {
     RandomScene s = random_scene(5, 40, 0);
     std::string note;
     GridRequest request;
-    request.max_entries = 10;  // 40 primitives need 40 references even in one cell
+    request.max_entries = 10;  // 60 primitives (40 spheres, 10 rings, 10 cylinders) need 60 references in one cell
     try {
-        build_grid(s.spheres, s.triangles, request, note);
+        build_grid(s.primitives(), request, note);
         FAIL() << "expected an error";
     } catch (const std::runtime_error& e) {
-        EXPECT_NE(std::string(e.what()).find("40 primitives do not fit one grid: 40 references, over this device's "
+        EXPECT_NE(std::string(e.what()).find("60 primitives do not fit one grid: 60 references, over this device's "
                                              "buffer limit of 10 entries"),
                   std::string::npos)
             << e.what();
     }
     request.max_entries = 1;  // not even one cell start beyond the first: still ends
-    EXPECT_THROW(build_grid(s.spheres, s.triangles, request, note), std::runtime_error);
+    EXPECT_THROW(build_grid(s.primitives(), request, note), std::runtime_error);
 }
 
 TEST(GridBuild, TheHostLimitsCellsWhateverTheDeviceAllows) {
@@ -303,7 +403,7 @@ TEST(GridBuild, TheHostLimitsCellsWhateverTheDeviceAllows) {
     std::string note;
     GridRequest request;
     request.resolution = {1024, 1024, 64};  // 2^26 cells
-    const Grid g = build_grid(s.spheres, s.triangles, request, note);
+    const Grid g = build_grid(s.primitives(), request, note);
     EXPECT_LE(g.cell_count(), std::uint64_t(1) << 25);
     EXPECT_NE(note.find("exceeds vkrt's limit of 33554432 cells"), std::string::npos) << note;
 }
@@ -312,15 +412,21 @@ TEST(GridBuild, NonFinitePrimitivesAreRejected) {
     RandomScene s = random_scene(8, 3, 0);
     s.spheres[1].center_radius.y = std::numeric_limits<float>::quiet_NaN();
     std::string note;
-    EXPECT_THROW(build_grid(s.spheres, s.triangles, GridRequest{}, note), std::invalid_argument);
+    EXPECT_THROW(build_grid(s.primitives(), GridRequest{}, note), std::invalid_argument);
     s = random_scene(8, 0, 3);
     s.triangles[2].p2.z = std::numeric_limits<float>::infinity();
-    EXPECT_THROW(build_grid(s.spheres, s.triangles, GridRequest{}, note), std::invalid_argument);
+    EXPECT_THROW(build_grid(s.primitives(), GridRequest{}, note), std::invalid_argument);
+    s = random_scene(8, 4, 4);
+    s.rings[1].normal_outer.w = std::numeric_limits<float>::infinity();
+    EXPECT_THROW(build_grid(s.primitives(), GridRequest{}, note), std::invalid_argument);
+    s = random_scene(8, 4, 4);
+    s.cylinders[0].top_capped.x = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_THROW(build_grid(s.primitives(), GridRequest{}, note), std::invalid_argument);
 }
 
 TEST(GridBuild, NoPrimitivesGivesAnEmptyGrid) {
     std::string note;
-    const Grid g = build_grid({}, {}, GridRequest{}, note);
+    const Grid g = build_grid({}, GridRequest{}, note);
     EXPECT_EQ(g.cell_count(), 1u);
     EXPECT_EQ(g.cell_starts, (std::vector<std::uint32_t>{0, 0}));
     EXPECT_TRUE(g.refs.empty());

@@ -28,11 +28,13 @@ struct GridScene {
     std::vector<kernel::Material> materials{kernel::Material{}};
     std::vector<kernel::Sphere> spheres;
     std::vector<kernel::Triangle> triangles;
+    std::vector<kernel::Ring> rings;
+    std::vector<kernel::Cylinder> cylinders;
     Grid grid;
 
     void build(GridRequest request = {}) {
         std::string note;
-        grid = build_grid(spheres, triangles, request, note);
+        grid = build_grid({spheres, triangles, rings, cylinders}, request, note);
     }
 
     Kernel kernel(bool with_grid) const {
@@ -41,9 +43,12 @@ struct GridScene {
         k.materials = materials;
         k.spheres = spheres;
         k.triangles = triangles;
+        k.rings = rings;
+        k.cylinders = cylinders;
         k.grid_cell_starts = grid.cell_starts;
         k.grid_refs = grid.refs;
         k.params.counts = uvec4(std::uint32_t(spheres.size()), std::uint32_t(triangles.size()), 0u, 1u);
+        k.params.more_counts = uvec4(std::uint32_t(rings.size()), std::uint32_t(cylinders.size()), 0u, 0u);
         k.params.limits.x = 0xFFFFFFFFu;
         k.params.grid_min = vec4(vec3(grid.lo), 0.0f);
         k.params.grid_max = vec4(vec3(grid.hi), 0.0f);
@@ -64,7 +69,9 @@ kernel::Triangle triangle(vec3 a, vec3 b, vec3 c, std::uint32_t id) {
     return t;
 }
 
-// Spheres and triangles of mixed sizes in [-10, 10]^3, some spanning many cells.
+// Spheres and triangles of mixed sizes in [-10, 10]^3, some spanning many cells, and
+// a quarter as many rings and cylinders (half of them capped) as spheres and
+// triangles together, each kind.
 GridScene random_scene(std::uint32_t seed, int spheres, int triangles) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> pos(-10.0f, 10.0f);
@@ -81,6 +88,17 @@ GridScene random_scene(std::uint32_t seed, int spheres, int triangles) {
         const vec3 b = a + size * vec3(unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f);
         const vec3 c = a + size * vec3(unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f);
         s.triangles.push_back(triangle(a, b, c, id++));
+    }
+    for (int i = 0; i < (spheres + triangles) / 4; ++i) {
+        const float big = unit(rng) < 0.05f ? 6.0f : 1.0f;
+        const float outer = big * (0.5f * unit(rng) + 0.05f);
+        const vec3 n = glm::normalize(vec3(unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f) + vec3(0, 0, 1e-3f));
+        s.rings.push_back(kernel::Ring{vec4(pos(rng), pos(rng), pos(rng), i % 3 == 0 ? 0.0f : 0.5f * outer),
+                                       vec4(n, outer), uvec4(id++, 0u, 0u, 0u)});
+        const vec3 base(pos(rng), pos(rng), pos(rng));
+        const vec3 top = base + big * 2.0f * vec3(unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f + 1e-3f);
+        s.cylinders.push_back(kernel::Cylinder{vec4(base, big * (0.3f * unit(rng) + 0.02f)),
+                                               vec4(top, i % 2 == 0 ? 1.0f : 0.0f), uvec4(id++, 0u, 0u, 0u)});
     }
     s.materials.resize(id);
     return s;
@@ -148,6 +166,18 @@ TEST(GridTraversal, HundredThousandRandomRaysMatchBruteForce) {
         case 3:  // starting on a cell boundary plane
             origin.x = float(s.grid.lo.x + s.grid.cell.x * double(i % s.grid.resolution[0]));
             break;
+        case 4: {  // at a cylinder's rim or a ring's outer edge
+            const std::size_t k = std::size_t(i) % s.cylinders.size();
+            const kernel::Cylinder& c = s.cylinders[k];
+            const vec3 along = glm::normalize(vec3(c.top_capped) - vec3(c.base_radius));
+            const vec3 across = glm::normalize(glm::cross(along, vec3(0.3f, 1.0f, 0.1f)));
+            const kernel::Ring& r = s.rings[k % s.rings.size()];
+            const vec3 in_plane = glm::normalize(glm::cross(vec3(r.normal_outer), vec3(0.3f, 1.0f, 0.1f)));
+            const vec3 target = i % 2 == 0 ? vec3(c.top_capped) + c.base_radius.w * across
+                                           : vec3(r.center_inner) + r.normal_outer.w * in_plane;
+            dir = target - origin;
+            break;
+        }
         default: break;
         }
         const float len = glm::length(dir);
@@ -237,13 +267,22 @@ void expect_random_rays_match(GridScene& s, vec3 eye, float spread, int count, s
     Kernel grid = s.kernel(true);
     Kernel brute = s.kernel(false);
     std::mt19937 rng(seed);
-    std::uniform_int_distribution<std::size_t> pick(0, s.spheres.size() + s.triangles.size() - 1);
+    const std::size_t kinds[] = {s.spheres.size(), s.triangles.size(), s.rings.size(), s.cylinders.size()};
+    std::uniform_int_distribution<std::size_t> pick(0, kinds[0] + kinds[1] + kinds[2] + kinds[3] - 1);
     std::normal_distribution<float> gauss;
     int failures = 0;
     for (int i = 0; i < count && failures < 10; ++i) {
-        const std::size_t k = pick(rng);
-        const vec3 target = k < s.spheres.size() ? vec3(s.spheres[k].center_radius)
-                                                 : vec3(s.triangles[k - s.spheres.size()].p1);
+        std::size_t k = pick(rng);
+        vec3 target;
+        if (k < kinds[0]) {
+            target = vec3(s.spheres[k].center_radius);
+        } else if ((k -= kinds[0]) < kinds[1]) {
+            target = vec3(s.triangles[k].p1);
+        } else if ((k -= kinds[1]) < kinds[2]) {
+            target = vec3(s.rings[k].center_inner);
+        } else {
+            target = vec3(s.cylinders[k - kinds[2]].top_capped);
+        }
         const vec3 origin = i % 2 == 0 ? eye : target + spread * vec3(gauss(rng), gauss(rng), gauss(rng));
         const vec3 aim = target + 0.5f * spread * vec3(gauss(rng), gauss(rng), gauss(rng));
         const vec3 dir = aim - origin;
@@ -307,6 +346,14 @@ TEST(GridTraversal, AFarEyeAndScenesAtOddScalesAndOffsets) {
             t.p0 = vec4(vec3(t.p0) * scale + offset, 0.0f);
             t.p1 = vec4(vec3(t.p1) * scale + offset, 0.0f);
             t.p2 = vec4(vec3(t.p2) * scale + offset, 0.0f);
+        }
+        for (kernel::Ring& r : s.rings) {
+            r.center_inner = vec4(vec3(r.center_inner) * scale + offset, r.center_inner.w * scale);
+            r.normal_outer.w *= scale;
+        }
+        for (kernel::Cylinder& c : s.cylinders) {
+            c.base_radius = vec4(vec3(c.base_radius) * scale + offset, c.base_radius.w * scale);
+            c.top_capped = vec4(vec3(c.top_capped) * scale + offset, c.top_capped.w);
         }
         const vec3 eye = offset + scale * vec3(3e3f, 1e3f, -2e3f);
         GridRequest request;

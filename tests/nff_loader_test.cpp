@@ -1,7 +1,7 @@
 // The NFF loader (docs/nff.md), in process: a small file checked field by field,
 // every class of malformed line refused with its line number and what was expected,
-// and every SPD scene in ../shared/spd/nff loading with the README's primitive
-// counts, or refused for its cones and cylinders with the documented message.
+// cones and cylinders ('c') in both spellings, and every SPD scene in
+// ../shared/spd/nff loading with the README's primitive counts.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,6 +18,7 @@
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 
+#include "scene/cone_mesh.hpp"
 #include "scene/json_reader.hpp"
 #include "scene/load_scene.hpp"
 #include "scene/polygon.hpp"
@@ -265,6 +266,110 @@ TEST(PolygonTest, ConvexityIgnoresCollinearAndRepeatedVertices) {
     EXPECT_EQ(split.degenerate, 0u);
 }
 
+// ---- cones and cylinders ('c') -----------------------------------------------------
+
+TEST_F(NffTest, EqualRadiiMakeAnOpenCylinderInEitherSpelling) {
+    // The SPD files' one line of 8 numbers, and the README's 'c' then two lines.
+    const Scene s = load(kView + "f 1 1 1 1 0 10 0 1\nc 1 2 3 0.5 1 5 3 0.5\nc\n0 0 0 2\n0 0 -4 2\n");
+    ASSERT_EQ(s.cylinders.size(), 2u);
+    EXPECT_TRUE(s.triangles.empty());
+    expect_vec(s.cylinders[0].base, {1, 2, 3});
+    expect_vec(s.cylinders[0].top, {1, 5, 3});
+    EXPECT_DOUBLE_EQ(s.cylinders[0].radius, 0.5);
+    EXPECT_FALSE(s.cylinders[0].capped);  // NFF cones and cylinders have open ends
+    EXPECT_EQ(s.cylinders[0].material, 0u);
+    expect_vec(s.cylinders[1].base, {0, 0, 0});
+    expect_vec(s.cylinders[1].top, {0, 0, -4});
+    EXPECT_DOUBLE_EQ(s.cylinders[1].radius, 2);
+}
+
+// Checks a tessellated cone around the y axis from y = 0 (radius r0) to y = h
+// (radius r1): every vertex on its circle, front faces outward, and every vertex
+// normal unit length, outward and perpendicular to the cone's slope.
+void expect_cone_around_y(const std::vector<Triangle>& tris, double r0, double r1, double h) {
+    const double slope = (r1 - r0) / h;  // radius gained per unit of height
+    for (const Triangle& t : tris) {
+        ASSERT_TRUE(t.normals.has_value());
+        dvec3 centroid(0.0);
+        for (int k = 0; k < 3; ++k) {
+            const dvec3& p = t.vertices[k];
+            const double r = std::hypot(p.x, p.z);
+            const double y = p.y;
+            EXPECT_TRUE(std::abs(y) < 1e-12 || std::abs(y - h) < 1e-12) << y;
+            EXPECT_NEAR(r, y < h / 2 ? r0 : r1, 1e-12);
+            const dvec3& n = (*t.normals)[k];
+            EXPECT_NEAR(glm::length(n), 1.0, 1e-12);
+            // Perpendicular to the slope (radial * slope + up): n.radial * slope + n.y = 0.
+            const double nr = std::hypot(n.x, n.z);
+            EXPECT_NEAR(nr * slope + n.y, 0.0, 1e-12);
+            centroid += p / 3.0;
+        }
+        const dvec3 face = glm::cross(t.vertices[1] - t.vertices[0], t.vertices[2] - t.vertices[0]);
+        EXPECT_GT(glm::dot(face, dvec3(centroid.x, 0.0, centroid.z)), 0.0) << "front face turned inward";
+        const dvec3 n0 = (*t.normals)[0];
+        EXPECT_GT(n0.x * centroid.x + n0.z * centroid.z, 0.0) << "normal turned inward";
+    }
+}
+
+TEST_F(NffTest, DifferentRadiiMakeASmoothConeOfTriangles) {
+    // A frustum: radius 2 at the base, 1 at the top, height 3; each side two
+    // triangles. Seen from kView's eye 3 units off at 6 rows, it needs 8 sides.
+    const Scene s = load(kView + "f 1 1 1 1 0 10 0 1\nc 0 0 0 2 0 3 0 1\n");
+    EXPECT_TRUE(s.cylinders.empty());
+    EXPECT_EQ(cone_segments({0, 0, 0}, 2, {0, 3, 0}, 1, s.camera), 8u);
+    ASSERT_EQ(s.triangles.size(), 2 * 8u);
+    expect_cone_around_y(s.triangles, 2.0, 1.0, 3.0);
+    for (const Triangle& t : s.triangles) EXPECT_EQ(t.material, 0u);
+}
+
+TEST_F(NffTest, AConeWithAnApexHasOneTriangleASide) {
+    // Apex radius 0 (the NFF cone), and the reverse: the tip at the base.
+    const Scene s = load(kView + "f 1 1 1 1 0 10 0 1\nc 0 0 0 1.5 0 2 0 0\n");
+    const std::uint32_t sides = cone_segments({0, 0, 0}, 1.5, {0, 2, 0}, 0, s.camera);
+    ASSERT_EQ(s.triangles.size(), sides);
+    expect_cone_around_y(s.triangles, 1.5, 0.0, 2.0);
+    const Scene tip_down = load(kView + "f 1 1 1 1 0 10 0 1\nc\n0 0 0 0\n0 2 0 1.5\n");
+    ASSERT_EQ(tip_down.triangles.size(), sides);
+    expect_cone_around_y(tip_down.triangles, 0.0, 1.5, 2.0);
+}
+
+TEST(ConeMesh, SidesKeepTheSilhouetteWithinHalfAPixel) {
+    // A camera at the origin looking down -z, 90 degrees over 100 rows: a pixel is
+    // 0.02 units tall at distance 1.
+    vkrt::Camera cam;
+    cam.fov = 90.0;
+    cam.height = 100;
+    const double pixel_at_1 = 2.0 / 100.0;
+    auto gap = [](double r, std::uint32_t n) { return r * (1.0 - std::cos(std::acos(-1.0) / n)); };
+    // Far and thin: the fewest sides.
+    EXPECT_EQ(cone_segments({0, 0, -100}, 0.1, {0, 1, -100}, 0.05, cam), kMinConeSegments);
+    // Near and fat: capped at the most.
+    EXPECT_EQ(cone_segments({0, 0, -2.05}, 2.0, {0, 1, -2.05}, 0.0, cam), kMaxConeSegments);
+    // In between: the fewest that meet the half-pixel bound at the nearest point of
+    // the axis (here the base, 10 away) less the radius: 12.
+    const std::uint32_t n = cone_segments({0, 0, -10}, 2.0, {0, 0, -20}, 1.0, cam);
+    const double pixel = (10.0 - 2.0) * pixel_at_1;
+    EXPECT_EQ(n, 12u);
+    EXPECT_LE(gap(2.0, n), 0.5 * pixel);
+    EXPECT_GT(gap(2.0, n - 1), 0.5 * pixel);
+    // The nearest point of a long cone seen from its side is in its middle, not at an end.
+    EXPECT_EQ(cone_segments({-50, 0, -10}, 2.0, {50, 0, -10}, 1.5, cam), n);
+}
+
+TEST(ConeMesh, AnyAxisGivesTheSameConeTurned) {
+    // Along -x from (1, 1, 1): every vertex at its radius from the axis, on the end planes.
+    const std::vector<Triangle> tris = tessellate_cone({1, 1, 1}, 0.5, {-3, 1, 1}, 0.25, 7u, 5);
+    ASSERT_EQ(tris.size(), 10u);
+    for (const Triangle& t : tris) {
+        EXPECT_EQ(t.material, 7u);
+        for (const dvec3& p : t.vertices) {
+            const double r = std::hypot(p.y - 1.0, p.z - 1.0);
+            EXPECT_TRUE(std::abs(p.x - 1.0) < 1e-12 || std::abs(p.x + 3.0) < 1e-12);
+            EXPECT_NEAR(r, p.x > -1.0 ? 0.5 : 0.25, 1e-12);
+        }
+    }
+}
+
 // ---- malformed files ---------------------------------------------------------------
 
 struct BadNff {
@@ -317,8 +422,26 @@ std::vector<BadNff> bad_cases() {
          "expected 6 numbers on vertex line 2 of the 'pp' at line 9 (x y z nx ny nz), got 3"},
         {"pp_zero_normal", after_view("pp 3\n0 0 0 0 0 1\n1 0 0 0 0 0\n0 1 0 0 0 1\n"), 11,
          "'pp' vertex 2 normal: expected a non-zero vector, got [0, 0, 0]"},
-        {"cone", after_view("c 0 0 0 1 0 1 0 1\n"), 9, "cones and cylinders (c) are not supported yet"},
-        {"cone_two_line_form", after_view("c\n0 0 0 1\n0 1 0 1\n"), 9, "cones and cylinders (c) are not supported yet"},
+        {"cone_seven_numbers", after_view("c 0 0 0 1 0 1 0\n"), 9,
+         "expected 8 numbers after 'c' (base x y z r0 apex x y z r1), or none and then two lines x y z r, got 7"},
+        {"cone_word", after_view("c 0 0 0 1 0 one 0 1\n"), 9, "'c' apex y: expected a number, got 'one'"},
+        {"cone_negative_radius", after_view("c 0 0 0 -1 0 1 0 1\n"), 9,
+         "'c' base radius: expected a number >= 0, got -1"},
+        {"cone_radii_zero", after_view("c 0 0 0 0 0 1 0 0\n"), 9,
+         "'c': the base and apex radii are both 0, so it has no surface"},
+        {"cone_no_axis", after_view("c 1 2 3 1 1 2 3 0.5\n"), 9,
+         "'c': the base [1, 2, 3] and apex [1, 2, 3] are the same point (in single precision), so it has no axis"},
+        {"cone_two_line_short", after_view("c\n0 0 0 1\n0 1 0\n"), 11,
+         "expected 4 numbers on line 2 of 2 of the 'c' at line 9 (x y z radius), got 3"},
+        {"cone_two_line_truncated", after_view("c\n0 0 0 1\n"), 9,
+         "the file ends after 1 of the 2 lines (x y z radius) of this 'c'"},
+        {"cone_two_line_interrupted", after_view("c\n0 0 0 1\ns 0 0 0 1\n"), 11,
+         "expected line 2 of 2 (x y z radius) of the 'c' at line 9, got a 's' line"},
+        {"cone_two_line_negative", after_view("c\n0 0 0 1\n0 1 0 -2\n"), 11,
+         "'c' apex radius: expected a number >= 0, got -2"},
+        {"cone_before_surface", kView + "c 0 0 0 1 0 1 0 1\n", 8,
+         "'c' comes before any 'f' line, so it has no material (an 'f' line sets the material of the objects after "
+         "it)"},
         {"unknown_entity", after_view("t 1 2 3\n"), 9, "unknown entity 't' (expected one of: v, b, l, f, s, p, pp, c)"},
         {"light_four_numbers", after_view("l 1 2 3 4\n"), 9, "expected 3 or 6 numbers after 'l' (x y z [r g b]), got 4"},
         {"light_negative_colour", after_view("l 1 2 3 1 -1 1\n"), 9, "'l' g: expected a number >= 0, got -1"},
@@ -414,33 +537,41 @@ TEST_F(NffTest, ProgramFailsWithOneErrorLine) {
 // ---- the Standard Procedural Databases -------------------------------------------
 
 struct SpdExpectation {
-    int cone_line = 0;  // > 0: refused there for its cones and cylinders
     std::size_t spheres = 0;
     std::size_t triangles = 0;
-    std::size_t smooth_triangles = 0;  // of triangles, from 'pp'
+    std::size_t smooth_triangles = 0;  // of triangles, from 'pp' and cones
+    std::size_t cylinders = 0;
     std::size_t lights = 0;
+    std::uint32_t resolution = 512;
+    double fov = 45.0;
 };
 
 // Counts from shared/spd/README.md: one triangle per 'p 3' or 'pp 3', two per
 // quadrilateral, n - 2 per n-gon (gears: 9,217 quadrilaterals and 128 faces of 144
-// vertices, 9,345 polygons).
+// vertices, 9,345 polygons); a cylinder per 'c' of equal radii; 2 smooth triangles
+// per side of a cone frustum (tree's 4,095 cones all have two non-zero radii; 4,068
+// of them get 6 sides, the 27 nearest the eye 7 to 15: 49,292 triangles).
 const std::map<std::string, SpdExpectation>& spd_expectations() {
     static const std::map<std::string, SpdExpectation> e{
         {"balls", {.spheres = 7381, .triangles = 2, .lights = 3}},
         {"gears", {.triangles = 9217 * 2 + 128 * 142, .lights = 5}},
-        {"jacks", {.cone_line = 11}},
-        {"lattice", {.cone_line = 18}},
+        {"jacks", {.spheres = 6, .cylinders = 3, .lights = 1, .resolution = 256, .fov = 25.0}},
+        {"lattice", {.spheres = 2197, .cylinders = 6084, .lights = 6, .fov = 60.0}},
         {"mount", {.spheres = 4, .triangles = 8192, .lights = 1}},
-        {"rings", {.cone_line = 19}},
+        {"rings", {.spheres = 4200, .triangles = 2, .cylinders = 4200, .lights = 3}},
         {"shells", {.spheres = 5761, .lights = 1}},
         {"teapot", {.triangles = 2256 + 36 * 2, .smooth_triangles = 2256, .lights = 2}},
         {"tetra", {.triangles = 4096, .lights = 1}},
-        {"tree", {.cone_line = 23}},
+        {"tree",
+         {.spheres = 4095,
+          .triangles = 2 + 49292,
+          .smooth_triangles = 49292,
+          .lights = 7}},
     };
     return e;
 }
 
-TEST(SpdTest, EveryFileLoadsOrIsRefusedForItsCones) {
+TEST(SpdTest, EveryFileLoadsWithThePublishedCounts) {
     // CI has the shared directory, so its absence is a failure, not a skip.
     const fs::path dir = test::source_dir() / ".." / "shared" / "spd" / "nff";
     ASSERT_TRUE(fs::is_directory(dir)) << "missing SPD scenes: " << dir;
@@ -453,26 +584,18 @@ TEST(SpdTest, EveryFileLoadsOrIsRefusedForItsCones) {
         const auto it = spd_expectations().find(name);
         ASSERT_NE(it, spd_expectations().end()) << "an SPD file this test does not know: " << entry.path();
         const SpdExpectation& want = it->second;
-        if (want.cone_line > 0) {
-            try {
-                vkrt::load_scene(entry.path());
-                ADD_FAILURE() << "loaded despite its cones";
-            } catch (const SceneError& e) {
-                EXPECT_EQ(std::string(e.what()), fmt::format("{}:{}: cones and cylinders (c) are not supported yet",
-                                                             entry.path().string(), want.cone_line));
-            }
-            continue;
-        }
         const Scene s = vkrt::load_scene(entry.path());
         EXPECT_EQ(s.spheres.size(), want.spheres);
         EXPECT_EQ(s.triangles.size(), want.triangles);
         EXPECT_EQ(std::count_if(s.triangles.begin(), s.triangles.end(),
                                 [](const vkrt::Triangle& t) { return t.normals.has_value(); }),
                   static_cast<std::ptrdiff_t>(want.smooth_triangles));
+        EXPECT_EQ(s.cylinders.size(), want.cylinders);
+        EXPECT_TRUE(s.rings.empty());
         EXPECT_EQ(s.lights.size(), want.lights);
-        EXPECT_EQ(s.camera.width, 512u);
-        EXPECT_EQ(s.camera.height, 512u);
-        EXPECT_DOUBLE_EQ(s.camera.fov, 45.0);
+        EXPECT_EQ(s.camera.width, want.resolution);
+        EXPECT_EQ(s.camera.height, want.resolution);
+        EXPECT_DOUBLE_EQ(s.camera.fov, want.fov);
         const double spd = std::sqrt(double(want.lights)) / (2.0 * double(want.lights));
         for (const auto& light : s.lights) EXPECT_DOUBLE_EQ(light.intensity, spd);
     }

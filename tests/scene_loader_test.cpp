@@ -544,7 +544,7 @@ TEST_F(SceneLoaderTest, UnknownMaterial) {
 
 TEST_F(SceneLoaderTest, UnknownTypes) {
     expect_error(Parts{.objects = R"([{"type": "cube", "material": "chalk"}])"},
-                 {": objects[0].type: unknown object type 'cube' (expected one of: sphere, triangle, quad, mesh, random_spheres, torus_knot)"});
+                 {": objects[0].type: unknown object type 'cube' (expected one of: sphere, triangle, quad, ring, cylinder, mesh, random_spheres, torus_knot)"});
     expect_error(Parts{.lights = R"([{"type": "spot", "position": [0, 0, 0]}])"},
                  {": lights[0].type: unknown light type 'spot'"});
 }
@@ -561,6 +561,78 @@ TEST_F(SceneLoaderTest, DegenerateGeometry) {
     expect_error(Parts{.objects = R"([{"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]],
                                    "normals": [[0, 0, 1], [0, 0, 0], [0, 0, 1]], "material": "chalk"}])"},
                  {": objects[0].normals[1]: expected a non-zero vector"});
+}
+
+// ---- rings and cylinders ------------------------------------------------------------
+
+TEST_F(SceneLoaderTest, RingValuesDefaultsAndNormalizedNormal) {
+    const Scene s = load(Parts{.objects = R"([
+        {"type": "ring", "center": [1, 2, 3], "normal": [0, 3, 4], "inner": 0.5, "outer": 2, "material": "glass"},
+        {"type": "ring", "center": [0, 0, 0], "normal": [0, 0, -7], "outer": 1, "material": "chalk"}])"}
+                             .text());
+    ASSERT_EQ(s.rings.size(), 2u);
+    expect_vec(s.rings[0].center, {1, 2, 3});
+    expect_vec(s.rings[0].normal, {0, 0.6, 0.8});  // normalized by the loader
+    EXPECT_DOUBLE_EQ(s.rings[0].inner, 0.5);
+    EXPECT_DOUBLE_EQ(s.rings[0].outer, 2.0);
+    EXPECT_EQ(s.rings[0].material, 1u);
+    expect_vec(s.rings[1].normal, {0, 0, -1});
+    EXPECT_DOUBLE_EQ(s.rings[1].inner, 0.0);  // default: a disc
+    EXPECT_EQ(s.rings[1].material, 0u);
+}
+
+TEST_F(SceneLoaderTest, CylinderValuesAndDefaults) {
+    const Scene s = load(Parts{.objects = R"([
+        {"type": "cylinder", "base": [1, 2, 3], "top": [1, 5, 3], "radius": 0.25, "capped": true, "material": "glass"},
+        {"type": "cylinder", "base": [0, 0, 0], "top": [-1, 0, 0], "radius": 2, "material": "chalk"}])"}
+                             .text());
+    ASSERT_EQ(s.cylinders.size(), 2u);
+    expect_vec(s.cylinders[0].base, {1, 2, 3});
+    expect_vec(s.cylinders[0].top, {1, 5, 3});
+    EXPECT_DOUBLE_EQ(s.cylinders[0].radius, 0.25);
+    EXPECT_TRUE(s.cylinders[0].capped);
+    EXPECT_EQ(s.cylinders[0].material, 1u);
+    expect_vec(s.cylinders[1].top, {-1, 0, 0});
+    EXPECT_FALSE(s.cylinders[1].capped);  // default: open
+}
+
+TEST_F(SceneLoaderTest, BadRingsAndCylinders) {
+    auto ring = [](const std::string& fields) {
+        return Parts{.objects = R"([{"type": "ring", "material": "chalk", )" + fields + "}]"}.text();
+    };
+    auto cylinder = [](const std::string& fields) {
+        return Parts{.objects = R"([{"type": "cylinder", "material": "chalk", )" + fields + "}]"}.text();
+    };
+    expect_error(ring(R"("normal": [0, 1, 0], "outer": 1)"), {": objects[0].center: required field is missing"});
+    expect_error(ring(R"("center": [0, 0, 0], "outer": 1)"), {": objects[0].normal: required field is missing"});
+    expect_error(ring(R"("center": [0, 0, 0], "normal": [0, 1, 0])"), {": objects[0].outer: required field is missing"});
+    expect_error(ring(R"("center": [0, 0, 0], "normal": [0, 0, 0], "outer": 1)"),
+                 {": objects[0].normal: expected a non-zero vector, got [0, 0, 0]"});
+    expect_error(ring(R"("center": [0, 0, 0], "normal": [0, 1, 0], "outer": 0)"),
+                 {": objects[0].outer: expected a number > 0, got 0"});
+    expect_error(ring(R"("center": [0, 0, 0], "normal": [0, 1, 0], "inner": -0.5, "outer": 1)"),
+                 {": objects[0].inner: expected a number >= 0, got -0.5"});
+    expect_error(ring(R"("center": [0, 0, 0], "normal": [0, 1, 0], "inner": 2, "outer": 1)"),
+                 {": objects[0].inner: expected inner < outer, got inner 2 and outer 1"});
+    expect_error(ring(R"("center": [0, 0, 0], "normal": [0, 1, 0], "inner": 1, "outer": 1)"),
+                 {": objects[0].inner: expected inner < outer, got inner 1 and outer 1"});
+    expect_error(ring(R"("center": [0, 0, 0], "normal": [0, 1, 0], "outer": 1, "radius": 1)"),
+                 {": objects[0]: unknown field 'radius' (expected one of: center, normal, inner, outer, material, type)"});
+
+    expect_error(cylinder(R"("top": [0, 1, 0], "radius": 1)"), {": objects[0].base: required field is missing"});
+    expect_error(cylinder(R"("base": [0, 0, 0], "radius": 1)"), {": objects[0].top: required field is missing"});
+    expect_error(cylinder(R"("base": [0, 0, 0], "top": [0, 1, 0])"), {": objects[0].radius: required field is missing"});
+    expect_error(cylinder(R"("base": [0, 0, 0], "top": [0, 1, 0], "radius": -1)"),
+                 {": objects[0].radius: expected a number > 0, got -1"});
+    expect_error(cylinder(R"("base": [1, 2, 3], "top": [1, 2, 3], "radius": 1)"),
+                 {": objects[0].top: top must differ from base (both are [1, 2, 3])"});
+    expect_error(cylinder(R"("base": [1000000, 0, 0], "top": [1000000.001, 0, 0], "radius": 1)"),
+                 {": objects[0].top: top [1000000.001, 0, 0] and base [1000000, 0, 0] round to the same "
+                  "single-precision point, so the cylinder has no axis"});
+    expect_error(cylinder(R"("base": [0, 0, 0], "top": [0, 1, 0], "radius": 1, "capped": 1)"),
+                 {": objects[0].capped: expected true or false, got a number (1)"});
+    expect_error(cylinder(R"("base": [0, 0, 0], "top": [0, 1, 0], "radius": 1, "caps": true)"),
+                 {": objects[0]: unknown field 'caps' (expected one of: base, top, radius, capped, material, type)"});
 }
 
 // ---- not supported yet ------------------------------------------------------------

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <stdexcept>
 
@@ -104,6 +105,45 @@ Aabb bounds(const kernel::Triangle& t) {
     return finite_or_throw({glm::min(a, glm::min(b, c)), glm::max(a, glm::max(b, c))}, "triangle");
 }
 
+namespace {
+
+// The half-extents of a disc of `radius` perpendicular to `normal` (any length; a
+// zero normal, which the loaders refuse, gets the box of the sphere around the disc).
+dvec3 disc_extent(const dvec3& normal, double radius) {
+    const double len2 = glm::dot(normal, normal);
+    if (!(len2 > 0.0)) return dvec3(radius);
+    dvec3 e;
+    for (int a = 0; a < 3; ++a) e[a] = radius * std::sqrt(std::max(0.0, 1.0 - normal[a] * normal[a] / len2));
+    return e;
+}
+
+// glm::min and max drop a NaN operand, so primitives built from them check their
+// input first.
+void require_finite(std::initializer_list<kernel::vec4> values, const char* kind) {
+    for (const kernel::vec4& v : values) {
+        if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z) || !std::isfinite(v.w)) {
+            throw std::invalid_argument(fmt::format("grid: a {} has a non-finite coordinate", kind));
+        }
+    }
+}
+
+}  // namespace
+
+Aabb bounds(const kernel::Ring& r) {
+    require_finite({r.center_inner, r.normal_outer}, "ring");
+    const dvec3 c = to_dvec3(r.center_inner);
+    const dvec3 e = disc_extent(to_dvec3(r.normal_outer), r.normal_outer.w);
+    return finite_or_throw({c - e, c + e}, "ring");
+}
+
+Aabb bounds(const kernel::Cylinder& cyl) {
+    require_finite({cyl.base_radius, cyl.top_capped}, "cylinder");
+    const dvec3 b = to_dvec3(cyl.base_radius);
+    const dvec3 t = to_dvec3(cyl.top_capped);
+    const dvec3 e = disc_extent(t - b, cyl.base_radius.w);
+    return finite_or_throw({glm::min(b, t) - e, glm::max(b, t) + e}, "cylinder");
+}
+
 GridResolution grid_resolution(const Aabb& box, std::size_t primitives, double density, std::uint64_t max_cells) {
     const dvec3 extent = box.hi - box.lo;
     const double largest = std::max({extent.x, extent.y, extent.z});
@@ -153,20 +193,29 @@ std::array<GridResolution, 2> Grid::cells_overlapping(const Aabb& box) const {
     return range;
 }
 
-Grid build_grid(std::span<const kernel::Sphere> spheres, std::span<const kernel::Triangle> triangles,
-                const GridRequest& request, std::string& note) {
+Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, std::string& note) {
     std::vector<Aabb> boxes;
     std::vector<std::uint32_t> ids;
-    boxes.reserve(spheres.size() + triangles.size());
+    boxes.reserve(primitives.spheres.size() + primitives.triangles.size() + primitives.rings.size() +
+                  primitives.cylinders.size());
     ids.reserve(boxes.capacity());
-    for (std::size_t i = 0; i < spheres.size(); ++i) {
-        boxes.push_back(bounds(spheres[i]));
-        ids.push_back((kernel::REF_SPHERE << kernel::REF_KIND_SHIFT) | std::uint32_t(i));
-    }
-    for (std::size_t i = 0; i < triangles.size(); ++i) {
-        boxes.push_back(bounds(triangles[i]));
-        ids.push_back((kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | std::uint32_t(i));
-    }
+    // Kind by kind, in the kernel's loop order: the placement pass below keeps this
+    // order within every cell, so each cell's references come grouped by kind.
+    auto add_kind = [&](const auto& items, std::uint32_t kind, const char* name) {
+        if (items.size() > std::size_t(kernel::REF_INDEX_MASK) + 1) {
+            throw std::runtime_error(fmt::format("the grid holds at most {} {} (a reference's index bits), the "
+                                                 "scene has {}",
+                                                 std::size_t(kernel::REF_INDEX_MASK) + 1, name, items.size()));
+        }
+        for (std::size_t i = 0; i < items.size(); ++i) {
+            boxes.push_back(bounds(items[i]));
+            ids.push_back((kind << kernel::REF_KIND_SHIFT) | std::uint32_t(i));
+        }
+    };
+    add_kind(primitives.spheres, kernel::REF_SPHERE, "spheres");
+    add_kind(primitives.triangles, kernel::REF_TRIANGLE, "triangles");
+    add_kind(primitives.rings, kernel::REF_RING, "rings");
+    add_kind(primitives.cylinders, kernel::REF_CYLINDER, "cylinders");
 
     Grid g;
     if (boxes.empty()) {

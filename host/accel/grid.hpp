@@ -65,6 +65,11 @@ GridResolution grid_resolution(const Aabb& box, std::size_t primitives, double d
 // The bounding box of a primitive as the kernel sees it (float data).
 Aabb bounds(const kernel::Sphere& s);
 Aabb bounds(const kernel::Triangle& t);
+// A ring's box is its outer disc's: on axis a the disc reaches outer * sqrt(1 - n_a^2)
+// from the centre, n the unit normal.
+Aabb bounds(const kernel::Ring& r);
+// A cylinder lies within the convex hull of its two end discs, so its box is theirs.
+Aabb bounds(const kernel::Cylinder& c);
 
 struct GridRequest {
     GridResolution resolution{0, 0, 0};  // zeros: by the heuristic
@@ -75,9 +80,21 @@ struct GridRequest {
     std::optional<glm::dvec3> eye;
 };
 
-// Builds the grid over every sphere and triangle. A resolution that would not fit
-// the device is reduced until it does; `note` then says so.
-Grid build_grid(std::span<const kernel::Sphere> spheres, std::span<const kernel::Triangle> triangles,
-                const GridRequest& request, std::string& note);
+// What the grid is built over: one span per primitive kind, the kinds the kernel's
+// references name (REF_SPHERE, ...). Kinds left out are empty.
+struct GridPrimitives {
+    std::span<const kernel::Sphere> spheres;
+    std::span<const kernel::Triangle> triangles;
+    std::span<const kernel::Ring> rings;
+    std::span<const kernel::Cylinder> cylinders;
+};
+
+// Builds the grid over every primitive. Within each cell the references are grouped
+// by kind, in the order spheres, triangles, rings, cylinders, each kind in index
+// order: the kernel walks a cell in one loop per kind (shaders/kernel/scene.glsl). A
+// resolution that would not fit the device is reduced until it does; `note` then
+// says so. More than 2^29 primitives of one kind (the reference's index bits) is an
+// error.
+Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, std::string& note);
 
 }  // namespace vkrt

@@ -70,7 +70,7 @@ struct Cell {
     std::vector<RenderStats> with_shadows;
 };
 
-std::uint64_t primitive_count(const Scene& s) { return s.spheres.size() + s.triangles.size(); }
+std::uint64_t primitive_count(const Scene& s) { return s.primitive_count(); }
 
 // The view of the full-size image, shrunk so that brute force stays within
 // kBrutePixelPrimitives.

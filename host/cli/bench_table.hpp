@@ -14,7 +14,7 @@ namespace vkrt::cli {
 // One (scene, backend, accel) measurement: medians over the runs.
 struct BenchRow {
     std::string scene;
-    std::uint64_t primitives = 0;  // spheres + triangles
+    std::uint64_t primitives = 0;  // spheres + triangles + rings + cylinders
     std::string backend;           // "vulkan" or "cpu"
     std::string accel;             // "grid" or "brute"
     std::uint32_t width = 0;

@@ -76,6 +76,12 @@ void check_counts(const SceneGpu& scene) {
     if (scene.features.has(Feature::HAS_POINT_LIGHTS) && p.counts.z > scene.lights.size()) {
         fail("point lights", p.counts.z, scene.lights.size());
     }
+    if (scene.features.has(Feature::HAS_RINGS) && p.more_counts.x > scene.rings.size()) {
+        fail("rings", p.more_counts.x, scene.rings.size());
+    }
+    if (scene.features.has(Feature::HAS_CYLINDERS) && p.more_counts.y > scene.cylinders.size()) {
+        fail("cylinders", p.more_counts.y, scene.cylinders.size());
+    }
     if (p.counts.w > scene.materials.size()) {
         fail("materials", p.counts.w, scene.materials.size());
     }
@@ -141,13 +147,16 @@ RenderResult VulkanBackend::render(const SceneGpu& scene, SampleRange samples,
     const std::optional<VulkanBuffer> lights = array_buffer(context_, "lights", scene.lights);
     const std::optional<VulkanBuffer> cell_starts = array_buffer(context_, "grid cell starts", scene.grid_cell_starts);
     const std::optional<VulkanBuffer> refs = array_buffer(context_, "grid refs", scene.grid_refs);
+    const std::optional<VulkanBuffer> rings = array_buffer(context_, "rings", scene.rings);
+    const std::optional<VulkanBuffer> cylinders = array_buffer(context_, "cylinders", scene.cylinders);
     VulkanBuffer accum(context_, "accum", pixels * sizeof(glm::vec4), kSumsUsage);
     VulkanBuffer counters(context_, "counters", pixels * sizeof(kernel::Counters), kSumsUsage);
 
     auto or_dummy = [&](const std::optional<VulkanBuffer>& b) { return b ? &*b : &dummy; };
     const std::vector<BufferView> views = write_descriptors(context_.device(), pipeline.set,
                       {&params, or_dummy(materials), or_dummy(spheres), or_dummy(triangles),
-                       or_dummy(lights), &accum, &counters, or_dummy(cell_starts), or_dummy(refs)});
+                       or_dummy(lights), &accum, &counters, or_dummy(cell_starts), or_dummy(refs),
+                       or_dummy(rings), or_dummy(cylinders)});
     context_.submit_and_wait([&](VkCommandBuffer cmd) {
         vkCmdFillBuffer(cmd, accum.get(), 0, VK_WHOLE_SIZE, 0);
         vkCmdFillBuffer(cmd, counters.get(), 0, VK_WHOLE_SIZE, 0);

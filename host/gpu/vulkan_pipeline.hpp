@@ -14,8 +14,8 @@ class VulkanBuffer;
 
 // Binding numbers of shaders/render.comp.
 enum Binding : std::uint32_t {
-    kParams, kMaterials, kSpheres, kTriangles, kLights, kAccum, kCounters, kGridCellStarts, kGridRefs,
-    kBindingCount
+    kParams, kMaterials, kSpheres, kTriangles, kLights, kAccum, kCounters, kGridCellStarts, kGridRefs, kRings,
+    kCylinders, kBindingCount
 };
 constexpr std::uint32_t kLocalSize = 8;   // local_size_x and _y of render.comp
 constexpr std::uint32_t kPushBytes = 16;  // uvec4 pass

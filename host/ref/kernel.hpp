@@ -27,12 +27,16 @@ struct Kernel {
     std::span<const PointLight> lights;
     std::span<const uint> grid_cell_starts;
     std::span<const uint> grid_refs;
+    std::span<const Ring> rings;
+    std::span<const Cylinder> cylinders;
 
     // The accessors the kernel reads the scene through (render.comp has the GLSL ones).
     Material load_material(uint i) const { return materials[i]; }
     Sphere load_sphere(uint i) const { return spheres[i]; }
     Triangle load_triangle(uint i) const { return triangles[i]; }
     PointLight load_light(uint i) const { return lights[i]; }
+    Ring load_ring(uint i) const { return rings[i]; }
+    Cylinder load_cylinder(uint i) const { return cylinders[i]; }
     uint load_cell_start(uint i) const { return grid_cell_starts[i]; }
     uint load_ref(uint i) const { return grid_refs[i]; }
 

@@ -35,6 +35,8 @@ kernel::Kernel make_kernel(const SceneGpu& scene) {
     k.lights = scene.lights;
     k.grid_cell_starts = scene.grid_cell_starts;
     k.grid_refs = scene.grid_refs;
+    k.rings = scene.rings;
+    k.cylinders = scene.cylinders;
     return k;
 }
 

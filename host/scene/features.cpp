@@ -46,12 +46,14 @@ std::vector<std::string> FeatureSet::left_out() const {
 FeatureSet analyze_features(const Scene& scene) {
     FeatureSet f;
     const bool has_lights = !scene.lights.empty();
-    const bool has_geometry = !scene.spheres.empty() || !scene.triangles.empty();
+    const bool has_geometry = scene.primitive_count() != 0;
 
     // Only materials that some primitive uses can ask for shading code.
     std::vector<bool> used(scene.materials.size(), false);
     for (const auto& s : scene.spheres) used[s.material] = true;
     for (const auto& t : scene.triangles) used[t.material] = true;
+    for (const auto& r : scene.rings) used[r.material] = true;
+    for (const auto& c : scene.cylinders) used[c.material] = true;
     bool specular = false;
     bool emission = false;
     bool reflection = false;
@@ -67,6 +69,8 @@ FeatureSet analyze_features(const Scene& scene) {
 
     f.set(Feature::HAS_SPHERES, !scene.spheres.empty());
     f.set(Feature::HAS_TRIANGLES, !scene.triangles.empty());
+    f.set(Feature::HAS_RINGS, !scene.rings.empty());
+    f.set(Feature::HAS_CYLINDERS, !scene.cylinders.empty());
     f.set(Feature::HAS_SMOOTH_NORMALS,
           std::any_of(scene.triangles.begin(), scene.triangles.end(),
                       [](const Triangle& t) { return t.normals.has_value(); }));

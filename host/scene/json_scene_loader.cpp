@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
 
 #include "scene/generators.hpp"
 #include "scene/json_reader.hpp"
@@ -214,6 +215,46 @@ Triangle read_triangle(const Node& n, const MaterialIndex& materials) {
     return t;
 }
 
+Ring read_ring(const Node& n, const MaterialIndex& materials) {
+    n.allow_only({"center", "normal", "inner", "outer", "material", "type"});
+    Ring r;
+    r.center = n.required("center").vec3();
+    const Node normal = n.required("normal");
+    r.normal = normal.vec3();
+    if (!is_nonzero(r.normal)) normal.fail("expected a non-zero vector, got [0, 0, 0]");
+    // Normalized here: the kernel's ring test and bounds take it as unit length.
+    r.normal = robust_normalize(r.normal);
+    if (auto inner = n.find("inner")) r.inner = inner->number_at_least(0.0);
+    r.outer = n.required("outer").number_above(0.0);
+    if (!(r.inner < r.outer)) {
+        n.fail_field("inner", fmt::format("expected inner < outer, got inner {} and outer {}", r.inner, r.outer));
+    }
+    r.material = material_of(n, materials);
+    return r;
+}
+
+Cylinder read_cylinder(const Node& n, const MaterialIndex& materials) {
+    n.allow_only({"base", "top", "radius", "capped", "material", "type"});
+    Cylinder c;
+    c.base = n.required("base").vec3();
+    const Node top = n.required("top");
+    c.top = top.vec3();
+    if (!is_nonzero(c.top - c.base)) {
+        top.fail(fmt::format("top must differ from base (both are {})", json::format_vec3(c.base)));
+    }
+    // The kernel gets floats: ends that round to one point would leave no axis.
+    const glm::vec3 base_f(c.base), top_f(c.top);
+    if (base_f == top_f) {
+        top.fail(fmt::format("top {} and base {} round to the same single-precision point, so the cylinder has "
+                             "no axis",
+                             json::format_vec3(c.top), json::format_vec3(c.base)));
+    }
+    c.radius = n.required("radius").number_above(0.0);
+    if (auto capped = n.find("capped")) c.capped = capped->boolean();
+    c.material = material_of(n, materials);
+    return c;
+}
+
 // A quad is two triangles sharing the diagonal corner -> corner+e1+e2, both wound
 // so that their front face is the side of cross(edge1, edge2).
 void read_quad(const Node& n, const MaterialIndex& materials, std::vector<Triangle>& out) {
@@ -239,6 +280,10 @@ void read_objects(const Node& n, const MaterialIndex& materials, Scene& scene) {
             scene.spheres.push_back(read_sphere(object, materials));
         } else if (t == "triangle") {
             scene.triangles.push_back(read_triangle(object, materials));
+        } else if (t == "ring") {
+            scene.rings.push_back(read_ring(object, materials));
+        } else if (t == "cylinder") {
+            scene.cylinders.push_back(read_cylinder(object, materials));
         } else if (t == "quad") {
             read_quad(object, materials, scene.triangles);
         } else if (t == "mesh") {
@@ -248,8 +293,8 @@ void read_objects(const Node& n, const MaterialIndex& materials, Scene& scene) {
         } else if (t == "torus_knot") {
             read_torus_knot(object, lookup, scene);
         } else {
-            type.fail(fmt::format("unknown object type {} (expected one of: sphere, triangle, quad, mesh, "
-                                  "random_spheres, torus_knot)",
+            type.fail(fmt::format("unknown object type {} (expected one of: sphere, triangle, quad, ring, "
+                                  "cylinder, mesh, random_spheres, torus_knot)",
                                   json::quote_user(t)));
         }
     }

@@ -20,7 +20,9 @@
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
 
+#include "scene/cone_mesh.hpp"
 #include "scene/json_reader.hpp"  // the JSON loader's magnitude limit and spelling of values
 #include "scene/limits.hpp"
 #include "scene/polygon.hpp"
@@ -442,11 +444,67 @@ private:
         }
     }
 
-    // Cones and cylinders arrive with a later issue, which reads them here into a
-    // list of their own. The README gives 'c' with two lines "x y z r" after it;
-    // the SPD files write all 8 numbers on the 'c' line itself: both are NFF.
-    [[noreturn]] void read_cone(const Line& l) const {
-        fail(l.number, "cones and cylinders (c) are not supported yet");
+    // 'c': a cone or cylinder between two points, open at both ends. The SPD files
+    // write all 8 numbers on the 'c' line (base x y z r0 apex x y z r1); the README
+    // gives 'c' alone, then two lines "x y z r": both are NFF. Equal radii make an
+    // open cylinder (exact in the kernel); different ones a cone of triangles
+    // (host/scene/cone_mesh.hpp).
+    void read_cone(const Line& l) {
+        std::array<Line, 2> ends;
+        std::array<std::size_t, 2> first{};  // where each end's numbers start in its line
+        if (l.fields.size() == 9) {
+            ends = {l, l};
+            first = {1, 5};
+        } else if (l.fields.size() == 1) {
+            for (std::size_t e = 0; e < 2; ++e) {
+                if (!lines_.next(ends[e])) {
+                    fail(l.number, fmt::format("the file ends after {} of the 2 lines (x y z radius) of this 'c'", e));
+                }
+                if (is_keyword(ends[e].fields[0])) {
+                    fail(ends[e].number, fmt::format("expected line {} of 2 (x y z radius) of the 'c' at line {}, got "
+                                                     "a '{}' line",
+                                                     e + 1, l.number, ends[e].fields[0]));
+                }
+                if (ends[e].fields.size() != 4) {
+                    fail(ends[e].number, fmt::format("expected 4 numbers on line {} of 2 of the 'c' at line {} "
+                                                     "(x y z radius), got {}",
+                                                     e + 1, l.number, ends[e].fields.size()));
+                }
+            }
+        } else {
+            fail(l.number, fmt::format("expected 8 numbers after 'c' (base x y z r0 apex x y z r1), or none and "
+                                       "then two lines x y z r, got {}",
+                                       l.fields.size() - 1));
+        }
+        constexpr std::array<std::string_view, 2> names{"base", "apex"};
+        std::array<dvec3, 2> centre;
+        std::array<double, 2> radius{};
+        for (std::size_t e = 0; e < 2; ++e) {
+            const std::string what = fmt::format("'c' {}", names[e]);
+            centre[e] = vec3(ends[e], first[e], what);
+            radius[e] = at_least(ends[e], first[e] + 3, what + " radius", 0.0);
+        }
+        if (radius[0] == 0.0 && radius[1] == 0.0) {
+            fail(l.number, "'c': the base and apex radii are both 0, so it has no surface");
+        }
+        if (glm::vec3(centre[0]) == glm::vec3(centre[1])) {
+            fail(l.number, fmt::format("'c': the base {} and apex {} are the same point (in single precision), so it "
+                                       "has no axis",
+                                       json::format_vec3(centre[0]), json::format_vec3(centre[1])));
+        }
+        const std::uint32_t material = material_for(l);
+        if (radius[0] == radius[1]) {
+            scene_.cylinders.push_back(Cylinder{centre[0], centre[1], radius[0], false, material});
+        } else {
+            // Sides enough for the file's own view; a 'c' before the view block (NFF
+            // puts the view first) gets the most.
+            const std::uint32_t segments =
+                view_line_ != 0 ? cone_segments(centre[0], radius[0], centre[1], radius[1], scene_.camera)
+                                : kMaxConeSegments;
+            const std::vector<Triangle> cone =
+                tessellate_cone(centre[0], radius[0], centre[1], radius[1], material, segments);
+            scene_.triangles.insert(scene_.triangles.end(), cone.begin(), cone.end());
+        }
     }
 
     // ---- after the last line ------------------------------------------------------

@@ -3,6 +3,7 @@
 // reads (DESIGN.md principle 2). Values stay in double here; they become float only
 // when host/scene/scene_gpu.cpp flattens them for a backend.
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -87,6 +88,27 @@ struct Triangle {
     std::uint32_t material = 0;
 };
 
+// An annulus: the points of the plane through `center` perpendicular to `normal`
+// whose distance from the centre lies in [inner, outer]; inner 0 is a disc. Its
+// front face is the side `normal` points to.
+struct Ring {
+    dvec3 center{0.0};
+    dvec3 normal{0.0, 1.0, 0.0};  // unit length (the loaders normalize it)
+    double inner = 0.0;           // 0 <= inner < outer
+    double outer = 1.0;
+    std::uint32_t material = 0;
+};
+
+// A cylinder of `radius` around the segment base -> top, open or closed by two
+// discs (`capped`). Its front face is the outside.
+struct Cylinder {
+    dvec3 base{0.0};
+    dvec3 top{0.0, 1.0, 0.0};  // differs from base
+    double radius = 1.0;
+    bool capped = false;
+    std::uint32_t material = 0;
+};
+
 struct Scene {
     std::filesystem::path source;  // the file it came from, for messages
     Camera camera;
@@ -95,9 +117,16 @@ struct Scene {
     std::vector<PointLight> lights;
     std::vector<Sphere> spheres;
     std::vector<Triangle> triangles;
+    std::vector<Ring> rings;
+    std::vector<Cylinder> cylinders;
     // What the loader accepted but the renderer will not show as the file means it
     // (e.g. an NFF mirror before mirrors exist); printed as warnings before rendering.
     std::vector<std::string> warnings;
+
+    // Primitives of every kind: what the grid holds and the kernel tests.
+    std::size_t primitive_count() const {
+        return spheres.size() + triangles.size() + rings.size() + cylinders.size();
+    }
 };
 
 }  // namespace vkrt

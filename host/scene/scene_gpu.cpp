@@ -96,7 +96,7 @@ void add_grid(const Scene& scene, const AccelPolicy& policy, SceneGpu& g) {
     request.max_entries = policy.max_buffer_entries;
     request.eye = scene.camera.eye;
     std::string note;
-    Grid grid = build_grid(g.spheres, g.triangles, request, note);
+    Grid grid = build_grid({g.spheres, g.triangles, g.rings, g.cylinders}, request, note);
     kernel::Params& p = g.params;
     p.grid_min = to_vec4(grid.lo);
     p.grid_max = to_vec4(grid.hi);
@@ -125,6 +125,8 @@ std::vector<BufferSize> SceneGpu::built_buffers() const {
     add("spheres", bytes(spheres));
     add("triangles", bytes(triangles));
     add("point_lights", bytes(lights));
+    add("rings", bytes(rings));
+    add("cylinders", bytes(cylinders));
     add("grid_cell_starts", bytes(grid_cell_starts));
     add("grid_refs", bytes(grid_refs));
     return out;
@@ -147,7 +149,7 @@ SceneGpu build_scene_gpu(const Scene& scene, const AccelPolicy& policy) {
     p.ray_tree = vec4(static_cast<float>(r.min_weight), 0.0f, 0.0f, 0.0f);
 
     // Buffers only the left-out features read are not built (and so not uploaded).
-    const bool any_geometry = !scene.spheres.empty() || !scene.triangles.empty();
+    const bool any_geometry = scene.primitive_count() != 0;
     if (any_geometry) {
         for (const Material& m : scene.materials) g.materials.push_back(flatten(m));
     }
@@ -159,14 +161,28 @@ SceneGpu build_scene_gpu(const Scene& scene, const AccelPolicy& policy) {
     if (g.features.has(Feature::HAS_TRIANGLES)) {
         for (const Triangle& t : scene.triangles) g.triangles.push_back(flatten(t));
     }
+    if (g.features.has(Feature::HAS_RINGS)) {
+        for (const Ring& ring : scene.rings) {
+            g.rings.push_back(kernel::Ring(to_vec4(ring.center, ring.inner), to_vec4(ring.normal, ring.outer),
+                                           uvec4(ring.material, 0u, 0u, 0u)));
+        }
+    }
+    if (g.features.has(Feature::HAS_CYLINDERS)) {
+        for (const Cylinder& c : scene.cylinders) {
+            g.cylinders.push_back(kernel::Cylinder(to_vec4(c.base, c.radius), to_vec4(c.top, c.capped ? 1.0 : 0.0),
+                                                   uvec4(c.material, 0u, 0u, 0u)));
+        }
+    }
     if (g.features.has(Feature::HAS_POINT_LIGHTS)) {
         for (const PointLight& l : scene.lights) {
             g.lights.push_back(kernel::PointLight(to_vec4(l.position), to_vec4(l.color * l.intensity)));
         }
     }
     p.counts = uvec4(g.spheres.size(), g.triangles.size(), g.lights.size(), g.materials.size());
+    p.more_counts = uvec4(g.rings.size(), g.cylinders.size(), 0u, 0u);
 
-    g.grid.used = want_grid(scene, g.spheres.size() + g.triangles.size(), policy, g.grid.reason);
+    g.grid.used = want_grid(scene, g.spheres.size() + g.triangles.size() + g.rings.size() + g.cylinders.size(),
+                            policy, g.grid.reason);
     if (g.grid.used) add_grid(scene, policy, g);
     g.features.set(Feature::HAS_GRID, g.grid.used);
     return g;

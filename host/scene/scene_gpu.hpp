@@ -27,6 +27,8 @@ struct SceneGpu {
     std::vector<kernel::Sphere> spheres;
     std::vector<kernel::Triangle> triangles;
     std::vector<kernel::PointLight> lights;
+    std::vector<kernel::Ring> rings;
+    std::vector<kernel::Cylinder> cylinders;
     std::vector<std::uint32_t> grid_cell_starts;  // empty without the grid
     std::vector<std::uint32_t> grid_refs;
     GridStats grid;

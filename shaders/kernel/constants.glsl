@@ -21,13 +21,22 @@ const uint TREE_DROPPED_STACK = 2u;  // secondary rays not traced: the pending-r
 // most 65,536 samples: 65,000 * 65,536 < 2^32. (Only the cpu backend can lift the
 // budget, for benchmarks at one sample per pixel.)
 
-// A grid cell's primitive reference: the primitive's kind in the top bits, its index
-// into that kind's buffer in the rest.
-const uint REF_KIND_SHIFT = 30u;
+// A grid cell's primitive reference: the primitive's kind in the top 3 bits, its
+// index into that kind's buffer in the low 29 (so at most 2^29 primitives of one
+// kind; host/accel/grid.cpp refuses more). Four kinds are used; REF_NONE is kind 7,
+// which no primitive has, so it cannot be mistaken for a real reference.
+const uint REF_KIND_SHIFT = 29u;
 const uint REF_INDEX_MASK = (1u << REF_KIND_SHIFT) - 1u;
 const uint REF_SPHERE = 0u;
 const uint REF_TRIANGLE = 1u;
-const uint REF_NONE = 0xFFFFFFFFu;  // "no primitive": kind 3, which no primitive has
+const uint REF_RING = 2u;
+const uint REF_CYLINDER = 3u;
+const uint REF_NONE = 0xFFFFFFFFu;  // "no primitive": kind 7, which no primitive has
+
+// The part of a cylinder a ray hit (CylinderHit in intersect.glsl).
+const uint CYLINDER_SIDE = 0u;
+const uint CYLINDER_BASE_CAP = 1u;
+const uint CYLINDER_TOP_CAP = 2u;
 
 // Mesa's lavapipe stops an invocation's loops silently after 65,535 iterations in
 // total (DESIGN.md). The kernel counts its own iterations the way lavapipe does

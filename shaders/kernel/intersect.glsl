@@ -85,3 +85,121 @@ vec3 interpolate_normal(vec3 n0, vec3 n1, vec3 n2, float u, float v, vec3 face_n
     }
     return n / sqrt(len2);
 }
+
+// Nearest t in (t_min, t_max) where the ray meets the ring (annulus) around `center`
+// in the plane perpendicular to `normal`, or INFINITY_T. Both faces are hit; a ray
+// parallel to the plane misses (denominator exactly 0), even one lying in it. The
+// ring is closed: points exactly at the inner or outer radius count. The radius test
+// compares squared distances, so no square root is taken.
+float intersect_ring(Ray ray, vec3 center, vec3 normal, float inner, float outer, float t_min, float t_max) {
+    float denom = dot(normal, ray.dir);
+    if (denom == 0.0f) {
+        return INFINITY_T;
+    }
+    float t = dot(center - ray.origin, normal) / denom;
+    if (!(t > t_min && t < t_max)) {
+        return INFINITY_T;
+    }
+    precise vec3 d = ray.origin + t * ray.dir - center;
+    float d2 = dot(d, d);
+    if (!(d2 >= inner * inner && d2 <= outer * outer)) {
+        return INFINITY_T;
+    }
+    return t;
+}
+
+// Result of a ray-cylinder test: t (INFINITY_T for a miss) and the part hit
+// (CYLINDER_SIDE, CYLINDER_BASE_CAP or CYLINDER_TOP_CAP, constants.glsl).
+struct CylinderHit {
+    float t;
+    uint part;
+};
+
+// Nearest t in (t_min, t_max) where the ray meets the cylinder of `radius` around the
+// segment base -> top: its side, and with `capped` the discs closing its two ends.
+// `dir` must be unit length.
+//
+// In the frame of the axis a (unit), with o = origin - base, the side is where the
+// part of o + t dir across the axis has length radius:
+//   |o_perp + t d_perp|^2 = radius^2,   o_perp = o - (o.a) a,  d_perp = dir - (dir.a) a,
+// a quadratic A t^2 + 2 B t + C = 0 with A = |d_perp|^2, B = o_perp.d_perp,
+// C = |o_perp|^2 - radius^2. As in intersect_sphere, the discriminant B^2 - AC is
+// computed as A (radius^2 - |f|^2), f = o_perp - (B / A) d_perp being the ray's point
+// of closest approach to the axis (seen along it), and the second root as C / q, so
+// neither cancels catastrophically. Both roots are tried, nearest first, each kept only
+// where its height h = o.a + t dir.a lies on the segment, 0 <= h <= |top - base|: so a
+// ray from inside an open cylinder hits the far wall. A ray parallel to the axis (A = 0)
+// never meets the side. A ray tangent to the side (discriminant 0) touches it at the
+// double root; a ray in the plane of an end circle hits the side there (h = 0 or h =
+// |top - base| counts: the segment is closed). Caps are discs (radius included) in the
+// planes h = 0 and h = |top - base|.
+CylinderHit intersect_cylinder(Ray ray, vec3 base, vec3 top, float radius, bool capped, float t_min,
+                               float t_max) {
+    CylinderHit hit = CylinderHit(INFINITY_T, CYLINDER_SIDE);
+    vec3 axis = top - base;
+    float len = length(axis);
+    if (!(len > 0.0f)) {
+        return hit;
+    }
+    axis = axis / len;
+    vec3 o = ray.origin - base;
+    float oa = dot(o, axis);
+    float da = dot(ray.dir, axis);
+    precise vec3 o_perp = o - oa * axis;
+    precise vec3 d_perp = ray.dir - da * axis;
+    float r2 = radius * radius;
+    float a = dot(d_perp, d_perp);
+    float bound = t_max;
+    if (a > 0.0f) {
+        float b = dot(o_perp, d_perp);
+        precise vec3 f = o_perp - (b / a) * d_perp;
+        float disc = r2 - dot(f, f);
+        if (disc >= 0.0f) {
+            float c = dot(o_perp, o_perp) - r2;
+            float root = sqrt(a * disc);
+            float q = b >= 0.0f ? -(b + root) : root - b;
+            float t_a = q / a;
+            float t_b = q != 0.0f ? c / q : 0.0f;
+            float t_near = min(t_a, t_b);
+            float t_far = max(t_a, t_b);
+            float h_near = oa + t_near * da;
+            float h_far = oa + t_far * da;
+            if (t_near > t_min && t_near < t_max && h_near >= 0.0f && h_near <= len) {
+                hit.t = t_near;
+            } else if (t_far > t_min && t_far < t_max && h_far >= 0.0f && h_far <= len) {
+                hit.t = t_far;
+            }
+            bound = min(bound, hit.t);
+        }
+    }
+    if (capped && da != 0.0f) {
+        float t_base = -oa / da;
+        precise vec3 e_base = o_perp + t_base * d_perp;
+        if (t_base > t_min && t_base < bound && dot(e_base, e_base) <= r2) {
+            hit = CylinderHit(t_base, CYLINDER_BASE_CAP);
+            bound = t_base;
+        }
+        float t_top = (len - oa) / da;
+        precise vec3 e_top = o_perp + t_top * d_perp;
+        if (t_top > t_min && t_top < bound && dot(e_top, e_top) <= r2) {
+            hit = CylinderHit(t_top, CYLINDER_TOP_CAP);
+        }
+    }
+    return hit;
+}
+
+// Unit geometric normal of a cylinder at point p of the given part, on its front
+// (outer) side: away from the axis on the side, -axis on the base cap, +axis on the
+// top cap.
+vec3 cylinder_normal(vec3 base, vec3 top, vec3 p, uint part) {
+    vec3 axis = normalize(top - base);
+    if (part == CYLINDER_BASE_CAP) {
+        return -axis;
+    }
+    if (part == CYLINDER_TOP_CAP) {
+        return axis;
+    }
+    vec3 o = p - base;
+    precise vec3 radial = o - dot(o, axis) * axis;
+    return normalize(radial);
+}

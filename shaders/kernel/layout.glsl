@@ -24,6 +24,27 @@ struct Triangle {
     uvec4 meta;
 };
 
+// A ring (annulus) in the plane through `center` perpendicular to `normal`: the points
+// whose distance from the centre lies in [inner, outer] (inner 0: a disc). The normal
+// is unit length (the loader normalizes it) and marks the front face. meta.x =
+// material index.
+struct Ring {
+    vec4 center_inner;  // xyz centre, w inner radius
+    vec4 normal_outer;  // xyz unit normal (front side), w outer radius
+    uvec4 meta;
+};
+
+// A cylinder around the segment from `base` to `top`: the side, and with capped != 0
+// the two end discs. The ends are stored rather than an axis and a length, so the host
+// bounds it from the very floats the kernel intersects, and the kernel derives the unit
+// axis per test (one square root). The outside is the front face. meta.x = material
+// index.
+struct Cylinder {
+    vec4 base_radius;  // xyz centre of the base disc, w radius
+    vec4 top_capped;   // xyz centre of the top disc, w = 1 capped, 0 open
+    uvec4 meta;
+};
+
 // Material fields as in the scene file (docs/scene-format.md).
 struct Material {
     vec4 diffuse_kd;         // rgb diffuse colour, w = kd
@@ -62,6 +83,8 @@ struct Params {
     vec4 grid_cell;      // xyz cell size, w unused
     vec4 grid_inv_cell;  // xyz 1 / cell size, w unused
     uvec4 grid_res;      // xyz cells per axis, w unused
+    // Counts of the primitive kinds that came after `counts` was full.
+    uvec4 more_counts;   // x rings, y cylinders, z/w unused
     // The reflection/refraction tree (sample.glsl): x the weight below which a
     // secondary ray is dropped (0: never), yzw unused.
     vec4 ray_tree;

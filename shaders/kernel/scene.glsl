@@ -7,14 +7,17 @@
 // Each loop tests one kind of primitive only. SIMD hardware runs both sides of a
 // branch whose condition differs between lanes (lavapipe does so for every branch),
 // so a loop over mixed kinds would pay for a sphere test and a triangle test on
-// every iteration. The grid therefore lists each cell's spheres before its
-// triangles (host/accel/grid.cpp) and the kernel walks them in two loops.
+// every iteration. The grid therefore lists each cell's primitives grouped by kind,
+// spheres, triangles, rings, cylinders (host/accel/grid.cpp), and the kernel walks
+// them in one loop per kind, each stopping at the first reference of another kind.
+// A kind the scene lacks is compiled out with its HAS_ feature.
 
 // The nearest hit so far: the primitive's reference and its distance.
 struct Nearest {
     float t;          // the bound for further tests: t_max until something is hit
     uint ref;         // REF_NONE until something is hit
     TriangleHit tri;  // barycentrics, when ref is a triangle
+    uint part;        // CYLINDER_SIDE, _BASE_CAP or _TOP_CAP, when ref is a cylinder
 };
 
 void test_sphere(Ray ray, uint index, INOUT(Nearest) nearest) {
@@ -38,7 +41,31 @@ void test_triangle(Ray ray, uint index, INOUT(Nearest) nearest) {
     }
 }
 
-// Tests the primitives listed for one grid cell: its spheres, then its triangles.
+void test_ring(Ray ray, uint index, INOUT(Nearest) nearest) {
+    g_intersection_tests += 1u;
+    Ring r = load_ring(index);
+    float t = intersect_ring(ray, vec3(r.center_inner), vec3(r.normal_outer), r.center_inner.w,
+                             r.normal_outer.w, 0.0f, nearest.t);
+    if (t < nearest.t) {
+        nearest.t = t;
+        nearest.ref = (REF_RING << REF_KIND_SHIFT) | index;
+    }
+}
+
+void test_cylinder(Ray ray, uint index, INOUT(Nearest) nearest) {
+    g_intersection_tests += 1u;
+    Cylinder c = load_cylinder(index);
+    CylinderHit ch = intersect_cylinder(ray, vec3(c.base_radius), vec3(c.top_capped), c.base_radius.w,
+                                        c.top_capped.w != 0.0f, 0.0f, nearest.t);
+    if (ch.t < nearest.t) {
+        nearest.t = ch.t;
+        nearest.ref = (REF_CYLINDER << REF_KIND_SHIFT) | index;
+        nearest.part = ch.part;
+    }
+}
+
+// Tests the primitives listed for one grid cell: its spheres, triangles, rings and
+// cylinders, in that order, each loop ending at the first reference of another kind.
 // False means "stop the walk": the loop budget ran out, or `any_hit` is set and
 // something was hit.
 bool test_cell(Ray ray, uint cell, bool any_hit, INOUT(Nearest) nearest) {
@@ -64,10 +91,46 @@ bool test_cell(Ray ray, uint cell, bool any_hit, INOUT(Nearest) nearest) {
     if (HAS_TRIANGLES) {
         loop_enter();
         for (; i < end; ++i) {
+            uint ref = load_ref(i);
+            if ((ref >> REF_KIND_SHIFT) != REF_TRIANGLE) {
+                break;
+            }
             if (!loop_tick()) {
                 return false;
             }
-            test_triangle(ray, load_ref(i) & REF_INDEX_MASK, nearest);
+            test_triangle(ray, ref & REF_INDEX_MASK, nearest);
+            if (any_hit && nearest.ref != REF_NONE) {
+                return false;
+            }
+        }
+    }
+    if (HAS_RINGS) {
+        loop_enter();
+        for (; i < end; ++i) {
+            uint ref = load_ref(i);
+            if ((ref >> REF_KIND_SHIFT) != REF_RING) {
+                break;
+            }
+            if (!loop_tick()) {
+                return false;
+            }
+            test_ring(ray, ref & REF_INDEX_MASK, nearest);
+            if (any_hit && nearest.ref != REF_NONE) {
+                return false;
+            }
+        }
+    }
+    if (HAS_CYLINDERS) {
+        loop_enter();
+        for (; i < end; ++i) {
+            uint ref = load_ref(i);
+            if ((ref >> REF_KIND_SHIFT) != REF_CYLINDER) {
+                break;
+            }
+            if (!loop_tick()) {
+                return false;
+            }
+            test_cylinder(ray, ref & REF_INDEX_MASK, nearest);
             if (any_hit && nearest.ref != REF_NONE) {
                 return false;
             }
@@ -125,10 +188,34 @@ void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
             }
         }
     }
+    if (HAS_RINGS) {
+        loop_enter();
+        for (uint i = 0u; i < params.more_counts.x; ++i) {
+            if (!loop_tick()) {
+                return;
+            }
+            test_ring(ray, i, nearest);
+            if (any_hit && nearest.ref != REF_NONE) {
+                return;
+            }
+        }
+    }
+    if (HAS_CYLINDERS) {
+        loop_enter();
+        for (uint i = 0u; i < params.more_counts.y; ++i) {
+            if (!loop_tick()) {
+                return;
+            }
+            test_cylinder(ray, i, nearest);
+            if (any_hit && nearest.ref != REF_NONE) {
+                return;
+            }
+        }
+    }
 }
 
 Nearest trace(Ray ray, float t_max, bool any_hit) {
-    Nearest nearest = Nearest(t_max, REF_NONE, TriangleHit(INFINITY_T, 0.0f, 0.0f));
+    Nearest nearest = Nearest(t_max, REF_NONE, TriangleHit(INFINITY_T, 0.0f, 0.0f), CYLINDER_SIDE);
     if (HAS_GRID) {
         grid_trace(ray, any_hit, nearest);
     } else {
@@ -161,13 +248,40 @@ Hit triangle_hit(Ray ray, uint index, TriangleHit th) {
     return Hit(th.t, s, g, tri.meta.x, front);
 }
 
+// Rings and cylinders have no shading normals of their own: both normals are the
+// geometric one, turned toward the ray; the front face is the ring's given normal
+// side and the cylinder's outside. An open cylinder seen from within is its back face.
+Hit ring_hit(Ray ray, uint index, float t) {
+    Ring r = load_ring(index);
+    vec3 n = vec3(r.normal_outer);
+    bool front = dot(n, ray.dir) < 0.0f;
+    vec3 facing = front ? n : -n;
+    return Hit(t, facing, facing, r.meta.x, front);
+}
+
+Hit cylinder_hit(Ray ray, uint index, float t, uint part) {
+    Cylinder c = load_cylinder(index);
+    precise vec3 p = ray.origin + t * ray.dir;
+    vec3 n = cylinder_normal(vec3(c.base_radius), vec3(c.top_capped), p, part);
+    bool front = dot(n, ray.dir) < 0.0f;
+    vec3 facing = front ? n : -n;
+    return Hit(t, facing, facing, c.meta.x, front);
+}
+
 Hit make_hit(Ray ray, Nearest nearest) {
     if (nearest.ref == REF_NONE) {
         return no_hit();
     }
     uint index = nearest.ref & REF_INDEX_MASK;
-    if ((nearest.ref >> REF_KIND_SHIFT) == REF_SPHERE) {
+    uint kind = nearest.ref >> REF_KIND_SHIFT;
+    if (kind == REF_SPHERE) {
         return sphere_hit(ray, index, nearest.t);
+    }
+    if (HAS_RINGS && kind == REF_RING) {
+        return ring_hit(ray, index, nearest.t);
+    }
+    if (HAS_CYLINDERS && kind == REF_CYLINDER) {
+        return cylinder_hit(ray, index, nearest.t, nearest.part);
     }
     return triangle_hit(ray, index, nearest.tri);
 }
