@@ -8,16 +8,22 @@
 namespace vkrt {
 namespace {
 
-constexpr const char* kFeatureIds[] = {
-#define FEATURE(id, name) #name,
+// Indexed by id; nullptr where no feature has that id.
+constexpr std::array<const char*, kFeatureCount> kFeatureIds = [] {
+    std::array<const char*, kFeatureCount> ids{};
+#define FEATURE(id, name) ids[id] = #name;
 #include "kernel/features.glsl"
 #undef FEATURE
-};
+    return ids;
+}();
 
 
 }  // namespace
 
+bool feature_exists(std::uint32_t id) { return id < kFeatureCount && kFeatureIds[id] != nullptr; }
+
 std::string feature_name(std::uint32_t id) {
+    if (!feature_exists(id)) return "unknown_feature_" + std::to_string(id);
     std::string name = kFeatureIds[id];
     if (name.rfind("HAS_", 0) == 0) {
         name.erase(0, 4);
@@ -30,7 +36,7 @@ std::string feature_name(std::uint32_t id) {
 std::vector<std::string> FeatureSet::kept() const {
     std::vector<std::string> names;
     for (std::uint32_t id = 0; id < kFeatureCount; ++id) {
-        if (on_[id]) names.push_back(feature_name(id));
+        if (on_[id] && feature_exists(id)) names.push_back(feature_name(id));
     }
     return names;
 }
@@ -38,7 +44,7 @@ std::vector<std::string> FeatureSet::kept() const {
 std::vector<std::string> FeatureSet::left_out() const {
     std::vector<std::string> names;
     for (std::uint32_t id = 0; id < kFeatureCount; ++id) {
-        if (!on_[id]) names.push_back(feature_name(id));
+        if (!on_[id] && feature_exists(id)) names.push_back(feature_name(id));
     }
     return names;
 }
@@ -66,12 +72,19 @@ FeatureSet analyze_features(const Scene& scene) {
     f.set(Feature::HAS_SMOOTH_NORMALS,
           std::any_of(scene.triangles.begin(), scene.triangles.end(),
                       [](const Triangle& t) { return t.normals.has_value(); }));
+    // Emissive primitives light other surfaces only in local mode (global mode, once
+    // it exists, finds them by its own sampling) and only with light samples to send.
+    const bool area_lights =
+        emission && scene.render.mode == RenderMode::Local && scene.render.light_samples > 0;
+    const bool any_light = has_lights || area_lights;
+
     f.set(Feature::HAS_POINT_LIGHTS, has_lights && has_geometry);
-    f.set(Feature::HAS_SHADOWS, scene.render.shadows && has_lights && has_geometry);
-    f.set(Feature::HAS_SPECULAR, specular && has_lights);
+    f.set(Feature::HAS_SHADOWS, scene.render.shadows && any_light && has_geometry);
+    f.set(Feature::HAS_SPECULAR, specular && any_light);
     f.set(Feature::HAS_AMBIENT, is_nonzero(scene.render.ambient) && has_geometry);
     f.set(Feature::HAS_EMISSION, emission);
     f.set(Feature::HAS_JITTER, scene.render.jitter);
+    f.set(Feature::HAS_AREA_LIGHTS, area_lights);
     return f;
 }
 

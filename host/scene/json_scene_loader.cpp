@@ -88,7 +88,7 @@ GridSettings read_grid(const Node& n) {
 
 RenderSettings read_render(const Node& n) {
     n.allow_only({"mode", "aa", "jitter", "shadows", "max_depth", "ambient", "background", "seed", "spp",
-                  "loop_budget", "grid"});
+                  "loop_budget", "grid", "light_samples"});
     RenderSettings r;
     if (auto mode = n.find("mode")) {
         const std::string m = mode->string();
@@ -106,6 +106,7 @@ RenderSettings read_render(const Node& n) {
     if (auto spp = n.find("spp")) r.spp = whole32(*spp, 1, limits::kMaxSpp);
     if (auto budget = n.find("loop_budget")) r.loop_budget = whole32(*budget, 1, limits::kMaxLoopBudget);
     if (auto grid = n.find("grid")) r.grid = read_grid(*grid);
+    if (auto samples = n.find("light_samples")) r.light_samples = whole32(*samples, 0, limits::kMaxLightSamples);
     return r;
 }
 

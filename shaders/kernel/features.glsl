@@ -15,3 +15,5 @@ FEATURE(6, HAS_AMBIENT)
 FEATURE(7, HAS_EMISSION)
 FEATURE(8, HAS_JITTER)
 FEATURE(9, HAS_GRID)
+// 10 and 11 are taken by rings and cylinders (branch rings).
+FEATURE(12, HAS_AREA_LIGHTS)
