@@ -19,9 +19,11 @@ static_assert(sizeof(Sphere) == 32);
 static_assert(sizeof(Triangle) == 112);
 static_assert(sizeof(Material) == 80);
 static_assert(sizeof(PointLight) == 32);
-static_assert(sizeof(Params) == 224);
+static_assert(sizeof(Emitter) == 32);
+static_assert(sizeof(Params) == 256);
 static_assert(offsetof(Params, image) == 96 && offsetof(Params, limits) == 128);
 static_assert(offsetof(Params, grid_res) == 208);
+static_assert(offsetof(Params, area_lights) == 224 && offsetof(Params, emitter_area) == 240);
 static_assert(sizeof(Counters) == 32);
 
 inline bool operator==(const Counters& a, const Counters& b) { return a.rays == b.rays && a.work == b.work; }

@@ -27,6 +27,8 @@ layout(binding = 5, rgba32f) uniform imageBuffer accum;        // 1 texel per pi
 layout(binding = 6, rgba32ui) uniform uimageBuffer counters;   // 2 texels per pixel (Counters)
 layout(binding = 7) uniform usamplerBuffer grid_cell_starts;    // r32ui, cells + 1 entries
 layout(binding = 8) uniform usamplerBuffer grid_refs;           // r32ui, one per reference
+// Bindings 9 and 10 are the rings' and cylinders' (branch rings).
+layout(binding = 11) uniform usamplerBuffer emitter_texels;     // 2 texels per Emitter
 layout(push_constant) uniform PassBlock { uvec4 pass; };   // x = sample index
 
 // The buffer accessors the kernel calls (host/ref/kernel.hpp has the C++ ones). Fields
@@ -50,6 +52,9 @@ Triangle load_triangle(uint i) {
 }
 PointLight load_light(uint i) {
     return PointLight(fetch_vec4(light_texels, 2u * i), fetch_vec4(light_texels, 2u * i + 1u));
+}
+Emitter load_emitter(uint i) {
+    return Emitter(texelFetch(emitter_texels, int(2u * i)), fetch_vec4(emitter_texels, 2u * i + 1u));
 }
 uint load_cell_start(uint i) { return texelFetch(grid_cell_starts, int(i)).x; }
 uint load_ref(uint i) { return texelFetch(grid_refs, int(i)).x; }

@@ -25,6 +25,7 @@ struct Kernel {
     std::span<const Sphere> spheres;
     std::span<const Triangle> triangles;
     std::span<const PointLight> lights;
+    std::span<const Emitter> emitters;
     std::span<const uint> grid_cell_starts;
     std::span<const uint> grid_refs;
 
@@ -33,6 +34,7 @@ struct Kernel {
     Sphere load_sphere(uint i) const { return spheres[i]; }
     Triangle load_triangle(uint i) const { return triangles[i]; }
     PointLight load_light(uint i) const { return lights[i]; }
+    Emitter load_emitter(uint i) const { return emitters[i]; }
     uint load_cell_start(uint i) const { return grid_cell_starts[i]; }
     uint load_ref(uint i) const { return grid_refs[i]; }
 

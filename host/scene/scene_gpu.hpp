@@ -27,6 +27,7 @@ struct SceneGpu {
     std::vector<kernel::Sphere> spheres;
     std::vector<kernel::Triangle> triangles;
     std::vector<kernel::PointLight> lights;
+    std::vector<kernel::Emitter> emitters;        // empty without HAS_AREA_LIGHTS
     std::vector<std::uint32_t> grid_cell_starts;  // empty without the grid
     std::vector<std::uint32_t> grid_refs;
     GridStats grid;

@@ -18,7 +18,7 @@ SampleResult render_sample(uint px, uint py, uint sample_index) {
     vec3 radiance = vec3(params.background);
     Hit hit = closest_hit(ray, INFINITY_T);
     if (hit.t < INFINITY_T) {
-        radiance = shade_local(ray, hit, shadow_rays);
+        radiance = shade_local(ray, hit, rng, shadow_rays);
     }
     return SampleResult(radiance, shadow_rays, g_cells_visited, g_intersection_tests, budget_exhausted());
 }
