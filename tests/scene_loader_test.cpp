@@ -570,8 +570,11 @@ TEST_F(SceneLoaderTest, LaterFeaturesAreRefusedClearly) {
                  {": materials.glass.transmit: refraction is not supported yet"});
     expect_error(Parts{.render = R"({"mode": "global"})"}, {": render.mode: ", "not supported yet"});
     expect_error(Parts{.render = R"({"mode": "fast"})"}, {": render.mode: unknown mode 'fast'"});
+}
+
+TEST_F(SceneLoaderTest, AreaLightsAreObjectsNotLightEntries) {
     expect_error(Parts{.lights = R"([{"type": "area", "position": [0, 0, 0]}])"},
-                 {": lights[0].type: area lights are not supported yet"});
+                 {": lights[0].type: there is no \"area\" light type", "nonzero \"emission\""});
 }
 
 }  // namespace

@@ -152,7 +152,11 @@ void read_lights(const Node& n, std::vector<PointLight>& out) {
     for (const Node& light : n.elements()) {
         const Node type = light.required("type");
         const std::string t = type.string();
-        if (t == "area") type.fail("area lights are not supported yet");
+        // Area lights are objects, not entries here: say so rather than "unknown".
+        if (t == "area") {
+            type.fail("there is no \"area\" light type: an object whose material has a nonzero \"emission\" "
+                      "is an area light");
+        }
         if (t != "point") type.fail(fmt::format("unknown light type {} (expected one of: point)", json::quote_user(t)));
         light.allow_only({"type", "position", "color", "intensity"});
         PointLight p;
