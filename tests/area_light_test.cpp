@@ -215,6 +215,17 @@ TEST(AreaLight, AQuadFacingAwayLightsNothing) {
     }
 }
 
+// A surface that reflects nothing sends no light samples: a black emitting sphere
+// facing a second lamp shows its own emission and costs no shadow ray.
+TEST(AreaLight, ABlackSurfaceSendsNoShadowRays) {
+    Scene s = floor_scene(2.0);
+    s.spheres.push_back(Sphere{{0, 1, 0}, 0.5, 1});
+    add_lamp(s, 3, 0, 1, 1, 3);  // above and beside the sphere's top, facing down
+    const Estimate e = probe(s, {0, 1.5, 0}, {0, 4, 0.5});
+    EXPECT_EQ(e.mean, 2.0);
+    EXPECT_EQ(e.stats.shadow_rays, 0u);
+}
+
 // (d) Soft shadows. A 1 x 1 lamp at height 2 over a blocker strip at height 1 that
 // covers x in [-0.5, 0.5] (and all z that matter): the floor at x = 0 sees none of
 // the lamp (umbra), at x = 2.5 all of it, and at x = 1 exactly the part x > 0 of it,

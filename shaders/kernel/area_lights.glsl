@@ -24,6 +24,15 @@ vec3 shade_area_lights(Ray ray, Hit hit, Material m, INOUT(Rng) rng, INOUT(uint)
     vec3 shadow_origin = offset_ray_origin(p, hit.geo_normal);
     vec3 to_eye = -ray.dir;
     vec3 diffuse = vec3(m.diffuse_kd) * m.diffuse_kd.w;
+    // A surface that reflects nothing (a lamp is often black) gets nothing from any
+    // light: spare it the shadow rays. Colours are >= 0, so a zero sum means all zero.
+    float reflects = diffuse.x + diffuse.y + diffuse.z;
+    if (HAS_SPECULAR) {
+        reflects += (m.specular_ks.x + m.specular_ks.y + m.specular_ks.z) * m.specular_ks.w;
+    }
+    if (!(reflects > 0.0f)) {
+        return vec3(0.0f);
+    }
     uint samples = params.area_lights.y;
     vec3 sum = vec3(0.0f);
     loop_enter();
