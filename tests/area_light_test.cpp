@@ -20,6 +20,7 @@
 
 #include "gpu/vulkan_backend.hpp"
 #include "image/compare.hpp"
+#include "ref/kernel.hpp"
 #include "ref/ref_backend.hpp"
 #include "scene/scene_gpu.hpp"
 #include "test_support.hpp"
@@ -338,6 +339,98 @@ TEST(AreaLight, SplitSamplesDrawTheSameLightSamples) {
             ASSERT_NEAR(first.accum[p][c] + rest.accum[p][c], whole.accum[p][c], 1e-5f * (1.0f + whole.accum[p][c]));
         }
     }
+}
+
+// ------------------------------------------------------- sampling in the kernel
+
+// A reference kernel over the emitter list the host builds for `s`.
+struct EmitterKernel {
+    SceneGpu gpu;
+    kernel::Kernel k;
+    explicit EmitterKernel(const Scene& s) : gpu(build_scene_gpu(s)) {
+        k.params = gpu.params;
+        k.materials = gpu.materials;
+        k.spheres = gpu.spheres;
+        k.triangles = gpu.triangles;
+        k.emitters = gpu.emitters;
+    }
+};
+
+TEST(EmitterSampling, PickFollowsTheCumulativeFractions) {
+    Scene s = floor_scene(1.0);
+    add_lamp(s, 0, 0, 1, 1, 2);                      // two triangles of area 1/2
+    s.spheres.push_back(Sphere{{0, 1, 0}, std::sqrt(1.0 / (4.0 * kPi)), 1});  // area 1
+    EmitterKernel e(s);
+    ASSERT_EQ(e.gpu.emitters.size(), 3u);  // fractions 1/2, 3/4, 1
+    EXPECT_EQ(e.k.pick_emitter(0.0f), 0u);
+    EXPECT_EQ(e.k.pick_emitter(0.4999f), 0u);
+    EXPECT_EQ(e.k.pick_emitter(0.5f), 1u);
+    EXPECT_EQ(e.k.pick_emitter(0.7499f), 1u);
+    EXPECT_EQ(e.k.pick_emitter(0.75f), 2u);
+    EXPECT_EQ(e.k.pick_emitter(1.0f - 0x1p-24f), 2u);  // the largest number rng_next returns
+}
+
+// Three numbers per light sample, whatever is picked: the stream stays in step.
+TEST(EmitterSampling, EveryDrawTakesThreeNumbers) {
+    Scene s = floor_scene(1.0);
+    add_lamp(s, 0, 0, 1, 1, 2);
+    s.spheres.push_back(Sphere{{0, 1, 0}, 0.3, 1});
+    EmitterKernel e(s);
+    auto rng = e.k.rng_start(5, 7, 11);
+    for (uint32_t i = 1; i <= 100; ++i) {
+        e.k.sample_emitters(rng);
+        ASSERT_EQ(rng.dim, 3 * i);
+    }
+}
+
+// Points on a triangle lie in it and are uniform: their mean is the centroid, and
+// the share in the sub-triangle cut off at half height is a quarter of them.
+TEST(EmitterSampling, TrianglePointsAreUniformByArea) {
+    Scene s = floor_scene(1.0);
+    const std::array<dvec3, 3> v{dvec3{0, 2, 0}, dvec3{4, 2, 0}, dvec3{1, 2, 3}};
+    s.triangles.push_back(Triangle{v, std::nullopt, 1});  // faces down
+    EmitterKernel e(s);
+    const int n = 40000;
+    dvec3 sum{0.0};
+    int near_apex = 0;
+    for (int i = 0; i < n; ++i) {
+        auto rng = e.k.rng_start(uint32_t(i), 0, 1);
+        const auto p = e.k.sample_emitters(rng);
+        ASSERT_EQ(p.normal, kernel::vec3(0, -1, 0));
+        ASSERT_EQ(p.emission, kernel::vec3(1.0f));
+        ASSERT_FLOAT_EQ(p.position.y, 2.0f);
+        // Inside: z >= 0 and on the inner side of both slanted edges.
+        ASSERT_GE(p.position.z, 0.0f);
+        ASSERT_GE(3.0 * p.position.x - p.position.z, -1e-5);
+        ASSERT_GE(-3.0 * (p.position.x - 4.0) - 3.0 * p.position.z, -1e-5);
+        sum += dvec3(p.position);
+        near_apex += p.position.z > 1.5f ? 1 : 0;
+    }
+    const dvec3 mean = sum / double(n);
+    // Standard deviations of a uniform triangle's coordinates are below 1; 5 sigma.
+    EXPECT_NEAR(mean.x, 5.0 / 3.0, 5.0 / std::sqrt(double(n)));
+    EXPECT_NEAR(mean.z, 1.0, 5.0 / std::sqrt(double(n)));
+    EXPECT_NEAR(near_apex / double(n), 0.25, 5.0 * std::sqrt(0.25 * 0.75 / n));
+}
+
+// Points on a sphere lie on it, with the outward normal, and are uniform: every
+// octant gets an eighth.
+TEST(EmitterSampling, SpherePointsAreUniformOverTheSurface) {
+    Scene s = floor_scene(1.0);
+    const dvec3 c{1, 2, 3};
+    s.spheres.push_back(Sphere{c, 0.5, 1});
+    EmitterKernel e(s);
+    const int n = 40000;
+    std::array<int, 8> octants{};
+    for (int i = 0; i < n; ++i) {
+        auto rng = e.k.rng_start(uint32_t(i), 3, 1);
+        const auto p = e.k.sample_emitters(rng);
+        const dvec3 d = dvec3(p.position) - c;
+        ASSERT_NEAR(glm::length(d), 0.5, 1e-6);
+        ASSERT_NEAR(glm::length(dvec3(p.normal) - d / 0.5), 0.0, 1e-5);
+        ++octants[(d.x > 0 ? 1 : 0) + (d.y > 0 ? 2 : 0) + (d.z > 0 ? 4 : 0)];
+    }
+    for (int count : octants) EXPECT_NEAR(count / double(n), 0.125, 5.0 * std::sqrt(0.125 * 0.875 / n));
 }
 
 // ------------------------------------------------------------ the emitter list
