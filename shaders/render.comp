@@ -29,6 +29,7 @@ layout(binding = 7) uniform usamplerBuffer grid_cell_starts;    // r32ui, cells 
 layout(binding = 8) uniform usamplerBuffer grid_refs;           // r32ui, one per reference
 layout(binding = 9) uniform usamplerBuffer ring_texels;         // 3 texels per Ring
 layout(binding = 10) uniform usamplerBuffer cylinder_texels;    // 3 texels per Cylinder
+layout(binding = 11) uniform usamplerBuffer emitter_texels;     // 2 texels per Emitter
 layout(push_constant) uniform PassBlock { uvec4 pass; };   // x = sample index
 
 // The buffer accessors the kernel calls (host/ref/kernel.hpp has the C++ ones). Fields
@@ -61,6 +62,9 @@ Cylinder load_cylinder(uint i) {
     uint b = 3u * i;
     return Cylinder(fetch_vec4(cylinder_texels, b), fetch_vec4(cylinder_texels, b + 1u),
                     texelFetch(cylinder_texels, int(b + 2u)));
+}
+Emitter load_emitter(uint i) {
+    return Emitter(texelFetch(emitter_texels, int(2u * i)), fetch_vec4(emitter_texels, 2u * i + 1u));
 }
 uint load_cell_start(uint i) { return texelFetch(grid_cell_starts, int(i)).x; }
 uint load_ref(uint i) { return texelFetch(grid_refs, int(i)).x; }

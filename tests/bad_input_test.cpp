@@ -43,6 +43,12 @@ std::string camera_with(const std::string& extra) {
     return fmt::format(R"({{"eye": [0, 1, 3], "look_at": [0, 1, 0], {}}})", extra);
 }
 
+// The valid scene with a "render" object.
+std::string scene_with_render(const std::string& render) {
+    return fmt::format(R"({{"camera": {}, "render": {}, "materials": {{"chalk": {{"diffuse": [0.8, 0.8, 0.8]}}}},
+                         "objects": {}}})", kCamera, render, kSphere);
+}
+
 std::string sphere_with_radius(const std::string& radius) {
     return fmt::format(R"([{{"type": "sphere", "center": [0, 1, 0], "radius": {}, "material": "chalk"}}])", radius);
 }
@@ -117,6 +123,12 @@ std::vector<BadInput> cases() {
         {"torus_knot_too_many_triangles",
          scene(kCamera, R"([{"type": "torus_knot", "segments": [100000, 1000], "material": "chalk"}])"),
          {"objects[0].segments", "more than the limit"}},
+        {"light_samples_negative", scene_with_render(R"({"light_samples": -1})"),
+         {"render.light_samples", "whole number in [0, 1024]", "got -1"}},
+        {"light_samples_fractional", scene_with_render(R"({"light_samples": 2.5})"),
+         {"render.light_samples", "whole number", "got 2.5"}},
+        {"light_samples_text", scene_with_render(R"({"light_samples": "many"})"),
+         {"render.light_samples", "expected a whole number"}},
         {"transform_zero_scale",
          scene(kCamera, R"([{"type": "torus_knot", "material": "chalk", "transform": {"scale": [1, 0, 1]}}])"),
          {"objects[0].transform.scale[1]", "non-zero"}},

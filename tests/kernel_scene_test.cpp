@@ -68,6 +68,7 @@ struct TestScene {
     Kernel kernel() const {
         Kernel k;
         k.HAS_GRID = false;
+        k.HAS_AREA_LIGHTS = false;  // no emitter list here
         k.materials = materials;
         k.spheres = spheres;
         k.triangles = triangles;
@@ -404,7 +405,8 @@ TEST(ShadeLocal, OneLightMatchesThePaperFormula) {
     const Kernel::Hit hit = k.closest_hit(s.eye_ray, INFINITY_T);
     ASSERT_EQ(hit.t, 4.0f);
     std::uint32_t shadow_rays = 0;
-    const vec3 color = k.shade_local(s.eye_ray, hit, shadow_rays);
+    Kernel::Rng rng{};  // only area lights draw from it
+    const vec3 color = k.shade_local(s.eye_ray, hit, rng, shadow_rays);
     // By hand: diffuse 0.5 * (0.5, 0.25, 1) * 0.8 = (0.2, 0.1, 0.4), specular
     // 0.25 * (1, 0.5, 0.25) * 0.512 = (0.128, 0.064, 0.032), light (8, 4, 2):
     // (2.624, 0.656, 0.864).
@@ -422,8 +424,9 @@ TEST(ShadeLocal, SpecularAndDiffuseAreSeparateFeatures) {
     k.HAS_SPECULAR = false;
     const Kernel::Hit hit = k.closest_hit(s.eye_ray, INFINITY_T);
     std::uint32_t shadow_rays = 0;
+    Kernel::Rng rng{};  // only area lights draw from it
     // Diffuse only: (0.2, 0.1, 0.4) * (8, 4, 2).
-    expect_near(k.shade_local(s.eye_ray, hit, shadow_rays), glm::dvec3(1.6, 0.4, 0.8));
+    expect_near(k.shade_local(s.eye_ray, hit, rng, shadow_rays), glm::dvec3(1.6, 0.4, 0.8));
 }
 
 TEST(ShadeLocal, AmbientAndEmissionAddToTheLight) {
@@ -434,9 +437,10 @@ TEST(ShadeLocal, AmbientAndEmissionAddToTheLight) {
     const Kernel::Hit hit = k.closest_hit(s.eye_ray, INFINITY_T);
     ASSERT_TRUE(hit.front_face);
     std::uint32_t shadow_rays = 0;
+    Kernel::Rng rng{};  // only area lights draw from it
     // ambient * kd * diffuse = (0.5, 1, 2) * (0.25, 0.125, 0.5).
     const glm::dvec3 want = s.paper() + glm::dvec3(0.5, 0.25, 0.125) + glm::dvec3(0.125, 0.125, 1.0);
-    expect_near(k.shade_local(s.eye_ray, hit, shadow_rays), want);
+    expect_near(k.shade_local(s.eye_ray, hit, rng, shadow_rays), want);
     EXPECT_EQ(shadow_rays, 1u);
 }
 
@@ -448,10 +452,11 @@ TEST(ShadeLocal, EmissionIsSeenFromTheFrontFaceOnly) {
     scene.spheres = {sphere(vec3(0, 0, 0), 2.0f, 0)};
     Kernel k = scene.kernel();
     std::uint32_t shadow_rays = 0;
+    Kernel::Rng rng{};  // only area lights draw from it
     const Kernel::Ray outside = ray(vec3(0, 0, 5), vec3(0, 0, -1));
-    EXPECT_TRUE(same(k.shade_local(outside, k.closest_hit(outside, INFINITY_T), shadow_rays), vec3(1, 2, 3)));
+    EXPECT_TRUE(same(k.shade_local(outside, k.closest_hit(outside, INFINITY_T), rng, shadow_rays), vec3(1, 2, 3)));
     const Kernel::Ray inside = ray(vec3(0, 0, 0), vec3(0, 0, -1));
-    EXPECT_TRUE(same(k.shade_local(inside, k.closest_hit(inside, INFINITY_T), shadow_rays), vec3(0)));
+    EXPECT_TRUE(same(k.shade_local(inside, k.closest_hit(inside, INFINITY_T), rng, shadow_rays), vec3(0)));
     EXPECT_EQ(shadow_rays, 0u);
 }
 
@@ -464,13 +469,14 @@ TEST(ShadeLocal, BlockedLightAddsNothingButCountsItsShadowRay) {
     const Kernel::Hit hit = k.closest_hit(s.eye_ray, INFINITY_T);
     ASSERT_EQ(hit.t, 4.0f);
     std::uint32_t shadow_rays = 0;
-    EXPECT_TRUE(same(k.shade_local(s.eye_ray, hit, shadow_rays), vec3(0)));
+    Kernel::Rng rng{};  // only area lights draw from it
+    EXPECT_TRUE(same(k.shade_local(s.eye_ray, hit, rng, shadow_rays), vec3(0)));
     EXPECT_EQ(shadow_rays, 1u);
 
     // Without shadows the blocker is ignored and no shadow ray is cast.
     k.HAS_SHADOWS = false;
     shadow_rays = 0;
-    expect_near(k.shade_local(s.eye_ray, hit, shadow_rays), s.paper());
+    expect_near(k.shade_local(s.eye_ray, hit, rng, shadow_rays), s.paper());
     EXPECT_EQ(shadow_rays, 0u);
 }
 
@@ -481,7 +487,8 @@ TEST(ShadeLocal, BlockerBeyondTheLightDoesNotShadow) {
     Kernel k = s.kernel();
     const Kernel::Hit hit = k.closest_hit(s.eye_ray, INFINITY_T);
     std::uint32_t shadow_rays = 0;
-    expect_near(k.shade_local(s.eye_ray, hit, shadow_rays), s.paper());
+    Kernel::Rng rng{};  // only area lights draw from it
+    expect_near(k.shade_local(s.eye_ray, hit, rng, shadow_rays), s.paper());
     EXPECT_EQ(shadow_rays, 1u);
 }
 
@@ -497,11 +504,12 @@ TEST(ShadeLocal, LightsBelowTheSurfaceCastNoShadowRay) {
     Kernel k = s.kernel();
     const Kernel::Hit hit = k.closest_hit(s.eye_ray, INFINITY_T);
     std::uint32_t shadow_rays = 0;
-    const vec3 color = k.shade_local(s.eye_ray, hit, shadow_rays);
+    Kernel::Rng rng{};  // only area lights draw from it
+    const vec3 color = k.shade_local(s.eye_ray, hit, rng, shadow_rays);
     EXPECT_EQ(shadow_rays, 2u);
     expect_near(color, 2.0 * s.paper());
     // Shadow rays add up across calls: the counter is the caller's.
-    k.shade_local(s.eye_ray, hit, shadow_rays);
+    k.shade_local(s.eye_ray, hit, rng, shadow_rays);
     EXPECT_EQ(shadow_rays, 4u);
 }
 
@@ -516,7 +524,8 @@ TEST(ShadeLocal, NoHighlightWhenTheMirroredLightPointsAwayFromTheEye) {
     const Kernel::Hit hit = k.closest_hit(eye_ray, INFINITY_T);
     ASSERT_LT(hit.t, INFINITY_T);
     std::uint32_t shadow_rays = 0;
-    const vec3 color = k.shade_local(eye_ray, hit, shadow_rays);
+    Kernel::Rng rng{};  // only area lights draw from it
+    const vec3 color = k.shade_local(eye_ray, hit, rng, shadow_rays);
     EXPECT_EQ(shadow_rays, 1u);
     expect_near(color, glm::dvec3(1.6, 0.4, 0.8));
 }
@@ -572,7 +581,8 @@ TEST(RenderSample, ShadesTheClosestHitOfTheCameraRay) {
     const Kernel::Hit h = k.closest_hit(r, INFINITY_T);
     ASSERT_LT(h.t, INFINITY_T);
     std::uint32_t shadow_rays = 0;
-    EXPECT_TRUE(same(s.radiance, k.shade_local(r, h, shadow_rays)));
+    Kernel::Rng rng{};  // only area lights draw from it
+    EXPECT_TRUE(same(s.radiance, k.shade_local(r, h, rng, shadow_rays)));
     // The light at the eye: cos(theta) = cos(alpha) > 0, so some red must show.
     EXPECT_GT(s.radiance.x, 0.0f);
     EXPECT_GT(s.radiance.x, s.radiance.y);

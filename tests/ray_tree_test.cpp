@@ -199,7 +199,9 @@ TEST(RayTree, APerfectMirrorShowsTheLitPlaneExactly) {
     ASSERT_TRUE(child.q.has_next);
     EXPECT_EQ(child.q.next.weight, vec3(1.0f));
     std::uint32_t shadow_rays = 0;
-    const vec3 ceiling = k.shade_local(child.q.next.ray, k.closest_hit(child.q.next.ray, kernel::INFINITY_T), shadow_rays);
+    Kernel::Rng rng{};  // only area lights draw from it
+    const vec3 ceiling =
+        k.shade_local(child.q.next.ray, k.closest_hit(child.q.next.ray, kernel::INFINITY_T), rng, shadow_rays);
     EXPECT_EQ(r.radiance, ceiling);
     // And that is the Lambert term at the point the optics predicts: the eye ray
     // meets the mirror at the origin and goes on to the ceiling at (0, 2, -6), where
@@ -228,11 +230,12 @@ TEST(RayTree, GlassCastsAnOpaqueShadow) {
     const Kernel::Ray down(vec3(0.0f, 1.0f, 0.0f), vec3(0, -1, 0));
     const Kernel::Hit floor = k.closest_hit(down, kernel::INFINITY_T);
     std::uint32_t shadow_rays = 0;
-    EXPECT_EQ(k.shade_local(down, floor, shadow_rays), vec3(0.0f));
+    Kernel::Rng rng{};  // only area lights draw from it
+    EXPECT_EQ(k.shade_local(down, floor, rng, shadow_rays), vec3(0.0f));
     EXPECT_EQ(shadow_rays, 1u);
     // Beside the ball, lit.
     const Kernel::Ray beside(vec3(2.0f, 1.0f, 0.0f), vec3(0, -1, 0));
-    EXPECT_GT(k.shade_local(beside, k.closest_hit(beside, kernel::INFINITY_T), shadow_rays).x, 0.5f);
+    EXPECT_GT(k.shade_local(beside, k.closest_hit(beside, kernel::INFINITY_T), rng, shadow_rays).x, 0.5f);
 }
 
 // Two parallel mirrors, the eye between them looking at one: the eye ray bounces

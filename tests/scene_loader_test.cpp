@@ -108,7 +108,7 @@ TEST_F(SceneLoaderTest, ReadsEveryFieldOfAFullScene) {
                   "width": 640, "height": 480 },
       "render": { "mode": "local", "aa": 3, "jitter": true, "shadows": false, "max_depth": 7,
                   "min_weight": 0.25, "corners": true, "ambient": [0.1, 0.2, 0.3], "background": [0.4, 0.5, 0.6], "seed": 4294967295,
-                  "spp": 16, "loop_budget": 1000 },
+                  "spp": 16, "loop_budget": 1000, "light_samples": 0 },
       /* zeta comes first in the file, so it is material 0 whatever the alphabet says */
       "materials": {
         "zeta": { "diffuse": [0.8, 0.7, 0.6], "kd": 0.9, "specular": [1, 1, 0.5], "ks": 0.25,
@@ -145,6 +145,7 @@ TEST_F(SceneLoaderTest, ReadsEveryFieldOfAFullScene) {
     EXPECT_EQ(s.render.spp, 16u);
     EXPECT_EQ(s.render.samples_per_pixel(), 16u);
     EXPECT_EQ(s.render.loop_budget, 1000u);
+    EXPECT_EQ(s.render.light_samples, 0u);
 
     ASSERT_EQ(s.materials.size(), 2u);
     const auto& zeta = s.materials[0];
@@ -204,6 +205,7 @@ TEST_F(SceneLoaderTest, FillsDefaults) {
     EXPECT_EQ(s.render.seed, 0u);
     EXPECT_EQ(s.render.spp, 0u);
     EXPECT_EQ(s.render.loop_budget, 0u);
+    EXPECT_EQ(s.render.light_samples, 16u);
 
     ASSERT_EQ(s.materials.size(), 1u);
     const auto& m = s.materials[0];
@@ -495,6 +497,11 @@ TEST_F(SceneLoaderTest, RenderRanges) {
     expect_error(Parts{.render = R"({"spp": 0})"}, {": render.spp: expected a whole number in [1, "});
     expect_error(Parts{.render = R"({"loop_budget": 65001})"},
                  {": render.loop_budget: expected a whole number in [1, 65000], got 65001"});
+    expect_error(Parts{.render = R"({"light_samples": -1})"},
+                 {": render.light_samples: expected a whole number in [0, 1024], got -1"});
+    expect_error(Parts{.render = R"({"light_samples": 1025})"},
+                 {": render.light_samples: expected a whole number in [0, 1024], got 1025"});
+    expect_error(Parts{.render = R"({"light_samples": 1.5})"}, {": render.light_samples: expected a whole number"});
     expect_error(Parts{.render = R"({"seed": -1})"}, {": render.seed: expected a whole number in [0, 4294967295], got -1"});
     expect_error(Parts{.render = R"({"seed": 4294967296})"}, {": render.seed: expected a whole number in [0, 4294967295]"});
     expect_error(Parts{.render = R"({"ambient": [0, -0.5, 0]})"}, {": render.ambient[1]: expected a number >= 0, got -0.5"});
@@ -640,8 +647,11 @@ TEST_F(SceneLoaderTest, BadRingsAndCylinders) {
 TEST_F(SceneLoaderTest, LaterFeaturesAreRefusedClearly) {
     expect_error(Parts{.render = R"({"mode": "global"})"}, {": render.mode: ", "not supported yet"});
     expect_error(Parts{.render = R"({"mode": "fast"})"}, {": render.mode: unknown mode 'fast'"});
+}
+
+TEST_F(SceneLoaderTest, AreaLightsAreObjectsNotLightEntries) {
     expect_error(Parts{.lights = R"([{"type": "area", "position": [0, 0, 0]}])"},
-                 {": lights[0].type: area lights are not supported yet"});
+                 {": lights[0].type: there is no \"area\" light type", "nonzero \"emission\""});
 }
 
 }  // namespace

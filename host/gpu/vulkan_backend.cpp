@@ -82,6 +82,10 @@ void check_counts(const SceneGpu& scene) {
     if (scene.features.has(Feature::HAS_CYLINDERS) && p.more_counts.y > scene.cylinders.size()) {
         fail("cylinders", p.more_counts.y, scene.cylinders.size());
     }
+    if (scene.features.has(Feature::HAS_AREA_LIGHTS) &&
+        (p.area_lights.x == 0 || p.area_lights.x > scene.emitters.size())) {
+        fail("emitters", p.area_lights.x, scene.emitters.size());
+    }
     if (p.counts.w > scene.materials.size()) {
         fail("materials", p.counts.w, scene.materials.size());
     }
@@ -145,6 +149,7 @@ RenderResult VulkanBackend::render(const SceneGpu& scene, SampleRange samples,
     const std::optional<VulkanBuffer> spheres = array_buffer(context_, "spheres", scene.spheres);
     const std::optional<VulkanBuffer> triangles = array_buffer(context_, "triangles", scene.triangles);
     const std::optional<VulkanBuffer> lights = array_buffer(context_, "lights", scene.lights);
+    const std::optional<VulkanBuffer> emitters = array_buffer(context_, "emitters", scene.emitters);
     const std::optional<VulkanBuffer> cell_starts = array_buffer(context_, "grid cell starts", scene.grid_cell_starts);
     const std::optional<VulkanBuffer> refs = array_buffer(context_, "grid refs", scene.grid_refs);
     const std::optional<VulkanBuffer> rings = array_buffer(context_, "rings", scene.rings);
@@ -156,7 +161,7 @@ RenderResult VulkanBackend::render(const SceneGpu& scene, SampleRange samples,
     const std::vector<BufferView> views = write_descriptors(context_.device(), pipeline.set,
                       {&params, or_dummy(materials), or_dummy(spheres), or_dummy(triangles),
                        or_dummy(lights), &accum, &counters, or_dummy(cell_starts), or_dummy(refs),
-                       or_dummy(rings), or_dummy(cylinders)});
+                       or_dummy(rings), or_dummy(cylinders), or_dummy(emitters)});
     context_.submit_and_wait([&](VkCommandBuffer cmd) {
         vkCmdFillBuffer(cmd, accum.get(), 0, VK_WHOLE_SIZE, 0);
         vkCmdFillBuffer(cmd, counters.get(), 0, VK_WHOLE_SIZE, 0);

@@ -12,10 +12,13 @@ namespace vkrt::gpu {
 
 class VulkanBuffer;
 
-// Binding numbers of shaders/render.comp.
+// Binding numbers of shaders/render.comp. The set layout has one binding per number
+// below kBindingCount, so the numbers stay dense: 9 and 10 belong to rings and
+// cylinders (branch rings), which render.comp here does not declare. A layout may
+// hold bindings the shader does not use; they get the dummy buffer.
 enum Binding : std::uint32_t {
     kParams, kMaterials, kSpheres, kTriangles, kLights, kAccum, kCounters, kGridCellStarts, kGridRefs, kRings,
-    kCylinders, kBindingCount
+    kCylinders, kEmitters, kBindingCount
 };
 constexpr std::uint32_t kLocalSize = 8;   // local_size_x and _y of render.comp
 constexpr std::uint32_t kPushBytes = 16;  // uvec4 pass

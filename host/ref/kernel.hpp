@@ -25,6 +25,7 @@ struct Kernel {
     std::span<const Sphere> spheres;
     std::span<const Triangle> triangles;
     std::span<const PointLight> lights;
+    std::span<const Emitter> emitters;
     std::span<const uint> grid_cell_starts;
     std::span<const uint> grid_refs;
     std::span<const Ring> rings;
@@ -37,6 +38,7 @@ struct Kernel {
     PointLight load_light(uint i) const { return lights[i]; }
     Ring load_ring(uint i) const { return rings[i]; }
     Cylinder load_cylinder(uint i) const { return cylinders[i]; }
+    Emitter load_emitter(uint i) const { return emitters[i]; }
     uint load_cell_start(uint i) const { return grid_cell_starts[i]; }
     uint load_ref(uint i) const { return grid_refs[i]; }
 

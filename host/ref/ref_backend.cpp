@@ -33,6 +33,7 @@ kernel::Kernel make_kernel(const SceneGpu& scene) {
     k.spheres = scene.spheres;
     k.triangles = scene.triangles;
     k.lights = scene.lights;
+    k.emitters = scene.emitters;
     k.grid_cell_starts = scene.grid_cell_starts;
     k.grid_refs = scene.grid_refs;
     k.rings = scene.rings;

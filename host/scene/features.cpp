@@ -8,11 +8,14 @@
 namespace vkrt {
 namespace {
 
-constexpr const char* kFeatureIds[] = {
-#define FEATURE(id, name) #name,
+// Indexed by id.
+constexpr std::array<const char*, kFeatureCount> kFeatureIds = [] {
+    std::array<const char*, kFeatureCount> ids{};
+#define FEATURE(id, name) ids[id] = #name;
 #include "kernel/features.glsl"
 #undef FEATURE
-};
+    return ids;
+}();
 
 
 }  // namespace
@@ -74,9 +77,15 @@ FeatureSet analyze_features(const Scene& scene) {
     f.set(Feature::HAS_SMOOTH_NORMALS,
           std::any_of(scene.triangles.begin(), scene.triangles.end(),
                       [](const Triangle& t) { return t.normals.has_value(); }));
+    // Emissive primitives light other surfaces only in local mode (global mode, once
+    // it exists, finds them by its own sampling) and only with light samples to send.
+    const bool area_lights =
+        emission && scene.render.mode == RenderMode::Local && scene.render.light_samples > 0;
+    const bool any_light = has_lights || area_lights;
+
     f.set(Feature::HAS_POINT_LIGHTS, has_lights && has_geometry);
-    f.set(Feature::HAS_SHADOWS, scene.render.shadows && has_lights && has_geometry);
-    f.set(Feature::HAS_SPECULAR, specular && has_lights);
+    f.set(Feature::HAS_SHADOWS, scene.render.shadows && any_light && has_geometry);
+    f.set(Feature::HAS_SPECULAR, specular && any_light);
     f.set(Feature::HAS_AMBIENT, is_nonzero(scene.render.ambient) && has_geometry);
     f.set(Feature::HAS_EMISSION, emission);
     f.set(Feature::HAS_JITTER, scene.render.jitter && !scene.render.corners);
@@ -84,6 +93,7 @@ FeatureSet analyze_features(const Scene& scene) {
     const bool secondary = scene.render.max_depth > 0 && has_geometry;
     f.set(Feature::HAS_REFLECTION, secondary && reflection);
     f.set(Feature::HAS_REFRACTION, secondary && refraction);
+    f.set(Feature::HAS_AREA_LIGHTS, area_lights);
     return f;
 }
 

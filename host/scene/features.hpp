@@ -2,6 +2,7 @@
 // The feature set a scene needs (DESIGN.md principle 3). The list of features is
 // shaders/kernel/features.glsl, shared with the kernel, where each becomes a
 // specialization constant (Vulkan) or a Kernel member (reference).
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string>
@@ -23,7 +24,8 @@ inline constexpr std::uint32_t kFeatureCount = 0
 #undef FEATURE
     ;
 
-// The ids index arrays: they must run 0, 1, 2, ... without gaps.
+// The ids index arrays (and are specialization constant ids): they must run 0, 1,
+// 2, ... without gaps. With distinct ids, each below the count means exactly that.
 #define FEATURE(id, name) static_assert((id) < kFeatureCount, #name ": feature ids must be dense");
 #include "kernel/features.glsl"
 #undef FEATURE

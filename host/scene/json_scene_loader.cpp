@@ -89,7 +89,7 @@ GridSettings read_grid(const Node& n) {
 
 RenderSettings read_render(const Node& n) {
     n.allow_only({"mode", "aa", "jitter", "shadows", "max_depth", "min_weight", "corners", "ambient", "background",
-                  "seed", "spp", "loop_budget", "grid"});
+                  "seed", "spp", "loop_budget", "grid", "light_samples"});
     RenderSettings r;
     if (auto mode = n.find("mode")) {
         const std::string m = mode->string();
@@ -112,6 +112,7 @@ RenderSettings read_render(const Node& n) {
     if (auto spp = n.find("spp")) r.spp = whole32(*spp, 1, limits::kMaxSpp);
     if (auto budget = n.find("loop_budget")) r.loop_budget = whole32(*budget, 1, limits::kMaxLoopBudget);
     if (auto grid = n.find("grid")) r.grid = read_grid(*grid);
+    if (auto samples = n.find("light_samples")) r.light_samples = whole32(*samples, 0, limits::kMaxLightSamples);
     return r;
 }
 
@@ -149,7 +150,11 @@ void read_lights(const Node& n, std::vector<PointLight>& out) {
     for (const Node& light : n.elements()) {
         const Node type = light.required("type");
         const std::string t = type.string();
-        if (t == "area") type.fail("area lights are not supported yet");
+        // Area lights are objects, not entries here: say so rather than "unknown".
+        if (t == "area") {
+            type.fail("there is no \"area\" light type: an object whose material has a nonzero \"emission\" "
+                      "is an area light");
+        }
         if (t != "point") type.fail(fmt::format("unknown light type {} (expected one of: point)", json::quote_user(t)));
         light.allow_only({"type", "position", "color", "intensity"});
         PointLight p;

@@ -24,6 +24,11 @@ inline constexpr std::uint32_t kMaxAa = 64;
 inline constexpr std::uint32_t kMaxSpp = 1u << 16;
 inline constexpr std::uint32_t kMaxDepth = 64;
 inline constexpr std::uint32_t kMaxLoopBudget = 65000;  // below lavapipe's 65,535 cap
+// Area-light shadow rays per hit. Each costs at least three loop iterations of the
+// invocation's budget (the sample loop, the walk, a test), so more than this would
+// truncate samples in all but the smallest scenes; more samples per pixel (spp)
+// reduce noise just as well.
+inline constexpr std::uint32_t kMaxLightSamples = 1024;
 // Cells per axis a scene may ask of the grid; the total is further capped to what
 // the device's buffers hold (host/accel/grid.cpp).
 inline constexpr std::uint32_t kMaxGridAxisCells = 1u << 16;

@@ -50,6 +50,9 @@ struct RenderSettings {
     std::uint32_t seed = 0;
     std::uint32_t spp = 0;         // samples per pixel; 0 means aa * aa
     std::uint32_t loop_budget = 0; // per-invocation loop iterations; 0 means the kernel default
+    // Shadow rays toward the emissive primitives per hit (local mode); 0 turns their
+    // lighting off. docs/scene-format.md says why 16.
+    std::uint32_t light_samples = 16;
     GridSettings grid;
 
     std::uint32_t samples_per_pixel() const { return spp != 0 ? spp : aa * aa; }

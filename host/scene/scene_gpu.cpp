@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/constants.hpp>
 #include <glm/trigonometric.hpp>
 
 namespace vkrt {
@@ -58,6 +59,51 @@ kernel::Triangle flatten(const Triangle& t) {
     }
     out.meta = uvec4(t.material, t.normals ? 1u : 0u, 0u, 0u);
     return out;
+}
+
+// The emissive primitives as area lights (kernel/emitters.glsl): one Emitter each,
+// with the running fraction of the total area that lets the kernel pick one with
+// probability proportional to its area. A point picked uniformly on the chosen one
+// is then uniform over all emitting area, of density 1 / total area.
+void add_emitters(const Scene& scene, SceneGpu& g) {
+    struct Found {
+        std::uint32_t ref;
+        double area;
+    };
+    std::vector<Found> found;
+    auto emits = [&](std::uint32_t material) { return is_nonzero(scene.materials[material].emission); };
+    for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
+        const Sphere& s = scene.spheres[i];
+        if (emits(s.material)) {
+            found.push_back({(kernel::REF_SPHERE << kernel::REF_KIND_SHIFT) | std::uint32_t(i),
+                             4.0 * glm::pi<double>() * s.radius * s.radius});
+        }
+    }
+    for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
+        const Triangle& t = scene.triangles[i];
+        if (emits(t.material)) {
+            const dvec3 c = glm::cross(t.vertices[1] - t.vertices[0], t.vertices[2] - t.vertices[0]);
+            found.push_back({(kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | std::uint32_t(i),
+                             0.5 * glm::length(c)});
+        }
+    }
+    // Other primitive kinds (rings, cylinders) join here with their reference and
+    // area, and kernel/emitters.glsl's emitter_point gets a case for their kind.
+    double total = 0.0;
+    for (const Found& f : found) total += f.area;
+    double running = 0.0;
+    for (std::size_t i = 0; i < found.size(); ++i) {
+        running += found[i].area;
+        // Areas too small for double (all below ~1e-300) fall back to equal chances.
+        const double cdf = total > 0.0 ? running / total : double(i + 1) / double(found.size());
+        g.emitters.push_back(kernel::Emitter(uvec4(found[i].ref, 0u, 0u, 0u),
+                                             vec4(static_cast<float>(cdf), static_cast<float>(found[i].area), 0.0f, 0.0f)));
+    }
+    // Exactly 1, whatever the rounding of the sum: the kernel's search for the first
+    // fraction above a number in [0, 1) must always end on an emitter.
+    if (!g.emitters.empty()) g.emitters.back().cdf_area.x = 1.0f;
+    g.params.area_lights = uvec4(g.emitters.size(), scene.render.light_samples, 0u, 0u);
+    g.params.emitter_area = vec4(static_cast<float>(total), 0.0f, 0.0f, 0.0f);
 }
 
 template <class T>
@@ -127,6 +173,7 @@ std::vector<BufferSize> SceneGpu::built_buffers() const {
     add("point_lights", bytes(lights));
     add("rings", bytes(rings));
     add("cylinders", bytes(cylinders));
+    add("emitters", bytes(emitters));
     add("grid_cell_starts", bytes(grid_cell_starts));
     add("grid_refs", bytes(grid_refs));
     return out;
@@ -180,6 +227,7 @@ SceneGpu build_scene_gpu(const Scene& scene, const AccelPolicy& policy) {
     }
     p.counts = uvec4(g.spheres.size(), g.triangles.size(), g.lights.size(), g.materials.size());
     p.more_counts = uvec4(g.rings.size(), g.cylinders.size(), 0u, 0u);
+    if (g.features.has(Feature::HAS_AREA_LIGHTS)) add_emitters(scene, g);
 
     g.grid.used = want_grid(scene, g.spheres.size() + g.triangles.size() + g.rings.size() + g.cylinders.size(),
                             policy, g.grid.reason);

@@ -29,6 +29,7 @@ struct SceneGpu {
     std::vector<kernel::PointLight> lights;
     std::vector<kernel::Ring> rings;
     std::vector<kernel::Cylinder> cylinders;
+    std::vector<kernel::Emitter> emitters;        // empty without HAS_AREA_LIGHTS
     std::vector<std::uint32_t> grid_cell_starts;  // empty without the grid
     std::vector<std::uint32_t> grid_refs;
     GridStats grid;

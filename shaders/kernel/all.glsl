@@ -1,9 +1,9 @@
 // The whole kernel, in dependency order. Included by shaders/render.comp and, inside
 // the reference Kernel struct, by host/ref/kernel.hpp. Before including it, a host
 // declares the feature flags (features.glsl), `params`, and the accessors
-// load_material, load_sphere, load_triangle, load_light, load_ring and load_cylinder
-// (uint index -> struct),
-// and the grid's load_cell_start and load_ref (uint index -> uint).
+// load_material, load_sphere, load_triangle, load_light, load_ring, load_cylinder and
+// load_emitter (uint index -> struct), and the grid's load_cell_start and load_ref
+// (uint index -> uint).
 #include "rng.glsl"
 #include "ray.glsl"
 #include "intersect.glsl"
@@ -11,6 +11,8 @@
 #include "camera.glsl"
 #include "grid.glsl"
 #include "scene.glsl"
+#include "emitters.glsl"
+#include "area_lights.glsl"
 #include "shade.glsl"
 #include "specular.glsl"
 #include "sample.glsl"

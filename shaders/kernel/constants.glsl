@@ -53,3 +53,5 @@ const float INFINITY_T = 3.0e38f;   // "no hit yet"; finite so comparisons stay 
 // on a surface (a lamp on the ceiling) is not shadowed by the surface it sits on,
 // whose hit distance rounds to either side of the light's.
 const float SHADOW_RAY_END = 0.9999f;
+
+const float PI = 3.14159265358979f;

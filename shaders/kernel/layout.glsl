@@ -61,6 +61,15 @@ struct PointLight {
     vec4 radiance;
 };
 
+// One emissive primitive: a primitive whose material has nonzero emission
+// (kernel/emitters.glsl samples them, host/scene/scene_gpu.cpp lists them). Emitters
+// are chosen with probability proportional to their area, through the cumulative
+// fractions in cdf_area.x, the last of which is exactly 1.
+struct Emitter {
+    uvec4 prim;      // x = primitive reference (kind << REF_KIND_SHIFT | index, as the grid's), y/z/w unused
+    vec4 cdf_area;   // x = area of the emitters up to and including this one / total area, y = area, z/w unused
+};
+
 // Per-render constants. The camera is given as direction vectors relative to the eye:
 // the ray through continuous image position (x, y), in pixels from the top-left
 // corner, has direction cam_corner + x * cam_right + y * cam_down.
@@ -88,6 +97,10 @@ struct Params {
     // The reflection/refraction tree (sample.glsl): x the weight below which a
     // secondary ray is dropped (0: never), yzw unused.
     vec4 ray_tree;
+    // Area lights (kernel/area_lights.glsl), when HAS_AREA_LIGHTS: the Emitter list
+    // and the shadow rays each hit sends toward it.
+    uvec4 area_lights;   // x emitters, y light samples per hit, z/w unused
+    vec4 emitter_area;   // x total area of the emitters, y/z/w unused
 };
 
 // Per-pixel accumulation: rgb = sum of sample radiance, a = number of samples summed.

@@ -96,13 +96,13 @@ void spawn_children(PendingRay cur, Hit hit, INOUT(RayQueue) q, INOUT(SampleResu
 }
 
 // Traces one ray of the tree and adds its weighed local shading, or the background.
-Hit trace_and_shade(PendingRay r, INOUT(SampleResult) s) {
+Hit trace_and_shade(PendingRay r, INOUT(Rng) rng, INOUT(SampleResult) s) {
     Hit hit = closest_hit(r.ray, INFINITY_T);
     if (hit.t < INFINITY_T) {
         if (r.depth == 0u) {
             s.eye_hits = 1u;
         }
-        s.radiance += r.weight * shade_local(r.ray, hit, s.shadow_rays);
+        s.radiance += r.weight * shade_local(r.ray, hit, rng, s.shadow_rays);
     } else {
         s.radiance += r.weight * vec3(params.background);
     }
@@ -110,7 +110,7 @@ Hit trace_and_shade(PendingRay r, INOUT(SampleResult) s) {
 }
 
 // The whole tree below the eye ray, depth first.
-void trace_ray_tree(PendingRay eye, INOUT(SampleResult) s) {
+void trace_ray_tree(PendingRay eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
     PendingRay cur = eye;
     RayQueue q;
     q.next = eye;
@@ -118,7 +118,7 @@ void trace_ray_tree(PendingRay eye, INOUT(SampleResult) s) {
     loop_enter();
     while (loop_tick()) {
         q.has_next = false;
-        Hit hit = trace_and_shade(cur, s);
+        Hit hit = trace_and_shade(cur, rng, s);
         if (hit.t < INFINITY_T) {
             spawn_children(cur, hit, q, s);
         }
@@ -141,9 +141,9 @@ SampleResult render_sample(uint px, uint py, uint sample_index) {
     PendingRay eye = PendingRay(camera_ray(float(px) + sub.x, float(py) + sub.y), vec3(1.0f), 0u);
     // A scene without mirrors or glass skips the tree's loop and its stack.
     if (HAS_REFLECTION || HAS_REFRACTION) {
-        trace_ray_tree(eye, s);
+        trace_ray_tree(eye, rng, s);
     } else {
-        trace_and_shade(eye, s);
+        trace_and_shade(eye, rng, s);
     }
     s.cells_visited = g_cells_visited;
     s.intersection_tests = g_intersection_tests;

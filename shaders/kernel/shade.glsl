@@ -2,9 +2,10 @@
 // per point light, colour * intensity * (kd * diffuse * cos(theta) + ks * specular *
 // cos(alpha)^shininess), with alpha between the mirrored light vector and the eye
 // vector; plus ambient * kd * diffuse, plus the material's own emission seen from
-// its front face. Lights below the surface get no shadow ray (the SPD rule).
+// its front face, plus the light of emissive primitives (area_lights.glsl). Lights
+// below the surface get no shadow ray (the SPD rule).
 
-vec3 shade_local(Ray ray, Hit hit, INOUT(uint) shadow_rays) {
+vec3 shade_local(Ray ray, Hit hit, INOUT(Rng) rng, INOUT(uint) shadow_rays) {
     Material m = load_material(hit.material);
     vec3 diffuse = vec3(m.diffuse_kd) * m.diffuse_kd.w;
     vec3 color = vec3(0.0f);
@@ -49,6 +50,9 @@ vec3 shade_local(Ray ray, Hit hit, INOUT(uint) shadow_rays) {
             }
             color += vec3(light.radiance) * term;
         }
+    }
+    if (HAS_AREA_LIGHTS) {
+        color += shade_area_lights(ray, hit, m, rng, shadow_rays);
     }
     return color;
 }

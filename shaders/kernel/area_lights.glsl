@@ -1,0 +1,78 @@
+// Direct light from the area lights (the emissive primitives) at a hit, in local
+// mode: an estimate with render.light_samples points y drawn uniformly over the total
+// emitting area A (emitters.glsl), one shadow ray each:
+//
+//   L = 1/N * sum  Le(y) * (kd diffuse cos(theta) + ks specular cos(alpha)^shininess)
+//                  * cos(theta') * A / (pi r^2)        [0 where y is hidden or faces away]
+//
+// theta between the normal and the direction l to y, theta' between y's front-face
+// normal and -l (emission leaves the front face only), r the distance, alpha as for
+// point lights (shade.glsl).
+//
+// Why 1/pi. The paper's point light adds intensity * diffuse * cos(theta) with no
+// fall-off: that is the radiance of a Lambertian surface of albedo `diffuse` under an
+// irradiance of pi * intensity * cos(theta). Read that way, a patch dA of an area light
+// of radiance Le, which gives the irradiance Le cos(theta) cos(theta') dA / r^2, is a
+// point light of intensity Le cos(theta') dA / (pi r^2), and the diffuse part of the
+// sum is exactly (diffuse / pi) * irradiance, the physical radiance of the surface. A
+// white plane under a light that fills its sky then shows the light's own radiance,
+// as it must; without the 1/pi it would be pi times brighter than its light.
+// Point lights keep the paper's convention unchanged.
+
+vec3 shade_area_lights(Ray ray, Hit hit, Material m, INOUT(Rng) rng, INOUT(uint) shadow_rays) {
+    precise vec3 p = ray.origin + hit.t * ray.dir;
+    vec3 shadow_origin = offset_ray_origin(p, hit.geo_normal);
+    vec3 to_eye = -ray.dir;
+    vec3 diffuse = vec3(m.diffuse_kd) * m.diffuse_kd.w;
+    // A surface that reflects nothing (a lamp is often black) gets nothing from any
+    // light: spare it the shadow rays. Colours are >= 0, so a zero sum means all zero.
+    float reflects = diffuse.x + diffuse.y + diffuse.z;
+    if (HAS_SPECULAR) {
+        reflects += (m.specular_ks.x + m.specular_ks.y + m.specular_ks.z) * m.specular_ks.w;
+    }
+    if (!(reflects > 0.0f)) {
+        return vec3(0.0f);
+    }
+    uint samples = params.area_lights.y;
+    vec3 sum = vec3(0.0f);
+    loop_enter();
+    for (uint i = 0u; i < samples; ++i) {
+        if (!loop_tick()) {
+            break;
+        }
+        // Drawn before any test, so every light sample takes the same numbers.
+        EmitterPoint y = sample_emitters(rng);
+        vec3 to_light = y.position - p;
+        float r2 = dot(to_light, to_light);
+        vec3 l = to_light / sqrt(r2);
+        float cos_theta = dot(hit.normal, l);
+        float cos_emitter = -dot(y.normal, l);
+        // The emitter's front must face the point, and both normals of the surface
+        // must face the emitter (as for point lights). Written as !(...) so that a
+        // sample exactly at the hit point (r = 0, l NaN) is skipped too. A flat
+        // emitter cannot light itself: l lies in its plane, so one of the cosines is
+        // at most a rounding error above 0.
+        if (!(cos_emitter > 0.0f && cos_theta > 0.0f && dot(hit.geo_normal, l) > 0.0f)) {
+            continue;
+        }
+        if (HAS_SHADOWS) {
+            shadow_rays += 1u;
+            // Stopping short of y keeps the emitter itself (and, for a quad, its other
+            // triangle, which meets the ray only in y's plane) from hiding y.
+            if (occluded(Ray(shadow_origin, l), sqrt(r2) * SHADOW_RAY_END)) {
+                continue;
+            }
+        }
+        vec3 term = diffuse * cos_theta;
+        if (HAS_SPECULAR) {
+            vec3 mirrored = (2.0f * cos_theta) * hit.normal - l;
+            float cos_alpha = dot(mirrored, to_eye);
+            // pow(0, 0) is undefined in GLSL: no highlight where cos(alpha) <= 0.
+            if (cos_alpha > 0.0f) {
+                term += vec3(m.specular_ks) * (m.specular_ks.w * pow(cos_alpha, m.reflect_shininess.w));
+            }
+        }
+        sum += y.emission * term * (cos_emitter / r2);
+    }
+    return sum * (params.emitter_area.x / (PI * float(max(samples, 1u))));
+}
