@@ -25,6 +25,22 @@ Image average_corners(const RenderResult& result) {
     return image;
 }
 
+std::vector<std::uint32_t> pixel_decisions(const RenderResult& result, bool corners) {
+    auto at = [&](std::uint32_t x, std::uint32_t y) {
+        return result.counters[std::size_t(y) * result.width + x].tree[kernel::TREE_DECISIONS];
+    };
+    const std::uint32_t w = corners ? result.width - 1 : result.width;
+    const std::uint32_t h = corners ? result.height - 1 : result.height;
+    std::vector<std::uint32_t> out(std::size_t(w) * h);
+    for (std::uint32_t y = 0; y < h; ++y) {
+        for (std::uint32_t x = 0; x < w; ++x) {
+            out[std::size_t(y) * w + x] =
+                corners ? at(x, y) + at(x + 1, y) + at(x, y + 1) + at(x + 1, y + 1) : at(x, y);
+        }
+    }
+    return out;
+}
+
 }  // namespace
 
 Image resolve_image(const RenderResult& result, bool corners) {
@@ -76,7 +92,8 @@ RenderOutcome render_scene(const Scene& scene, Backend& backend, const ProgressC
     const SceneGpu gpu = build_scene_gpu(scene, backend.accel_policy());
     const auto flattened = clock::now();
     const RenderResult result = backend.render(gpu, SampleRange{0, gpu.samples_per_pixel}, progress);
-    RenderOutcome out{resolve_image(result, gpu.corners), collect_stats(gpu, backend, result)};
+    RenderOutcome out{resolve_image(result, gpu.corners), collect_stats(gpu, backend, result),
+                      pixel_decisions(result, gpu.corners)};
     out.stats.width = out.image.width;
     out.stats.height = out.image.height;
     out.stats.flatten_seconds = std::chrono::duration<double>(flattened - start).count();

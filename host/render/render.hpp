@@ -50,6 +50,10 @@ struct RenderStats {
 struct RenderOutcome {
     Image image;
     RenderStats stats;
+    // Per output pixel, the sum of its rays' decision hashes (budget.glsl): equal on
+    // two backends when every ray hit the same things, was lit and shadowed alike
+    // and reflected or refracted alike; what the cross-check tells flips apart by.
+    std::vector<std::uint32_t> decisions;
 };
 
 // Each pixel's sum divided by its count of good samples (black where there is none).

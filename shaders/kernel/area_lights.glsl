@@ -52,7 +52,9 @@ vec3 shade_area_lights(Ray ray, Hit hit, Material m, INOUT(Rng) rng, INOUT(uint)
         // sample exactly at the hit point (r = 0, l NaN) is skipped too. A flat
         // emitter cannot light itself: l lies in its plane, so one of the cosines is
         // at most a rounding error above 0.
-        if (!(cos_emitter > 0.0f && cos_theta > 0.0f && dot(hit.geo_normal, l) > 0.0f)) {
+        bool faces = cos_emitter > 0.0f && cos_theta > 0.0f && dot(hit.geo_normal, l) > 0.0f;
+        note_decision(faces ? 3u : 2u);
+        if (!faces) {
             continue;
         }
         if (HAS_SHADOWS) {

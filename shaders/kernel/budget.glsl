@@ -9,11 +9,24 @@ uint g_loop_iterations = 0u;
 // Work done for the stats report (Counters.work); not a limit.
 uint g_cells_visited = 0u;
 uint g_intersection_tests = 0u;
+// A hash of every discrete decision the sample took (what each ray hit, whether a
+// light faced the surface, whether a shadow ray was blocked, total internal
+// reflection, a ray dropped): two backends whose images differ at a pixel but whose
+// decisions hashed alike differ by arithmetic alone; otherwise by a decision flip
+// (tests/crosscheck_test.cpp tells the two apart).
+const uint DECISIONS_START = 2166136261u;   // the FNV-1a offset basis
+uint g_decisions = DECISIONS_START;
 
 void work_reset() {
     g_loop_iterations = 0u;
     g_cells_visited = 0u;
     g_intersection_tests = 0u;
+    g_decisions = DECISIONS_START;
+}
+
+// One FNV-1a step per decision: integer-only, so both backends hash alike.
+void note_decision(uint value) {
+    g_decisions = (g_decisions ^ value) * 16777619u;
 }
 
 void loop_enter() {

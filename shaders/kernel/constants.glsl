@@ -16,6 +16,7 @@ const uint WORK_NONFINITE = 3u;   // samples discarded for a NaN or infinite val
 const uint TREE_EYE_HITS = 0u;       // eye rays that hit something (an SPD count)
 const uint TREE_DROPPED_WEIGHT = 1u; // secondary rays not traced: weight below params.ray_tree.x
 const uint TREE_DROPPED_STACK = 2u;  // secondary rays not traced: the pending-ray stack was full
+const uint TREE_DECISIONS = 3u;      // sum of the samples' decision hashes (budget.glsl)
 // Cells and tests cannot overflow a pixel's 32-bit lane: each is at most one loop
 // iteration, a sample has at most kMaxLoopBudget (65,000) of those, and a pixel at
 // most 65,536 samples: 65,000 * 65,536 < 2^32. (Only the cpu backend can lift the

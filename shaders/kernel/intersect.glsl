@@ -12,15 +12,15 @@ float intersect_sphere(Ray ray, vec3 center, float radius, float t_min, float t_
     float b = dot(oc, ray.dir);
     precise vec3 f = oc - b * ray.dir;
     float r2 = radius * radius;
-    float disc = r2 - dot(f, f);
+    precise float disc = r2 - dot(f, f);
     if (!(disc >= 0.0f)) {
         return INFINITY_T;
     }
-    float c = dot(oc, oc) - r2;
+    precise float c = dot(oc, oc) - r2;
     float root = sqrt(disc);
-    float q = b >= 0.0f ? -(b + root) : root - b;
+    precise float q = b >= 0.0f ? -(b + root) : root - b;
     float t_a = q;
-    float t_b = q != 0.0f ? c / q : 0.0f;
+    precise float t_b = q != 0.0f ? c / q : 0.0f;
     float t_near = min(t_a, t_b);
     float t_far = max(t_a, t_b);
     if (t_near > t_min && t_near < t_max) {

@@ -9,6 +9,7 @@ struct SampleResult {
     uint eye_hits;         // 1 when the eye ray hit something
     uint dropped_weight;   // secondary rays left out for their low weight
     uint dropped_stack;    // secondary rays left out because the stack was full
+    uint decisions;        // the hash of its decisions (budget.glsl)
     uint cells_visited;
     uint intersection_tests;
     bool truncated;   // the loop budget ran out: the radiance is incomplete
@@ -38,7 +39,9 @@ struct RayQueue {
 // Queues a secondary ray, unless its weight is below the threshold
 // (params.ray_tree.x; 0 keeps every ray, as the SPD rules ask). True if queued.
 bool queue_ray(PendingRay r, INOUT(RayQueue) q, INOUT(SampleResult) s) {
-    if (max(r.weight.x, max(r.weight.y, r.weight.z)) < params.ray_tree.x) {
+    bool light = max(r.weight.x, max(r.weight.y, r.weight.z)) < params.ray_tree.x;
+    note_decision(light ? 5u : 4u);
+    if (light) {
         s.dropped_weight += 1u;
         return false;
     }
@@ -78,6 +81,7 @@ void spawn_children(PendingRay cur, Hit hit, INOUT(RayQueue) q, INOUT(SampleResu
         // material; leaving through the back face goes the other way.
         float ior = m.transmit_ior.w;
         Refraction r = refract_fresnel(cur.ray.dir, hit.normal, hit.front_face ? 1.0f / ior : ior);
+        note_decision(r.total ? 7u : 6u);
         bool fresnel = m.emission_fresnel.w != 0.0f;
         float share = r.total ? 1.0f : (fresnel ? r.reflectance : 0.0f);
         reflect_weight += share * transmit;
@@ -135,7 +139,7 @@ void trace_ray_tree(PendingRay eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
 
 SampleResult render_sample(uint px, uint py, uint sample_index) {
     work_reset();
-    SampleResult s = SampleResult(vec3(0.0f), 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, false);
+    SampleResult s = SampleResult(vec3(0.0f), 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, false);
     Rng rng = rng_start(py * params.image.x + px, sample_index, params.image.w);
     vec2 sub = subpixel_position(sample_index, rng);
     PendingRay eye = PendingRay(camera_ray(float(px) + sub.x, float(py) + sub.y), vec3(1.0f), 0u);
@@ -145,6 +149,7 @@ SampleResult render_sample(uint px, uint py, uint sample_index) {
     } else {
         trace_and_shade(eye, rng, s);
     }
+    s.decisions = g_decisions;
     s.cells_visited = g_cells_visited;
     s.intersection_tests = g_intersection_tests;
     s.truncated = budget_exhausted();
@@ -164,6 +169,7 @@ void accumulate_sample(SampleResult s, INOUT(vec4) accum, INOUT(Counters) counte
     counters.tree[TREE_EYE_HITS] += s.eye_hits;
     counters.tree[TREE_DROPPED_WEIGHT] += s.dropped_weight;
     counters.tree[TREE_DROPPED_STACK] += s.dropped_stack;
+    counters.tree[TREE_DECISIONS] += s.decisions;   // wraps; a sum, so any split adds up alike
     float sum = s.radiance.x + s.radiance.y + s.radiance.z;
     if (s.truncated) {
         counters.work[WORK_TRUNCATED] += 1u;

@@ -288,11 +288,15 @@ Hit make_hit(Ray ray, Nearest nearest) {
 
 // The closest hit with t in (0, t_max).
 Hit closest_hit(Ray ray, float t_max) {
-    return make_hit(ray, trace(ray, t_max, false));
+    Nearest nearest = trace(ray, t_max, false);
+    note_decision(nearest.ref);
+    return make_hit(ray, nearest);
 }
 
 // True when anything lies on the ray with t in (0, t_max): shadow rays stop at the
 // first blocker, whichever it is and wherever on the ray it lies.
 bool occluded(Ray ray, float t_max) {
-    return trace(ray, t_max, true).ref != REF_NONE;
+    bool blocked = trace(ray, t_max, true).ref != REF_NONE;
+    note_decision(blocked ? 1u : 0u);
+    return blocked;
 }

@@ -30,7 +30,9 @@ vec3 shade_local(Ray ray, Hit hit, INOUT(Rng) rng, INOUT(uint) shadow_rays) {
             vec3 l = to_light / dist;
             float cos_theta = dot(hit.normal, l);
             // Written as !(x > 0) so that a light exactly at the hit point (NaN) is skipped.
-            if (!(cos_theta > 0.0f && dot(hit.geo_normal, l) > 0.0f)) {
+            bool faces = cos_theta > 0.0f && dot(hit.geo_normal, l) > 0.0f;
+            note_decision(faces ? 3u : 2u);
+            if (!faces) {
                 continue;
             }
             if (HAS_SHADOWS) {
