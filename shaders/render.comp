@@ -30,7 +30,7 @@ layout(binding = 8) uniform usamplerBuffer grid_refs;           // r32ui, one pe
 layout(binding = 9) uniform usamplerBuffer ring_texels;         // 3 texels per Ring
 layout(binding = 10) uniform usamplerBuffer cylinder_texels;    // 3 texels per Cylinder
 layout(binding = 11) uniform usamplerBuffer emitter_texels;     // 2 texels per Emitter
-layout(push_constant) uniform PassBlock { uvec4 pass; };   // x = sample index
+layout(push_constant) uniform PassBlock { uvec4 pass; };   // x = sample index, y = first row of the band
 
 // The buffer accessors the kernel calls (host/ref/kernel.hpp has the C++ ones). Fields
 // a caller does not use are dropped by the driver's dead-code elimination.
@@ -73,7 +73,7 @@ uint load_ref(uint i) { return texelFetch(grid_refs, int(i)).x; }
 
 void main() {
     uint px = gl_GlobalInvocationID.x;
-    uint py = gl_GlobalInvocationID.y;
+    uint py = gl_GlobalInvocationID.y + pass.y;
     if (px >= params.image.x || py >= params.image.y) {
         return;
     }

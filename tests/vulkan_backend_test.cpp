@@ -153,6 +153,30 @@ TEST(VulkanBackend, ManySamplesSpanSeveralBatches) {
     EXPECT_EQ(backend->validation_messages(), 0u);
 }
 
+TEST(VulkanBackend, TallImagesAreDispatchedInBandsCoveringEveryRowOnce) {
+    // 4 x 200 pixels: 25 workgroup rows, four bands of at most 8. Every pixel must
+    // receive each sample exactly once, and progress moves band by band.
+    SceneGpu scene = tiny_scene();
+    scene.params.image.y = 200;
+    scene.params.cam_down = glm::vec4(0.0f, -2.0f / 200.0f, 0.0f, 0.0f);
+    const std::unique_ptr<Backend> backend = lavapipe();
+    const std::uint32_t samples = 3;
+    std::vector<std::uint32_t> reported;
+    const RenderResult r = backend->render(scene, SampleRange{0, samples}, [&](std::uint32_t done, std::uint32_t total) {
+        EXPECT_EQ(total, samples * 4);
+        reported.push_back(done);
+    });
+    ASSERT_EQ(r.accum.size(), 4u * 200u);
+    for (std::size_t i = 0; i < r.accum.size(); ++i) {
+        ASSERT_EQ(r.accum[i].w, float(samples)) << "pixel " << i;
+        ASSERT_EQ(r.counters[i].rays.x, samples) << "pixel " << i;
+    }
+    ASSERT_FALSE(reported.empty());
+    EXPECT_EQ(reported.front(), 1u) << "the first batch is one band";
+    EXPECT_EQ(reported.back(), samples * 4);
+    EXPECT_EQ(backend->validation_messages(), 0u);
+}
+
 // A triangle far larger than the view, facing the camera, that glows: with the
 // triangle feature on every pixel sees its emission; with it off, the very same
 // buffers and counts (counts.y = 1, the triangle uploaded) must give pure

@@ -29,6 +29,9 @@ constexpr double kTargetSubmitSeconds = 0.25;
 // grid was 0.90x brute force at 16 spheres and 1.09x at 32 (docs/grid.md).
 constexpr std::uint32_t kBruteForceBelow = 32;
 constexpr std::uint32_t kMaxBatch = 256;
+// Each sample is dispatched in bands of this many workgroup rows (64 pixel rows), so
+// that one dispatch of a slow scene stays short and progress moves within a sample.
+constexpr std::uint32_t kBandGroups = 8;
 // The dispatches read the sums and write them back: what each barrier before one covers.
 constexpr VkAccessFlags kShaderAccess = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
 
@@ -176,29 +179,37 @@ RenderResult VulkanBackend::render(const SceneGpu& scene, SampleRange samples,
     result.height = height;
     result.setup_seconds = seconds_since(setup_start);
 
+    // The work, in order: sample by sample, each in bands of rows. A pixel's samples
+    // still add up in sample order, so banding changes no bit of the image.
+    const std::uint32_t bands = (groups_y + kBandGroups - 1) / kBandGroups;
+    // At most 65,536 samples (limits.hpp) of at most 512 bands (32,768 rows): the
+    // count fits the progress callback's 32 bits.
+    const std::uint32_t items = samples.count * bands;
     const Clock::time_point loop_start = Clock::now();
     double gpu_seconds = 0.0;
     std::uint32_t batch = 1;
-    for (std::uint32_t done = 0; done < samples.count;) {
-        const std::uint32_t n = std::min(batch, samples.count - done);
-        const std::uint32_t begin = samples.first + done;
+    for (std::uint32_t done = 0; done < items;) {
+        const std::uint32_t n = std::min(batch, items - done);
         const Clock::time_point submitted = Clock::now();
         context_.submit_and_wait([&](VkCommandBuffer cmd) {
             timer.begin(cmd);
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline.get());
             vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout.get(), 0, 1,
                                     &pipeline.set, 0, nullptr);
-            for (std::uint32_t s = begin; s < begin + n; ++s) {
-                // Each dispatch adds to the sums the previous one wrote (also across
+            for (std::uint32_t item = done; item < done + n; ++item) {
+                const std::uint32_t sample = samples.first + item / bands;
+                const std::uint32_t band = item % bands;
+                // Each dispatch adds to the sums an earlier one wrote (also across
                 // batches: a barrier's scope spans earlier submissions).
-                if (s != samples.first) {
+                if (item != 0) {
                     memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                                    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, kShaderAccess);
                 }
-                const std::array<std::uint32_t, 4> pass{s, 0, 0, 0};
+                const std::uint32_t first_group = band * kBandGroups;
+                const std::array<std::uint32_t, 4> pass{sample, first_group * kLocalSize, 0, 0};
                 vkCmdPushConstants(cmd, pipeline.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, kPushBytes,
                                    pass.data());
-                vkCmdDispatch(cmd, groups_x, groups_y, 1);
+                vkCmdDispatch(cmd, groups_x, std::min(kBandGroups, groups_y - first_group), 1);
             }
             timer.end(cmd);
         });
@@ -208,7 +219,7 @@ RenderResult VulkanBackend::render(const SceneGpu& scene, SampleRange samples,
         }
         done += n;
         if (progress) {
-            progress(done, samples.count);
+            progress(done, items);
         }
         batch = next_batch(n, wall);
     }
