@@ -11,6 +11,7 @@
 #include "camera.glsl"
 #include "grid.glsl"
 #include "scene.glsl"
+#include "phong.glsl"
 #include "emitters.glsl"
 #include "area_lights.glsl"
 #include "shade.glsl"

@@ -65,16 +65,7 @@ vec3 shade_area_lights(Ray ray, Hit hit, Material m, INOUT(Rng) rng, INOUT(uint)
                 continue;
             }
         }
-        vec3 term = diffuse * cos_theta;
-        if (HAS_SPECULAR) {
-            vec3 mirrored = (2.0f * cos_theta) * hit.normal - l;
-            float cos_alpha = dot(mirrored, to_eye);
-            // pow(0, 0) is undefined in GLSL: no highlight where cos(alpha) <= 0.
-            if (cos_alpha > 0.0f) {
-                term += vec3(m.specular_ks) * (m.specular_ks.w * pow(cos_alpha, m.reflect_shininess.w));
-            }
-        }
-        sum += y.emission * term * (cos_emitter / r2);
+        sum += y.emission * phong_term(m, diffuse, hit.normal, l, cos_theta, to_eye) * (cos_emitter / r2);
     }
     return sum * (params.emitter_area.x / (PI * float(max(samples, 1u))));
 }

@@ -41,16 +41,7 @@ vec3 shade_local(Ray ray, Hit hit, INOUT(Rng) rng, INOUT(uint) shadow_rays) {
                     continue;
                 }
             }
-            vec3 term = diffuse * cos_theta;
-            if (HAS_SPECULAR) {
-                vec3 mirrored = (2.0f * cos_theta) * hit.normal - l;
-                float cos_alpha = dot(mirrored, to_eye);
-                // pow(0, 0) is undefined in GLSL: no highlight where cos(alpha) <= 0.
-                if (cos_alpha > 0.0f) {
-                    term += vec3(m.specular_ks) * (m.specular_ks.w * pow(cos_alpha, m.reflect_shininess.w));
-                }
-            }
-            color += vec3(light.radiance) * term;
+            color += vec3(light.radiance) * phong_term(m, diffuse, hit.normal, l, cos_theta, to_eye);
         }
     }
     if (HAS_AREA_LIGHTS) {
