@@ -71,9 +71,10 @@ using Frame = glm::dmat3;
 // triangles of 3 above and below, turned 30 degrees against the hexagon). The
 // sphereflake keeps the hexagon (theta 0; phi 0, 60, ..., 300) and the upper
 // triangle (phi 30, 150, 270), whose elevation theta has sin^2 = 2/3 (54.74 deg):
-// then every child is 60 degrees from each of its 4 nearest siblings, which do not
-// overlap as long as the ratio is below 1 (the centres are (1 + ratio) r apart, the
-// radii add up to 2 ratio r). The 3 below the equator would point back at the
+// then no two children are less than 60 degrees apart (a ring child has 3 siblings
+// at 60, a top child 4), and siblings at 60 degrees do not overlap as long as the
+// ratio is below 1 (their centres are (1 + ratio) r apart, their radii add up to
+// 2 ratio r). The 3 below the equator would point back at the
 // parent, so they are left out.
 std::array<glm::dmat3, 9> child_frames() {
     std::array<glm::dmat3, 9> frames{};
