@@ -1,10 +1,15 @@
 // Scene objects that expand at load time: "random_spheres" (the same spheres on
-// every machine, within the stated bounds) and "torus_knot" (a closed, outward
-// tube of the stated size and triangle count), and their bad fields refused.
+// every machine, within the stated bounds), "sphereflake" (Haines' recursive
+// spheres: the stated count, each child touching its parent on the outward side,
+// nothing overlapping) and "torus_knot" (a closed, outward tube of the stated size
+// and triangle count), and their bad fields refused.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
@@ -172,6 +177,161 @@ TEST_F(GeneratorsTest, RandomSpheresBadFields) {
                  {"objects[0]: unknown field 'material'", "materials"});
     expect_error(R"({"type": "random_spheres", "min": [0, 0, 0], "max": [1, 1, 1], "radius": [1, 1], "materials": ["a"]})",
                  {"objects[0].count: required field is missing"});
+}
+
+// ---- sphereflake -----------------------------------------------------------------
+
+// The flake's spheres are listed level by level, so the parent of sphere i > 0 is
+// sphere (i - 1) / 9 (docs/scene-format.md).
+std::size_t parent_of(std::size_t i) { return (i - 1) / 9; }
+
+TEST_F(GeneratorsTest, SphereflakeHasNinePowersOfSpheresLevelByLevel) {
+    for (int levels = 0; levels <= 4; ++levels) {
+        const Scene s = load(fmt::format(R"({{"type": "sphereflake", "center": [1, 2, 3], "radius": 2,
+                                              "levels": {}, "material": "b"}})", levels));
+        std::uint64_t nine_power = 1;  // 9^(levels + 1)
+        for (int i = 0; i <= levels; ++i) nine_power *= 9;
+        ASSERT_EQ(s.spheres.size(), (nine_power - 1) / 8) << levels;
+        EXPECT_EQ(vkrt::sphereflake_count(levels), s.spheres.size());
+        EXPECT_EQ(s.spheres[0].center, dvec3(1, 2, 3));
+        EXPECT_EQ(s.spheres[0].radius, 2.0);
+        // Level L holds 9^L spheres of radius 2 / 3^L.
+        std::size_t index = 0, count = 1;
+        double radius = 2.0;
+        for (int level = 0; level <= levels; ++level, count *= 9, radius /= 3.0) {
+            for (std::size_t k = 0; k < count; ++k, ++index) {
+                ASSERT_NEAR(s.spheres[index].radius, radius, 1e-15) << "level " << level;
+                EXPECT_EQ(s.spheres[index].material, 1u);
+            }
+        }
+    }
+    EXPECT_EQ(vkrt::sphereflake_count(4), 7381u);  // the SPD "balls" default, 1 + 9 + 81 + 729 + 6561
+    EXPECT_EQ(vkrt::sphereflake_count(6), 597871u);
+}
+
+// The direction a sphere's children grow towards: away from its parent, or the
+// flake's axis for the root.
+dvec3 outward(const std::vector<vkrt::Sphere>& s, std::size_t i, const dvec3& axis) {
+    return i == 0 ? axis : glm::normalize(s[i].center - s[parent_of(i)].center);
+}
+
+TEST_F(GeneratorsTest, SphereflakeChildrenTouchTheirParentOnTheOutwardSide) {
+    const dvec3 axis = glm::normalize(dvec3(1, 2, -0.5));
+    const Scene s = load(R"({"type": "sphereflake", "center": [0.5, -1, 2], "radius": 1.5, "axis": [2, 4, -1],
+                             "material": "a"})");
+    ASSERT_EQ(s.spheres.size(), 7381u);  // levels default to 4
+    const double sin_up = std::sqrt(2.0 / 3.0);
+    for (std::size_t p = 0; p < 820; ++p) {
+        const dvec3 up = outward(s.spheres, p, axis);
+        int ring = 0, top = 0;
+        for (std::size_t i = 9 * p + 1; i <= 9 * p + 9; ++i) {
+            const vkrt::Sphere& child = s.spheres[i];
+            const vkrt::Sphere& parent = s.spheres[p];
+            EXPECT_NEAR(child.radius, parent.radius / 3.0, 1e-15);  // ratio defaults to 1/3
+            const dvec3 d = child.center - parent.center;
+            // Touching: the centres are the two radii apart.
+            ASSERT_NEAR(glm::length(d), parent.radius + child.radius, 1e-12) << i;
+            // Outward: 6 in the parent's equator (perpendicular to the way it grows),
+            // 3 at sin^2(elevation) = 2/3 above it; none below.
+            const double elevation = glm::dot(glm::normalize(d), up);
+            ASSERT_GT(elevation, -1e-12) << i;
+            if (std::abs(elevation) < 1e-12) ++ring;
+            if (std::abs(elevation - sin_up) < 1e-12) ++top;
+        }
+        EXPECT_EQ(ring, 6) << p;
+        EXPECT_EQ(top, 3) << p;
+    }
+}
+
+TEST_F(GeneratorsTest, SphereflakeChildrenAreSixtyDegreesFromTheirNearestSiblings) {
+    const Scene s = load(R"({"type": "sphereflake", "center": [0, 0, 0], "radius": 1, "levels": 2, "material": "a"})");
+    for (std::size_t p = 0; p < 10; ++p) {
+        for (std::size_t i = 9 * p + 1; i <= 9 * p + 9; ++i) {
+            int nearest = 0;
+            for (std::size_t j = 9 * p + 1; j <= 9 * p + 9; ++j) {
+                if (j == i) continue;
+                const double cosine = glm::dot(glm::normalize(s.spheres[i].center - s.spheres[p].center),
+                                               glm::normalize(s.spheres[j].center - s.spheres[p].center));
+                EXPECT_LT(cosine, 0.5 + 1e-12) << i << " " << j;  // never closer than 60 degrees
+                nearest += std::abs(cosine - 0.5) < 1e-12;
+            }
+            // A ring child has 2 ring neighbours and the top child 30 degrees of azimuth
+            // away; a top child the 2 other top children and the 2 ring children 30
+            // degrees of azimuth either side of it.
+            EXPECT_EQ(nearest, i - 9 * p <= 6 ? 3 : 4) << i;
+        }
+    }
+}
+
+TEST_F(GeneratorsTest, SphereflakeSpheresDoNotOverlap) {
+    // Every pair of the default flake (7381 spheres, 27 million pairs) is apart,
+    // except a child and its parent, which touch. The closest other pair leaves a
+    // gap of 2/81 of the root's radius (found by this test, printed below).
+    const Scene s = load(R"({"type": "sphereflake", "center": [0, 0, 0], "radius": 1, "material": "a"})");
+    const std::vector<vkrt::Sphere>& sp = s.spheres;
+    double smallest_gap = 1e300;
+    for (std::size_t i = 1; i < sp.size(); ++i) {
+        for (std::size_t j = 0; j < i; ++j) {
+            if (j == parent_of(i)) continue;
+            const double gap = glm::length(sp[i].center - sp[j].center) - sp[i].radius - sp[j].radius;
+            smallest_gap = std::min(smallest_gap, gap);
+        }
+    }
+    EXPECT_GT(smallest_gap, 0.0);
+    std::printf("smallest gap between spheres that are not parent and child: %.6g\n", smallest_gap);
+}
+
+TEST_F(GeneratorsTest, SphereflakePlacementIsPinned) {
+    // With the default axis y, the root's frame is u = x, v = -z: the first ring child
+    // lies along +x and the last top child (azimuth 270 degrees, along -v) faces +z.
+    const Scene s = load(R"({"type": "sphereflake", "center": [0, 1, 0], "radius": 3, "levels": 1,
+                             "ratio": 0.5, "material": "c"})");
+    ASSERT_EQ(s.spheres.size(), 10u);
+    const auto near = [](const dvec3& a, const dvec3& b) { return glm::length(a - b) < 1e-12; };
+    EXPECT_TRUE(near(s.spheres[1].center, dvec3(4.5, 1, 0)));
+    EXPECT_TRUE(near(s.spheres[2].center, dvec3(4.5 * 0.5, 1, -4.5 * std::sqrt(0.75))));
+    EXPECT_TRUE(near(s.spheres[9].center, dvec3(0, 1 + 4.5 * std::sqrt(2.0 / 3.0), 4.5 * std::sqrt(1.0 / 3.0))));
+    EXPECT_EQ(s.spheres[9].radius, 1.5);
+}
+
+TEST_F(GeneratorsTest, SphereflakeAfterOtherSpheresCountsFromItsFirst) {
+    const Scene s = load(R"({"type": "sphere", "center": [9, 9, 9], "radius": 1, "material": "a"},
+                            {"type": "sphereflake", "center": [0, 0, 0], "radius": 1, "levels": 1, "material": "b"})");
+    ASSERT_EQ(s.spheres.size(), 11u);
+    EXPECT_EQ(s.spheres[0].center, dvec3(9, 9, 9));
+    EXPECT_EQ(s.spheres[1].center, dvec3(0, 0, 0));
+    for (std::size_t i = 2; i < 11; ++i) EXPECT_NEAR(glm::length(s.spheres[i].center), 4.0 / 3.0, 1e-12);
+}
+
+TEST_F(GeneratorsTest, GalleryImageIIsTheSpdSphereflake) {
+    const Scene s = vkrt::load_json_scene(test::source_dir() / "scenes" / "gallery" / "i_sphereflake.json");
+    EXPECT_EQ(s.spheres.size(), 7381u);
+    EXPECT_TRUE(s.warnings.empty());
+}
+
+TEST_F(GeneratorsTest, SphereflakeBadFields) {
+    const std::string ok = R"("type": "sphereflake", "center": [0, 0, 0], "radius": 1, "material": "a")";
+    const auto with = [&](std::string_view extra) { return fmt::format("{{{}, {}}}", ok, extra); };
+    expect_error(with(R"("levels": 7)"), {"objects[0].levels: expected a whole number in [0, 6], got 7"});
+    expect_error(with(R"("levels": -1)"), {"objects[0].levels: expected a whole number in [0, 6], got -1"});
+    expect_error(with(R"("levels": 2.5)"), {"objects[0].levels: expected a whole number"});
+    expect_error(with(R"("ratio": 0)"), {"objects[0].ratio: expected a number > 0, got 0"});
+    expect_error(with(R"("ratio": 1.5)"), {"objects[0].ratio: expected a number in (0, 1], got 1.5"});
+    expect_error(with(R"("axis": [0, 0, 0])"), {"objects[0].axis: expected a non-zero vector, got [0, 0, 0]"});
+    expect_error(with(R"("axis": [0, 1])"), {"objects[0].axis: expected an array of 3 numbers"});
+    expect_error(with(R"("materials": ["a"])"), {"objects[0]: unknown field 'materials'", "ratio"});
+    expect_error(with(R"("levels": 6, "ratio": 1e-8)"),
+                 {"objects[0]: the smallest spheres' radius", "too small for the renderer's single precision"});
+    expect_error(R"({"type": "sphereflake", "center": [0, 0, 0], "radius": 0, "material": "a"})",
+                 {"objects[0].radius: expected a number > 0, got 0"});
+    expect_error(R"({"type": "sphereflake", "radius": 1, "material": "a"})",
+                 {"objects[0].center: required field is missing"});
+    expect_error(R"({"type": "sphereflake", "center": [0, 0, 0], "material": "a"})",
+                 {"objects[0].radius: required field is missing"});
+    expect_error(R"({"type": "sphereflake", "center": [0, 0, 0], "radius": 1})",
+                 {"objects[0].material: required field is missing"});
+    expect_error(R"({"type": "sphereflake", "center": [0, 0, 0], "radius": 1, "material": "zz"})",
+                 {"objects[0].material: unknown material 'zz'"});
 }
 
 // ---- torus_knot -----------------------------------------------------------------

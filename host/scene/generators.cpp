@@ -1,15 +1,20 @@
 #include "scene/generators.hpp"
 
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <numbers>
 #include <optional>
 
+#include <array>
+
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
 
 #include "scene/indexed_mesh.hpp"
 #include "scene/transform.hpp"
+#include "scene/vec_math.hpp"
 
 namespace vkrt {
 
@@ -46,6 +51,105 @@ void read_random_spheres(const json::Node& n, const MaterialLookup& material, st
         // uniform() < 1, so the index is below the list's size.
         s.material = materials[static_cast<std::size_t>(rng.uniform() * static_cast<double>(materials.size()))];
         out.push_back(s);
+    }
+}
+
+namespace {
+
+// A sphere's own frame: columns u, v in its equatorial plane and w, the direction
+// its children grow towards, right-handed (u x v = w).
+using Frame = glm::dmat3;
+
+// The 9 children of a sphere in its own frame: child k sits in direction column 2
+// of kChildFrames[k], and that matrix, taking the parent's frame to the child's,
+// is the rotation Rz(phi) Ry(90 deg - theta) that carries the parent's w onto that
+// direction (elevation theta, azimuth phi). Applying the same rotations at every
+// level makes each child's subtree an exact scaled copy of the whole flake.
+//
+// Elevation and azimuths: around one sphere, 12 equal spheres touching it can
+// touch their neighbours too (the densest packing: a hexagon in the equator, and
+// triangles of 3 above and below, turned 30 degrees against the hexagon). The
+// sphereflake keeps the hexagon (theta 0; phi 0, 60, ..., 300) and the upper
+// triangle (phi 30, 150, 270), whose elevation theta has sin^2 = 2/3 (54.74 deg):
+// then no two children are less than 60 degrees apart (a ring child has 3 siblings
+// at 60, a top child 4), and siblings at 60 degrees do not overlap as long as the
+// ratio is below 1 (their centres are (1 + ratio) r apart, their radii add up to
+// 2 ratio r). The 3 below the equator would point back at the
+// parent, so they are left out.
+std::array<glm::dmat3, 9> child_frames() {
+    std::array<glm::dmat3, 9> frames{};
+    const double sin_up = std::sqrt(2.0 / 3.0), cos_up = std::sqrt(1.0 / 3.0);
+    for (int k = 0; k < 9; ++k) {
+        const bool ring = k < 6;
+        const double phi = (ring ? 60.0 * k : 30.0 + 120.0 * (k - 6)) * std::numbers::pi / 180.0;
+        const double st = ring ? 0.0 : sin_up, ct = ring ? 1.0 : cos_up;
+        const double sp = std::sin(phi), cp = std::cos(phi);
+        frames[k] = glm::dmat3(dvec3(st * cp, st * sp, -ct),  // u: Ry turns x down to (sin t, 0, -cos t)
+                               dvec3(-sp, cp, 0.0),           // v
+                               dvec3(ct * cp, ct * sp, st));  // w: the child's direction
+    }
+    return frames;
+}
+
+// The root's frame: w along the axis, u the world axis x (or z, when the axis is
+// nearly x) made perpendicular to it. For the default axis y that gives u = x,
+// v = -z: one of the upper children then faces +z.
+Frame root_frame(const dvec3& axis) {
+    const dvec3 w = glm::normalize(axis);
+    const dvec3 e = std::abs(w.x) < 0.9 ? dvec3(1, 0, 0) : dvec3(0, 0, 1);
+    const dvec3 u = glm::normalize(e - glm::dot(e, w) * w);
+    return Frame(u, glm::cross(w, u), w);
+}
+
+}  // namespace
+
+void read_sphereflake(const json::Node& n, const MaterialLookup& material, std::vector<Sphere>& out) {
+    n.allow_only({"type", "center", "radius", "axis", "levels", "ratio", "material"});
+    const dvec3 center = n.required("center").vec3();
+    const double radius = n.required("radius").number_above(0.0);
+    dvec3 axis(0, 1, 0);
+    if (auto a = n.find("axis")) {
+        axis = a->vec3();
+        if (!is_nonzero(axis)) a->fail("expected a non-zero vector, got [0, 0, 0]");
+        axis = robust_normalize(axis);
+    }
+    int levels = 4;
+    if (auto l = n.find("levels")) levels = static_cast<int>(l->whole(0, kMaxSphereflakeLevels));
+    double ratio = 1.0 / 3.0;
+    if (auto r = n.find("ratio")) {
+        ratio = r->number_above(0.0);
+        if (ratio > 1.0) r->fail(fmt::format("expected a number in (0, 1], got {}", ratio));
+    }
+    // The renderer gets floats: the smallest spheres must not round to radius 0.
+    const double smallest = radius * std::pow(ratio, levels);
+    if (!(static_cast<float>(smallest) >= std::numeric_limits<float>::min())) {
+        n.fail(fmt::format("the smallest spheres' radius {} (radius x ratio^levels) is too small for the "
+                           "renderer's single precision; use fewer levels or a larger ratio",
+                           smallest));
+    }
+    const std::uint32_t m = material(n.required("material"));
+
+    static const std::array<glm::dmat3, 9> kChildFrames = child_frames();
+    const std::size_t first = out.size();
+    out.reserve(first + sphereflake_count(levels));
+    out.push_back(Sphere{center, radius, m});
+    std::vector<Frame> frames{root_frame(axis)};
+    frames.reserve(1 + sphereflake_count(levels - 1));
+    // Level by level; sphere k of the flake (k counted from `first`) is frames[k].
+    std::size_t begin = 0, end = 1;
+    for (int level = 0; level < levels; ++level) {
+        for (std::size_t k = begin; k < end; ++k) {
+            const Sphere parent = out[first + k];
+            const double r = parent.radius * ratio;
+            for (const glm::dmat3& turn : kChildFrames) {
+                const Frame child = frames[k] * turn;
+                out.push_back(Sphere{parent.center + (parent.radius + r) * child[2], r, m});
+                // The last level's frames would never be read.
+                if (level + 1 < levels) frames.push_back(child);
+            }
+        }
+        begin = end;
+        end = out.size() - first;
     }
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // Scene objects that expand into many primitives when the scene is loaded, so that
-// the paper's big scenes (image H: 100,000 random spheres; image J: a mesh of
-// about 86,000 triangles) stay a few lines in git (docs/scene-format.md).
+// the paper's big scenes (image H: 100,000 random spheres; image I: a sphereflake;
+// image J: a mesh of about 86,000 triangles) stay a few lines in git
+// (docs/scene-format.md).
 #include <cstdint>
 #include <vector>
 
@@ -36,12 +37,34 @@ private:
 
 inline constexpr std::uint64_t kMaxRandomSpheres = 10'000'000;
 inline constexpr std::uint64_t kMaxGeneratedTriangles = 20'000'000;
+// 6 levels are 597,871 spheres, whose smallest are 1/729 of the biggest at the
+// default ratio: already below a pixel in any view that shows the whole flake.
+inline constexpr int kMaxSphereflakeLevels = 6;
 
 // {"type": "random_spheres", "count", "seed", "min", "max", "radius", "materials"}:
 // appends `count` spheres. Each draws, in this order, its centre's x, y, z (uniform
 // in the box), its radius (uniform in [radius[0], radius[1]]) and its material
 // (uniform over the list).
 void read_random_spheres(const json::Node& n, const MaterialLookup& material, std::vector<Sphere>& out);
+
+// How many spheres a sphereflake of `levels` levels has: 1 + 9 + ... + 9^levels,
+// that is (9^(levels + 1) - 1) / 8.
+constexpr std::uint64_t sphereflake_count(int levels) {
+    std::uint64_t count = 0, level = 1;
+    for (int i = 0; i <= levels; ++i, level *= 9) count += level;
+    return count;
+}
+
+// {"type": "sphereflake", "center", "radius", "axis", "levels", "ratio", "material"}:
+// appends Eric Haines' sphereflake (the SPD "balls" scene, the paper's image I).
+// Every sphere of radius r carries 9 children of radius ratio * r that touch it,
+// on the side away from its own parent: 6 around its equator and 3 at 54.74
+// degrees above it, the directions of 9 of the 12 neighbours of a sphere in the
+// densest packing, so neighbouring children are 60 degrees apart. Each child's
+// children are placed the same way about the direction from its parent to it.
+// The spheres are appended level by level: counting from the first one appended,
+// the children of sphere k are spheres 9k + 1 to 9k + 9.
+void read_sphereflake(const json::Node& n, const MaterialLookup& material, std::vector<Sphere>& out);
 
 // A point of the (p, q) torus knot's centre line, t in [0, 2 pi): it winds p times
 // around the z axis and q times around the core circle of a torus of major radius

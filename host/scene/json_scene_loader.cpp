@@ -295,11 +295,13 @@ void read_objects(const Node& n, const MaterialIndex& materials, Scene& scene) {
             read_mesh(object, lookup, scene);
         } else if (t == "random_spheres") {
             read_random_spheres(object, lookup, scene.spheres);
+        } else if (t == "sphereflake") {
+            read_sphereflake(object, lookup, scene.spheres);
         } else if (t == "torus_knot") {
             read_torus_knot(object, lookup, scene);
         } else {
             type.fail(fmt::format("unknown object type {} (expected one of: sphere, triangle, quad, ring, "
-                                  "cylinder, mesh, random_spheres, torus_knot)",
+                                  "cylinder, mesh, random_spheres, sphereflake, torus_knot)",
                                   json::quote_user(t)));
         }
     }

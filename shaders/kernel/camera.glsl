@@ -5,7 +5,13 @@
 // corner of the image (row 0 at the top).
 Ray camera_ray(float x, float y) {
     precise vec3 d = vec3(params.cam_corner) + x * vec3(params.cam_right) + y * vec3(params.cam_down);
-    return Ray(vec3(params.cam_eye), normalize(d));
+    // Not normalize(): lavapipe computes it as d * inversesqrt(dot(d, d)), an
+    // approximation a few ULPs off, while sqrt and division are correctly rounded on
+    // both backends. With this, both backends start every eye ray bit-identical, which
+    // matters where mirrors amplify an ULP (a sphereflake's crevices, reflection after
+    // reflection, flipped whole pixels at depth 5 before; gallery image I).
+    precise vec3 u = d / sqrt(dot(d, d));
+    return Ray(vec3(params.cam_eye), u);
 }
 
 // Position inside the pixel for one sample: sample k covers sub-pixel k mod aa^2 of
