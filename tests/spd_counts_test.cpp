@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <ostream>
 #include <string>
 
 #include "scene/load_scene.hpp"
@@ -50,6 +51,8 @@ Scene spd(const Published& p) {
 }
 
 std::string scene_name(const ::testing::TestParamInfo<Published>& param) { return param.param.scene; }
+// How gtest shows a parameter in its logs.
+void PrintTo(const Published& p, std::ostream* os) { *os << p.scene; }
 
 class SpdCounts : public ::testing::TestWithParam<Published> {};
 
