@@ -16,4 +16,5 @@
 #include "area_lights.glsl"
 #include "shade.glsl"
 #include "specular.glsl"
+#include "hemisphere.glsl"
 #include "sample.glsl"

@@ -48,6 +48,11 @@ const uint DEFAULT_LOOP_BUDGET = 60000u;
 // is enough, so max_depth 8 never overflows the stack.
 const uint RAY_STACK_SIZE = 8u;
 
+// How a hemisphere direction is drawn (hemisphere.glsl).
+const uint HEMISPHERE_ANGLES = 0u;   // the paper's Fig. 13: theta and phi uniform
+const uint HEMISPHERE_UNIFORM = 1u;  // uniform in solid angle
+const uint HEMISPHERE_COSINE = 2u;   // density proportional to cos(theta)
+
 const float INFINITY_T = 3.0e38f;   // "no hit yet"; finite so comparisons stay ordered
 
 // Shadow rays stop this fraction short of their light, so that a light placed exactly
