@@ -162,6 +162,39 @@ TEST(AreaLight, SphereAboveTheFloorGivesTheExactIrradiance) {
     EXPECT_NEAR(e.mean, want, 4.0 * e.error);
 }
 
+// A disc of radius R at height h, facing down, centred above the point: E = pi le R^2
+// / (h^2 + R^2) (the classic disc form factor). As a ring with a hole of radius a,
+// the difference of two discs. A capped cylinder standing above the point lights it
+// through its base cap alone (its side faces away from its axis, so from below only
+// its back would be seen), and an open one not at all: emission leaves front faces.
+TEST(AreaLight, RingsAndCylindersAreLightsToo) {
+    const double le = 10.0, h = 2.0, outer = 0.6, inner = 0.3;
+    auto disc = [&](double r) { return kPi * le * r * r / (h * h + r * r); };
+    const dvec3 point{0, 0, 0}, eye{0, 1, 3};
+    {
+        Scene s = floor_scene(le);
+        s.rings.push_back(Ring{{0, h, 0}, {0, -1, 0}, inner, outer, 1});
+        const Estimate e = probe(s, point, eye);
+        const double want = radiance(disc(outer) - disc(inner));
+        std::printf("ring: %.6f +- %.6f, exact %.6f\n", e.mean, e.error, want);
+        EXPECT_LT(e.error, 0.02 * want);
+        EXPECT_NEAR(e.mean, want, 4.0 * e.error);
+        const Estimate v = probe(s, point, eye, true);
+        EXPECT_NEAR(v.mean, e.mean, 1e-4 * want) << "the same samples on Vulkan";
+    }
+    {
+        Scene s = floor_scene(le);
+        s.cylinders.push_back(Cylinder{{0, h, 0}, {0, h + 1.0, 0}, outer, true, 1});
+        const Estimate e = probe(s, point, eye);
+        const double want = radiance(disc(outer));
+        std::printf("capped cylinder: %.6f +- %.6f, exact %.6f\n", e.mean, e.error, want);
+        EXPECT_LT(e.error, 0.05 * want);
+        EXPECT_NEAR(e.mean, want, 4.0 * e.error);
+        s.cylinders[0].capped = false;
+        EXPECT_EQ(probe(s, point, eye).mean, 0.0);
+    }
+}
+
 // (a) A small triangle far above, facing down, centroid straight above the point.
 // The small-solid-angle value le A cos cos' / r^2 = le A / h^2 is not exact, but the
 // integrand cos cos' / r^2 = h^2 / r^4 lies between h^2 / r_max^4 and 1 / h^2 over

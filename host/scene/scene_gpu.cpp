@@ -69,6 +69,7 @@ void add_emitters(const Scene& scene, SceneGpu& g) {
     struct Found {
         std::uint32_t ref;
         double area;
+        std::uint32_t part = 0;  // of a cylinder: kernel::CYLINDER_SIDE, _BASE_CAP, _TOP_CAP
     };
     std::vector<Found> found;
     auto emits = [&](std::uint32_t material) { return is_nonzero(scene.materials[material].emission); };
@@ -87,8 +88,26 @@ void add_emitters(const Scene& scene, SceneGpu& g) {
                              0.5 * glm::length(c)});
         }
     }
-    // Other primitive kinds (rings, cylinders) join here with their reference and
-    // area, and kernel/emitters.glsl's emitter_point gets a case for their kind.
+    const double pi = glm::pi<double>();
+    for (std::size_t i = 0; i < scene.rings.size(); ++i) {
+        const Ring& r = scene.rings[i];
+        if (emits(r.material)) {
+            found.push_back({(kernel::REF_RING << kernel::REF_KIND_SHIFT) | std::uint32_t(i),
+                             pi * (r.outer * r.outer - r.inner * r.inner)});
+        }
+    }
+    // A cylinder is up to three emitters, its side and its caps, so that each is
+    // picked by its own area and sampled by its own parameterization.
+    for (std::size_t i = 0; i < scene.cylinders.size(); ++i) {
+        const Cylinder& c = scene.cylinders[i];
+        if (!emits(c.material)) continue;
+        const std::uint32_t ref = (kernel::REF_CYLINDER << kernel::REF_KIND_SHIFT) | std::uint32_t(i);
+        found.push_back({ref, 2.0 * pi * c.radius * glm::length(c.top - c.base), kernel::CYLINDER_SIDE});
+        if (c.capped) {
+            found.push_back({ref, pi * c.radius * c.radius, kernel::CYLINDER_BASE_CAP});
+            found.push_back({ref, pi * c.radius * c.radius, kernel::CYLINDER_TOP_CAP});
+        }
+    }
     double total = 0.0;
     for (const Found& f : found) total += f.area;
     double running = 0.0;
@@ -96,7 +115,7 @@ void add_emitters(const Scene& scene, SceneGpu& g) {
         running += found[i].area;
         // Areas too small for double (all below ~1e-300) fall back to equal chances.
         const double cdf = total > 0.0 ? running / total : double(i + 1) / double(found.size());
-        g.emitters.push_back(kernel::Emitter(uvec4(found[i].ref, 0u, 0u, 0u),
+        g.emitters.push_back(kernel::Emitter(uvec4(found[i].ref, found[i].part, 0u, 0u),
                                              vec4(static_cast<float>(cdf), static_cast<float>(found[i].area), 0.0f, 0.0f)));
     }
     // Exactly 1, whatever the rounding of the sum: the kernel's search for the first
@@ -228,6 +247,9 @@ SceneGpu build_scene_gpu(const Scene& scene, const AccelPolicy& policy) {
     p.counts = uvec4(g.spheres.size(), g.triangles.size(), g.lights.size(), g.materials.size());
     p.more_counts = uvec4(g.rings.size(), g.cylinders.size(), 0u, 0u);
     if (g.features.has(Feature::HAS_AREA_LIGHTS)) add_emitters(scene, g);
+    // Every emissive primitive kind has its sampler, so the list is empty only if no
+    // primitive emits; the kernel's search must never see an empty list.
+    if (g.emitters.empty()) g.features.set(Feature::HAS_AREA_LIGHTS, false);
 
     g.grid.used = want_grid(scene, g.spheres.size() + g.triangles.size() + g.rings.size() + g.cylinders.size(),
                             policy, g.grid.reason);

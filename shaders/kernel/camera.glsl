@@ -5,13 +5,11 @@
 // corner of the image (row 0 at the top).
 Ray camera_ray(float x, float y) {
     precise vec3 d = vec3(params.cam_corner) + x * vec3(params.cam_right) + y * vec3(params.cam_down);
-    // Not normalize(): lavapipe computes it as d * inversesqrt(dot(d, d)), an
-    // approximation a few ULPs off, while sqrt and division are correctly rounded on
-    // both backends. With this, both backends start every eye ray bit-identical, which
-    // matters where mirrors amplify an ULP (a sphereflake's crevices, reflection after
-    // reflection, flipped whole pixels at depth 5 before; gallery image I).
-    precise vec3 u = d / sqrt(dot(d, d));
-    return Ray(vec3(params.cam_eye), u);
+    // unit_vector (ray.glsl), not normalize(): both backends then start every eye ray
+    // bit-identical, which matters where mirrors amplify an ULP (a sphereflake's
+    // crevices, reflection after reflection, flipped whole pixels at depth 5 before;
+    // gallery image I).
+    return Ray(vec3(params.cam_eye), unit_vector(d));
 }
 
 // Position inside the pixel for one sample: sample k covers sub-pixel k mod aa^2 of

@@ -53,8 +53,36 @@ EmitterPoint emitter_point(Emitter e, float u1, float u2) {
         precise vec3 y = vec3(s.center_radius) + s.center_radius.w * n;
         return EmitterPoint(y, n, vec3(load_material(s.meta.x).emission_fresnel));
     }
-    // Other kinds (rings, cylinders) get their case here, beside their entries in
-    // host/scene/scene_gpu.cpp's add_emitters.
+    if (HAS_RINGS && kind == REF_RING) {
+        // Uniform by area on the annulus: r^2 uniform between inner^2 and outer^2.
+        Ring r = load_ring(index);
+        vec3 n = vec3(r.normal_outer);
+        Basis f = basis_around(n);
+        float inner2 = r.center_inner.w * r.center_inner.w;
+        float radius = sqrt(inner2 + u1 * (r.normal_outer.w * r.normal_outer.w - inner2));
+        float phi = (2.0f * PI) * u2;
+        precise vec3 y = vec3(r.center_inner) + (radius * cos(phi)) * f.t + (radius * sin(phi)) * f.b;
+        return EmitterPoint(y, n, vec3(load_material(r.meta.x).emission_fresnel));
+    }
+    if (HAS_CYLINDERS && kind == REF_CYLINDER) {
+        // The side uniform in height and angle; a cap as a disc (r^2 uniform). The
+        // front faces are the outside: radially out, and out of each end.
+        Cylinder c = load_cylinder(index);
+        vec3 base = vec3(c.base_radius);
+        vec3 axis_vector = vec3(c.top_capped) - base;
+        vec3 axis = axis_vector / sqrt(dot(axis_vector, axis_vector));
+        Basis f = basis_around(axis);
+        float phi = (2.0f * PI) * u2;
+        vec3 radial = cos(phi) * f.t + sin(phi) * f.b;
+        vec3 emission = vec3(load_material(c.meta.x).emission_fresnel);
+        if (e.prim.y == CYLINDER_SIDE) {
+            precise vec3 y = base + u1 * axis_vector + c.base_radius.w * radial;
+            return EmitterPoint(y, radial, emission);
+        }
+        bool top = e.prim.y == CYLINDER_TOP_CAP;
+        precise vec3 y = (top ? vec3(c.top_capped) : base) + (c.base_radius.w * sqrt(u1)) * radial;
+        return EmitterPoint(y, top ? axis : -axis, emission);
+    }
     if (HAS_TRIANGLES && kind == REF_TRIANGLE) {
         Triangle tri = load_triangle(index);
         // The square-root parameterization (Osada et al., "Shape Distributions",

@@ -71,7 +71,7 @@ TriangleHit intersect_triangle(Ray ray, vec3 p0, vec3 p1, vec3 p2, float t_min, 
 
 // Unit geometric normal of a triangle, on its front side (cross(p1 - p0, p2 - p0)).
 vec3 triangle_face_normal(vec3 p0, vec3 p1, vec3 p2) {
-    return normalize(cross(p1 - p0, p2 - p0));
+    return unit_vector(cross(p1 - p0, p2 - p0));
 }
 
 // Vertex normals blended with the barycentric weights (the paper's Fig. 9).
@@ -96,12 +96,12 @@ float intersect_ring(Ray ray, vec3 center, vec3 normal, float inner, float outer
     if (denom == 0.0f) {
         return INFINITY_T;
     }
-    float t = dot(center - ray.origin, normal) / denom;
+    precise float t = dot(center - ray.origin, normal) / denom;
     if (!(t > t_min && t < t_max)) {
         return INFINITY_T;
     }
     precise vec3 d = ray.origin + t * ray.dir - center;
-    float d2 = dot(d, d);
+    precise float d2 = dot(d, d);
     if (!(d2 >= inner * inner && d2 <= outer * outer)) {
         return INFINITY_T;
     }
@@ -153,17 +153,19 @@ CylinderHit intersect_cylinder(Ray ray, vec3 base, vec3 top, float radius, bool 
     if (a > 0.0f) {
         float b = dot(o_perp, d_perp);
         precise vec3 f = o_perp - (b / a) * d_perp;
-        float disc = r2 - dot(f, f);
+        // precise, as in intersect_sphere: these decide rim and grazing hits, and a
+        // fused multiply-add on one backend only would move them.
+        precise float disc = r2 - dot(f, f);
         if (disc >= 0.0f) {
-            float c = dot(o_perp, o_perp) - r2;
-            float root = sqrt(a * disc);
-            float q = b >= 0.0f ? -(b + root) : root - b;
-            float t_a = q / a;
-            float t_b = q != 0.0f ? c / q : 0.0f;
+            precise float c = dot(o_perp, o_perp) - r2;
+            precise float root = sqrt(a * disc);
+            precise float q = b >= 0.0f ? -(b + root) : root - b;
+            precise float t_a = q / a;
+            precise float t_b = q != 0.0f ? c / q : 0.0f;
             float t_near = min(t_a, t_b);
             float t_far = max(t_a, t_b);
-            float h_near = oa + t_near * da;
-            float h_far = oa + t_far * da;
+            precise float h_near = oa + t_near * da;
+            precise float h_far = oa + t_far * da;
             if (t_near > t_min && t_near < t_max && h_near >= 0.0f && h_near <= len) {
                 hit.t = t_near;
             } else if (t_far > t_min && t_far < t_max && h_far >= 0.0f && h_far <= len) {
@@ -173,13 +175,13 @@ CylinderHit intersect_cylinder(Ray ray, vec3 base, vec3 top, float radius, bool 
         }
     }
     if (capped && da != 0.0f) {
-        float t_base = -oa / da;
+        precise float t_base = -oa / da;
         precise vec3 e_base = o_perp + t_base * d_perp;
         if (t_base > t_min && t_base < bound && dot(e_base, e_base) <= r2) {
             hit = CylinderHit(t_base, CYLINDER_BASE_CAP);
             bound = t_base;
         }
-        float t_top = (len - oa) / da;
+        precise float t_top = (len - oa) / da;
         precise vec3 e_top = o_perp + t_top * d_perp;
         if (t_top > t_min && t_top < bound && dot(e_top, e_top) <= r2) {
             hit = CylinderHit(t_top, CYLINDER_TOP_CAP);
@@ -192,7 +194,7 @@ CylinderHit intersect_cylinder(Ray ray, vec3 base, vec3 top, float radius, bool 
 // (outer) side: away from the axis on the side, -axis on the base cap, +axis on the
 // top cap.
 vec3 cylinder_normal(vec3 base, vec3 top, vec3 p, uint part) {
-    vec3 axis = normalize(top - base);
+    vec3 axis = unit_vector(top - base);
     if (part == CYLINDER_BASE_CAP) {
         return -axis;
     }
@@ -201,5 +203,5 @@ vec3 cylinder_normal(vec3 base, vec3 top, vec3 p, uint part) {
     }
     vec3 o = p - base;
     precise vec3 radial = o - dot(o, axis) * axis;
-    return normalize(radial);
+    return unit_vector(radial);
 }

@@ -66,7 +66,8 @@ struct PointLight {
 // are chosen with probability proportional to their area, through the cumulative
 // fractions in cdf_area.x, the last of which is exactly 1.
 struct Emitter {
-    uvec4 prim;      // x = primitive reference (kind << REF_KIND_SHIFT | index, as the grid's), y/z/w unused
+    uvec4 prim;      // x = primitive reference (kind << REF_KIND_SHIFT | index, as the grid's),
+                     // y = the part of a cylinder (CYLINDER_SIDE, _BASE_CAP, _TOP_CAP), z/w unused
     vec4 cdf_area;   // x = area of the emitters up to and including this one / total area, y = area, z/w unused
 };
 

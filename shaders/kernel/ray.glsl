@@ -13,6 +13,15 @@ struct Hit {
     bool front_face;  // the ray arrived on the side the primitive calls its front
 };
 
+// v / |v|, by a correctly rounded sqrt and division. Not normalize(): lavapipe
+// computes it as v * inversesqrt(dot(v, v)), an approximation a few ULPs off, and an
+// ULP in a normal or a direction is what mirrors amplify into a differing pixel.
+// With this, both backends compute bit-identical unit vectors.
+vec3 unit_vector(vec3 v) {
+    precise vec3 u = v / sqrt(dot(v, v));
+    return u;
+}
+
 Hit no_hit() {
     return Hit(INFINITY_T, vec3(0.0f), vec3(0.0f), 0u, false);
 }

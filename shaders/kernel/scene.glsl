@@ -228,7 +228,9 @@ Hit sphere_hit(Ray ray, uint index, float t) {
     Sphere s = load_sphere(index);
     vec3 center = vec3(s.center_radius);
     precise vec3 p = ray.origin + t * ray.dir;
-    vec3 n = (p - center) / s.center_radius.w;
+    // Normalized, not divided by the radius: far from the origin p carries the
+    // rounding of its magnitude, and (p - c) / r drifts off unit length.
+    vec3 n = unit_vector(p - center);
     bool front = dot(n, ray.dir) < 0.0f;
     vec3 facing = front ? n : -n;
     return Hit(t, facing, facing, s.meta.x, front);
@@ -244,7 +246,9 @@ Hit triangle_hit(Ray ray, uint index, TriangleHit th) {
     bool front = dot(ng, ray.dir) < 0.0f;
     vec3 g = front ? ng : -ng;
     // The shading normal must lie on the viewer's side of the surface too.
-    vec3 s = dot(ns, g) < 0.0f ? -ns : ns;
+    bool flip = dot(ns, g) < 0.0f;
+    note_decision(flip ? 11u : 10u);
+    vec3 s = flip ? -ns : ns;
     return Hit(th.t, s, g, tri.meta.x, front);
 }
 
@@ -289,8 +293,15 @@ Hit make_hit(Ray ray, Nearest nearest) {
 // The closest hit with t in (0, t_max).
 Hit closest_hit(Ray ray, float t_max) {
     Nearest nearest = trace(ray, t_max, false);
+    Hit hit = make_hit(ray, nearest);
+    // What was hit, which part of it (a cylinder's side or cap), and from which side:
+    // near wall or far wall, outside or in, are decisions too.
     note_decision(nearest.ref);
-    return make_hit(ray, nearest);
+    if (HAS_CYLINDERS && (nearest.ref >> REF_KIND_SHIFT) == REF_CYLINDER) {
+        note_decision(nearest.part);
+    }
+    note_decision(hit.front_face ? 9u : 8u);
+    return hit;
 }
 
 // True when anything lies on the ray with t in (0, t_max): shadow rays stop at the

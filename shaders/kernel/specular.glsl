@@ -2,9 +2,11 @@
 // reflectance. `n` is the unit shading normal on the side the ray arrives from
 // (Hit.normal), `d` the unit direction of the arriving ray.
 
+// Renormalized: d and n are unit only to rounding, and the error would compound over
+// a chain of mirrors.
 vec3 mirror_direction(vec3 d, vec3 n) {
     precise vec3 r = d - (2.0f * dot(d, n)) * n;
-    return r;
+    return unit_vector(r);
 }
 
 struct Refraction {
@@ -31,5 +33,5 @@ Refraction refract_fresnel(vec3 d, vec3 n, float eta) {
     precise float r_p = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
     precise vec3 t = eta * d + (eta * cos_i - cos_t) * n;
     precise float reflectance = 0.5f * (r_s * r_s + r_p * r_p);
-    return Refraction(t / sqrt(dot(t, t)), reflectance, false);
+    return Refraction(unit_vector(t), reflectance, false);
 }
