@@ -1,6 +1,7 @@
 // Mirrors and glass (shaders/kernel/specular.glsl, sample.glsl): the Fresnel and
 // Snell maths against closed forms, the children a hit spawns, and whole samples
 // against what optics says they must show, through the reference backend's kernel.
+// Also the decision hash the cross-check relies on, and the SPD corner sampling.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -47,6 +48,27 @@ TEST(Fresnel, NormalIncidenceObliqueAndSnell) {
     EXPECT_NEAR(same.dir.x, d.x, 1e-6);
     // Grazing: everything reflects.
     EXPECT_NEAR(k.refract_fresnel(vec3(1, 0, 0), vec3(0, 0, 1), 1.0f / 1.5f).reflectance, 1.0, 1e-6);
+}
+
+TEST(Fresnel, BrewstersAngleAgainstTheSineForms) {
+    // Independent of the kernel's cosine forms: at Brewster's angle tan(theta_i) = n
+    // the p-polarized reflectance vanishes, theta_i + theta_t = 90 degrees, and the
+    // s-polarized one is sin^2(theta_i - theta_t) / sin^2(theta_i + theta_t).
+    Kernel k;
+    const double theta_i = std::atan(1.5);
+    const double theta_t = std::asin(std::sin(theta_i) / 1.5);
+    EXPECT_NEAR(theta_i + theta_t, glm::radians(90.0), 1e-12);
+    const double rs = std::sin(theta_i - theta_t) / std::sin(theta_i + theta_t);
+    const vec3 d(float(std::sin(theta_i)), 0.0f, float(-std::cos(theta_i)));
+    const Kernel::Refraction r = k.refract_fresnel(d, vec3(0, 0, 1), 1.0f / 1.5f);
+    EXPECT_NEAR(r.reflectance, 0.5 * rs * rs, 1e-6);
+    // And at 30 degrees, both sine and tangent forms.
+    const double i30 = glm::radians(30.0), t30 = std::asin(std::sin(i30) / 1.5);
+    const double s30 = std::sin(i30 - t30) / std::sin(i30 + t30);
+    const double p30 = std::tan(i30 - t30) / std::tan(i30 + t30);
+    const Kernel::Refraction r30 =
+        k.refract_fresnel(vec3(float(std::sin(i30)), 0.0f, float(-std::cos(i30))), vec3(0, 0, 1), 1.0f / 1.5f);
+    EXPECT_NEAR(r30.reflectance, 0.5 * (s30 * s30 + p30 * p30), 1e-6);
 }
 
 TEST(Fresnel, AtAndBeyondTheCriticalAngleAllIsReflected) {
@@ -300,6 +322,96 @@ TEST(RayTree, AFullStackDropsRaysAndSaysSo) {
     scene.render.max_depth = kernel::RAY_STACK_SIZE;
     const SceneGpu deep8 = build_scene_gpu(scene);
     EXPECT_EQ(make_kernel(deep8).render_sample(0, 0, 0).dropped_stack, 0u);
+}
+
+TEST(DecisionHash, DifferentDecisionsHashDifferently) {
+    // The cross-check tells flips from arithmetic by these hashes: each kind of
+    // decision must change it, and the same decisions must give the same hash.
+    Scene scene = empty_scene();
+    scene.materials = {material(dvec3(0.5)), material(dvec3(0.0), dvec3(0.0), dvec3(1.0), 1.5)};
+    scene.spheres.push_back(Sphere{{0, 0, 0}, 1.0, 1});
+    scene.spheres.push_back(Sphere{{5, 0, 0}, 1.0, 0});
+    const SceneGpu gpu = build_scene_gpu(scene);
+    Kernel k = make_kernel(gpu);
+    auto hash = [&](auto&& run) {
+        k.work_reset();
+        run();
+        return k.g_decisions;
+    };
+    // Blocked and clear shadow rays; the same query twice.
+    const auto blocked = [&] { k.occluded(Kernel::Ray(vec3(-3, 0, 0), vec3(1, 0, 0)), 10.0f); };
+    const auto clear = [&] { k.occluded(Kernel::Ray(vec3(-3, 3, 0), vec3(1, 0, 0)), 10.0f); };
+    EXPECT_NE(hash(blocked), hash(clear));
+    EXPECT_EQ(hash(blocked), hash(blocked));
+    // Which primitive a ray hits, and from which side (outside, or inside the glass).
+    const auto first = [&] { k.closest_hit(Kernel::Ray(vec3(-3, 0, 0), vec3(1, 0, 0)), kernel::INFINITY_T); };
+    const auto second = [&] { k.closest_hit(Kernel::Ray(vec3(8, 0, 0), vec3(-1, 0, 0)), kernel::INFINITY_T); };
+    const auto inside = [&] { k.closest_hit(Kernel::Ray(vec3(0, 0, 0), vec3(-1, 0, 0)), kernel::INFINITY_T); };
+    EXPECT_NE(hash(first), hash(second));
+    EXPECT_NE(hash(first), hash(inside)) << "same sphere, hit from inside";
+    // Total internal reflection against refraction, from inside the glass sphere.
+    auto spawn_from = [&](vec3 origin, vec3 dir) {
+        return [&k, origin, dir] {
+            const Kernel::PendingRay ray{Kernel::Ray(origin, dir), vec3(1.0f), 0u};
+            const Kernel::Hit hit = k.closest_hit(ray.ray, kernel::INFINITY_T);
+            Kernel::RayQueue q{};
+            Kernel::SampleResult s{};
+            k.spawn_children(ray, hit, q, s);
+        };
+    };
+    const auto total = spawn_from(vec3(0.0f, 0.9f, 0.0f), vec3(1, 0, 0));
+    const auto refracts = spawn_from(vec3(0.0f, 0.1f, 0.0f), vec3(1, 0, 0));
+    EXPECT_NE(hash(total), hash(refracts));
+    EXPECT_EQ(hash(total), hash(total));
+}
+
+TEST(Corners, EachCornerRayGoesThroughItsPixelCorner) {
+    // With render.corners the kernel renders the (w+1) x (h+1) corner grid; its ray
+    // (x, y) must be the plain image's ray through continuous position (x, y).
+    Scene scene = empty_scene();
+    scene.camera.eye = {1, 2, 3};
+    scene.camera.look_at = {0, 0, 0};
+    scene.camera.fov = 50;
+    scene.camera.width = 6;
+    scene.camera.height = 4;
+    scene.materials = {material(dvec3(0.5))};
+    scene.spheres.push_back(Sphere{{0, 0, 0}, 1.0, 0});
+    Kernel plain = make_kernel(build_scene_gpu(scene));
+    scene.render.corners = true;
+    const SceneGpu gpu = build_scene_gpu(scene);
+    EXPECT_EQ(gpu.width(), 7u);
+    EXPECT_EQ(gpu.height(), 5u);
+    EXPECT_EQ(gpu.samples_per_pixel, 1u);
+    Kernel corners = make_kernel(gpu);
+    for (float y = 0; y <= 4; ++y) {
+        for (float x = 0; x <= 6; ++x) {
+            const vec3 want = plain.camera_ray(x, y).dir;
+            const vec3 got = corners.camera_ray(x + 0.5f, y + 0.5f).dir;  // the sample offset of aa = 1
+            EXPECT_NEAR(got.x, want.x, 1e-6);
+            EXPECT_NEAR(got.y, want.y, 1e-6);
+            EXPECT_NEAR(got.z, want.z, 1e-6);
+        }
+    }
+}
+
+TEST(Corners, EachPixelAveragesItsFourCornersLeavingOutLostOnes) {
+    RenderResult r;
+    r.width = 3;
+    r.height = 2;
+    // Corner radiance sums over `a` samples; corner (2, 1) lost its sample.
+    r.accum = {glm::vec4(1, 2, 3, 1), glm::vec4(2, 4, 6, 2), glm::vec4(9, 9, 9, 1),
+               glm::vec4(3, 3, 3, 1), glm::vec4(5, 5, 5, 1), glm::vec4(0, 0, 0, 0)};
+    const Image image = resolve_image(r, true);
+    ASSERT_EQ(image.width, 2u);
+    ASSERT_EQ(image.height, 1u);
+    // Pixel 0: corners (1,2,3), (1,2,3), (3,3,3), (5,5,5).
+    EXPECT_FLOAT_EQ(image.rgb[0], 2.5f);
+    EXPECT_FLOAT_EQ(image.rgb[1], 3.0f);
+    EXPECT_FLOAT_EQ(image.rgb[2], 3.5f);
+    // Pixel 1: corners (1,2,3), (9,9,9), (5,5,5) and the lost one, left out.
+    EXPECT_FLOAT_EQ(image.rgb[3], 5.0f);
+    EXPECT_FLOAT_EQ(image.rgb[4], 16.0f / 3.0f);
+    EXPECT_FLOAT_EQ(image.rgb[5], 17.0f / 3.0f);
 }
 
 TEST(RayTree, FeaturesFollowTheMaterials) {

@@ -6,16 +6,21 @@ namespace vkrt {
 
 namespace {
 
+// Each pixel the mean of its four corner rays; a corner whose sample was left out
+// (truncated or not finite) is left out of the mean rather than counted as black.
 Image average_corners(const RenderResult& result) {
     const std::uint32_t w = result.width - 1, h = result.height - 1;
     Image image(w, h);
-    auto radiance = [&](std::uint32_t x, std::uint32_t y) {
-        const glm::vec4& sum = result.accum[std::size_t(y) * result.width + x];
-        return sum.a > 0.0f ? glm::vec3(sum) / sum.a : glm::vec3(0.0f);
-    };
     for (std::uint32_t y = 0; y < h; ++y) {
         for (std::uint32_t x = 0; x < w; ++x) {
-            const glm::vec3 c = 0.25f * (radiance(x, y) + radiance(x + 1, y) + radiance(x, y + 1) + radiance(x + 1, y + 1));
+            glm::vec4 sum(0.0f);
+            for (std::uint32_t dy = 0; dy < 2; ++dy) {
+                for (std::uint32_t dx = 0; dx < 2; ++dx) {
+                    const glm::vec4& corner = result.accum[std::size_t(y + dy) * result.width + x + dx];
+                    if (corner.a > 0.0f) sum += glm::vec4(glm::vec3(corner) / corner.a, 1.0f);
+                }
+            }
+            const glm::vec3 c = sum.a > 0.0f ? glm::vec3(sum) / sum.a : glm::vec3(0.0f);
             const std::size_t p = std::size_t(y) * w + x;
             image.rgb[p * 3 + 0] = c.r;
             image.rgb[p * 3 + 1] = c.g;
