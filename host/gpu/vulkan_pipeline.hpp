@@ -12,10 +12,9 @@ namespace vkrt::gpu {
 
 class VulkanBuffer;
 
-// Binding numbers of shaders/render.comp. The set layout has one binding per number
-// below kBindingCount, so the numbers stay dense: 9 and 10 belong to rings and
-// cylinders (branch rings), which render.comp here does not declare. A layout may
-// hold bindings the shader does not use; they get the dummy buffer.
+// Binding numbers of shaders/render.comp, dense: the set layout has one binding per
+// number below kBindingCount. A binding whose feature the scene leaves out gets the
+// dummy buffer.
 enum Binding : std::uint32_t {
     kParams, kMaterials, kSpheres, kTriangles, kLights, kAccum, kCounters, kGridCellStarts, kGridRefs, kRings,
     kCylinders, kEmitters, kBindingCount
