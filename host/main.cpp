@@ -119,14 +119,15 @@ int main(int argc, char** argv) {
     cli::BenchArgs bench;
     bench.command_line = command_line(argc, argv);
     CLI::App* b = app.add_subcommand("bench", "Measure rays per second: grid against brute force, vulkan against cpu");
-    b->add_option("--scene", bench.scenes,
-                  "Scene file to measure; repeat for more (default: the list in docs/bench.md, relative to the repo "
-                  "root)")
-        ->allow_extra_args(false);
-    b->add_option("--width", bench.width, "Image width")
+    CLI::Option* scene_opt =
+        b->add_option("--scene", bench.scenes,
+                      "Scene file to measure; repeat for more (default: the list in docs/bench.md, relative to the "
+                      "repo root)")
+            ->allow_extra_args(false);
+    CLI::Option* width_opt = b->add_option("--width", bench.width, "Image width")
         ->check(whole_number(1, limits::kMaxImageSide))
         ->capture_default_str();
-    b->add_option("--height", bench.height, "Image height")
+    CLI::Option* height_opt = b->add_option("--height", bench.height, "Image height")
         ->check(whole_number(1, limits::kMaxImageSide))
         ->capture_default_str();
     b->add_option("--runs", bench.runs, "Runs per measurement; the median is reported")
@@ -137,9 +138,20 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     b->add_option("--device", bench.device, "Vulkan device: index or name from `vkrt devices` (e.g. lavapipe)");
     b->add_option("--csv", bench.csv, "Also write the measurements to this CSV file");
-    b->add_flag("--sweep", bench.sweep, "Measure 1k, 10k, 100k and 1M random spheres: cost against primitive count");
-    b->add_flag("--threshold", bench.threshold,
-                "Measure 1 to 256 random spheres, grid on and off: where the grid starts to win");
+    CLI::Option* sweep_opt = b->add_flag("--sweep", bench.sweep,
+                                         "Measure 1k, 10k, 100k and 1M random spheres: cost against primitive count");
+    CLI::Option* threshold_opt =
+        b->add_flag("--threshold", bench.threshold,
+                    "Measure 1 to 256 random spheres, grid on and off: where the grid starts to win");
+    CLI::Option* spd = b->add_flag("--spd", bench.spd,
+                                   "Measure the SPD scenes under the SPD rules: ray counts against the published "
+                                   "ones, preprocessing and ray-tracing times");
+    b->add_option("--spd-dir", bench.spd_dir, "Where --spd finds the SPD .nff files")
+        ->needs(spd)
+        ->capture_default_str();
+    // The SPD rules fix the image (the file's resolution) and the scene list, and the
+    // SPD table has its own columns: none of these mean anything with --spd.
+    spd->excludes(scene_opt)->excludes(width_opt)->excludes(height_opt)->excludes(sweep_opt)->excludes(threshold_opt);
     b->add_flag("-q,--quiet", bench.quiet, "No progress lines on standard error");
 
     app.add_subcommand("devices", "List the Vulkan devices");

@@ -10,17 +10,15 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
-#include <thread>
 #include <utility>
 
 #include <fmt/format.h>
-#include <sys/utsname.h>
 
 #include "cli/bench_scenes.hpp"
+#include "cli/bench_spd.hpp"
+#include "cli/bench_support.hpp"
 #include "cli/bench_table.hpp"
-#include "gpu/vulkan_backend.hpp"
 #include "kernel_types.hpp"
-#include "ref/ref_backend.hpp"
 #include "render/render.hpp"
 #include "scene/limits.hpp"
 #include "scene/load_scene.hpp"
@@ -105,12 +103,6 @@ void configure(Scene& s, const Cell& cell, bool shadows) {
     s.render.grid.mode = cell.grid ? GridMode::On : GridMode::Off;
     const bool unlimited = !cell.grid && cell.backend->name() == "cpu";
     s.render.loop_budget = unlimited ? kUnlimitedLoopBudget : 0;
-}
-
-double median(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    const std::size_t n = values.size();
-    return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 double median_of(const std::vector<RenderStats>& runs, double RenderStats::*field) {
@@ -220,39 +212,9 @@ BenchScene load_bench_scene(const std::string& label, const fs::path& file, bool
     return s;
 }
 
-std::string read_first_value(const char* file, const std::string& key) {
-    std::ifstream in(file);
-    for (std::string line; std::getline(in, line);) {
-        if (line.rfind(key, 0) != 0) continue;
-        const std::size_t colon = line.find(':');
-        if (colon == std::string::npos) continue;
-        const std::size_t start = line.find_first_not_of(" \t", colon + 1);
-        return start == std::string::npos ? std::string() : line.substr(start);
-    }
-    return {};
-}
-
-// What a pasted table needs to be read right: the CPU (both backends run on it
-// here), the Vulkan device and driver, and the command.
+// The machine and command, and how the figures were measured.
 void print_header(const BenchArgs& args, const std::vector<std::unique_ptr<Backend>>& backends) {
-    std::string cpu = read_first_value("/proc/cpuinfo", "model name");
-    if (cpu.empty()) cpu = "unknown CPU";
-    std::string memory;
-    if (const std::string kib = read_first_value("/proc/meminfo", "MemTotal"); !kib.empty()) {
-        memory = fmt::format(", {:.0f} GiB", std::stod(kib) / (1024.0 * 1024.0));
-    }
-    utsname os{};
-    const std::string system = ::uname(&os) == 0 ? fmt::format(", {} {} {}", os.sysname, os.release, os.machine) : "";
-    fmt::print("machine: {}, {} hardware threads{}{}\n", cpu, std::thread::hardware_concurrency(), memory, system);
-    for (const auto& b : backends) {
-        if (b->name() != "vulkan") continue;
-        std::string driver;
-        for (const DeviceInfo& d : list_vulkan_devices()) {
-            if (d.name == b->device_name()) driver = fmt::format(" [{}], driver {}", d.type, d.driver);
-        }
-        fmt::print("vulkan:  {}{}\n", b->device_name(), driver);
-    }
-    fmt::print("command: {}\n", args.command_line);
+    print_machine(args, backends);
     fmt::print("method:  1 eye ray per pixel, shadow rays to every light, no reflection or refraction; median of {} "
                "run{}; render s = the sample loop (GPU timestamps on Vulkan); brute force at most {:g} pixel x "
                "primitive pairs (docs/bench.md)\n\n",
@@ -286,13 +248,6 @@ std::vector<BenchScene> generated_scenes(const TempSceneDir& dir, const std::vec
     return scenes;
 }
 
-std::vector<std::unique_ptr<Backend>> make_backends(const BenchArgs& args) {
-    std::vector<std::unique_ptr<Backend>> backends;
-    if (args.backend != "cpu") backends.push_back(make_vulkan_backend(VulkanOptions{args.device, false}));
-    if (args.backend != "vulkan") backends.push_back(make_reference_backend());
-    return backends;
-}
-
 }  // namespace
 
 int run_bench(const BenchArgs& args) {
@@ -303,6 +258,7 @@ int run_bench(const BenchArgs& args) {
     if (args.backend == "cpu" && !args.device.empty()) {
         fmt::print(stderr, "warning: --device applies to the vulkan backend only; ignored\n");
     }
+    if (args.spd) return run_spd_bench(args);
     // Scene files first (seconds at most, and where most mistakes are), then the
     // CSV file and the devices: every mistake fails before the benchmark, not after.
     const bool listed = (!args.sweep && !args.threshold) || !args.scenes.empty();

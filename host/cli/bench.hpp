@@ -1,6 +1,7 @@
 #pragma once
 // `vkrt bench`: rays per second for primary and shadow rays, grid against brute
-// force, Vulkan against the C++ reference, on a list of scenes (docs/bench.md).
+// force, Vulkan against the C++ reference, on a list of scenes; with --spd, the
+// SPD scenes' ray counts against the published ones and their times (docs/bench.md).
 // Returns the exit status; throws for errors the caller reports as "error: ...".
 #include <cstdint>
 #include <string>
@@ -18,6 +19,8 @@ struct BenchArgs {
     std::string csv;                  // empty: no CSV file
     bool sweep = false;               // random spheres, 1k to 1M: cost against primitive count
     bool threshold = false;           // random spheres, 1 to 256: where the grid starts to win
+    bool spd = false;                 // the SPD scenes under the SPD rules: ray counts against the published ones
+    std::string spd_dir = "../shared/spd/nff";  // where --spd finds them, relative to the repo root
     bool quiet = false;
     std::string command_line;         // printed above the table, so a pasted table says how it was made
 };

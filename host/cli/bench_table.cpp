@@ -1,5 +1,7 @@
 #include "cli/bench_table.hpp"
 
+#include "cli/bench_support.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -8,15 +10,6 @@
 
 namespace vkrt::cli {
 namespace {
-
-// Rates span six orders of magnitude (brute force over a million spheres to the
-// grid over ten), so fixed decimals would print most of them as 0.00 or as noise.
-std::string significant(double value, int digits = 3) {
-    if (value == 0.0 || !std::isfinite(value)) return fmt::format("{}", value);
-    const int magnitude = int(std::floor(std::log10(std::fabs(value))));
-    const int decimals = std::clamp(digits - 1 - magnitude, 0, 6);
-    return fmt::format("{:.{}f}", value, decimals);
-}
 
 const BenchRow* find_row(const std::vector<BenchRow>& rows, const std::string& scene, const std::string& backend,
                          const std::string& accel) {
