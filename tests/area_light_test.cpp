@@ -35,8 +35,7 @@ constexpr double kAlbedo = 0.5;  // the floor's diffuse reflectance, kd = 1
 constexpr std::uint32_t kProbeSide = 16;
 
 void add_quad(Scene& s, dvec3 corner, dvec3 e1, dvec3 e2, std::uint32_t material) {
-    s.triangles.push_back(Triangle{{corner, corner + e1, corner + e1 + e2}, std::nullopt, material});
-    s.triangles.push_back(Triangle{{corner, corner + e1 + e2, corner + e2}, std::nullopt, material});
+    for (const Triangle& t : quad_triangles(corner, e1, e2, material)) s.triangles.push_back(t);
 }
 
 // A grey Lambertian floor (material 0, y = 0, facing up) and an emissive material 1

@@ -470,7 +470,12 @@ std::vector<BadNff> bad_cases() {
         {"resolution_zero", view_with("resolution", "0 6"), 7,
          "'resolution' width: expected a whole number in [1, 32768], got 0"},
         {"resolution_too_large", view_with("resolution", "30000 30000"), 7,
-         "image of 30000x30000 pixels is larger than the limit of 33554432 pixels"},
+         "image of 30000x30000 pixels traces 30001x30001 corner rays (render.corners), more than the limit of "
+         "33554432"},
+        // The largest image a JSON scene may have is one row and column too many for
+        // the corner rays NFF scenes trace.
+        {"resolution_too_large_for_corners", view_with("resolution", "8192 4096"), 7,
+         "image of 8192x4096 pixels traces 8193x4097 corner rays (render.corners), more than the limit of 33554432"},
         {"hither_word", view_with("hither", "near"), 6, "'hither': expected a number, got 'near'"},
     };
 }

@@ -104,10 +104,8 @@ Material material(dvec3 diffuse, dvec3 reflect = dvec3(0.0), dvec3 transmit = dv
     return m;
 }
 
-// A quad as two triangles, front face cross(e1, e2), as the scene file builds it.
 void add_quad(Scene& s, dvec3 corner, dvec3 e1, dvec3 e2, std::uint32_t material) {
-    s.triangles.push_back(Triangle{{corner, corner + e1, corner + e1 + e2}, std::nullopt, material});
-    s.triangles.push_back(Triangle{{corner, corner + e1 + e2, corner + e2}, std::nullopt, material});
+    for (const Triangle& t : quad_triangles(corner, e1, e2, material)) s.triangles.push_back(t);
 }
 
 Scene empty_scene() {

@@ -297,6 +297,13 @@ TEST_F(SceneLoaderTest, AcceptsZeroReflectAndTransmit) {
 TEST_F(SceneLoaderTest, AcceptsLargestImage) {
     const Scene s = load(Parts{.camera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 8192, "height": 4096})"}.text());
     EXPECT_EQ(std::uint64_t(s.camera.width) * s.camera.height, vkrt::limits::kMaxImagePixels);
+    // Corner rays add a row and a column: the same image is then too large.
+    expect_error(Parts{.camera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 8192, "height": 4096})",
+                       .render = R"({"corners": true})"},
+                 {": render.corners: image of 8192x4096 pixels traces 8193x4097 corner rays (render.corners), more "
+                  "than the limit of 33554432"});
+    load(Parts{.camera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 8191, "height": 4095})",
+               .render = R"({"corners": true})"}.text());
 }
 
 // ---- files and syntax ---------------------------------------------------------

@@ -40,7 +40,8 @@ void apply_overrides(const RenderArgs& args, Scene& scene) {
             scene.render.grid = grid;
         }
     }
-    if (const std::string problem = limits::image_size_problem(scene.camera.width, scene.camera.height);
+    if (const std::string problem =
+            limits::image_size_problem(scene.camera.width, scene.camera.height, scene.render.corners);
         !problem.empty()) {
         throw SceneError("--width/--height: " + problem);
     }

@@ -260,8 +260,7 @@ Cylinder read_cylinder(const Node& n, const MaterialIndex& materials) {
     return c;
 }
 
-// A quad is two triangles sharing the diagonal corner -> corner+e1+e2, both wound
-// so that their front face is the side of cross(edge1, edge2).
+// A quad is two triangles (quad_triangles, scene.hpp).
 void read_quad(const Node& n, const MaterialIndex& materials, std::vector<Triangle>& out) {
     n.allow_only({"corner", "edge1", "edge2", "material", "type"});
     const dvec3 corner = n.required("corner").vec3();
@@ -271,9 +270,7 @@ void read_quad(const Node& n, const MaterialIndex& materials, std::vector<Triang
     if (!is_nonzero(e1)) n.fail_field("edge1", "expected a non-zero vector, got [0, 0, 0]");
     if (!is_nonzero(e2)) edge2.fail("expected a non-zero vector, got [0, 0, 0]");
     if (parallel_or_zero(e1, e2)) edge2.fail("edge1 and edge2 are parallel, so the quad has zero area");
-    const std::uint32_t material = material_of(n, materials);
-    out.push_back(Triangle{{corner, corner + e1, corner + e1 + e2}, std::nullopt, material});
-    out.push_back(Triangle{{corner, corner + e1 + e2, corner + e2}, std::nullopt, material});
+    for (const Triangle& t : quad_triangles(corner, e1, e2, material_of(n, materials))) out.push_back(t);
 }
 
 void read_objects(const Node& n, const MaterialIndex& materials, Scene& scene) {
@@ -322,7 +319,12 @@ Scene load_json_scene(const std::filesystem::path& file) {
     Scene scene;
     scene.source = file;
     scene.camera = read_camera(root.required("camera"));
-    if (auto render = root.find("render")) scene.render = read_render(*render);
+    if (auto render = root.find("render")) {
+        scene.render = read_render(*render);
+        const std::string problem =
+            limits::image_size_problem(scene.camera.width, scene.camera.height, scene.render.corners);
+        if (!problem.empty()) render->fail_field("corners", problem);
+    }
     const MaterialIndex materials = read_materials(root.required("materials"), scene.materials);
     if (auto lights = root.find("lights")) read_lights(*lights, scene.lights);
     read_objects(root.required("objects"), materials, scene);

@@ -11,11 +11,18 @@ namespace vkrt::limits {
 inline constexpr std::uint32_t kMaxImageSide = 32768;
 inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t(1) << 25;
 // Why an image of width x height pixels is refused; empty when it is allowed.
-// Each side is checked where it is read; this is the rule on their product.
-inline std::string image_size_problem(std::uint32_t width, std::uint32_t height) {
-    if (std::uint64_t(width) * height <= kMaxImagePixels) return {};
-    return "image of " + std::to_string(width) + "x" + std::to_string(height) +
-           " pixels is larger than the limit of " + std::to_string(kMaxImagePixels) + " pixels";
+// Each side is checked where it is read; this is the rule on their product, on the
+// grid of rays the buffers hold: with `corners` (render.corners) the
+// (width + 1) x (height + 1) pixel corners.
+inline std::string image_size_problem(std::uint32_t width, std::uint32_t height, bool corners = false) {
+    const std::uint64_t w = width + (corners ? 1u : 0u), h = height + (corners ? 1u : 0u);
+    if (w * h <= kMaxImagePixels) return {};
+    const std::string size = std::to_string(width) + "x" + std::to_string(height);
+    if (corners) {
+        return "image of " + size + " pixels traces " + std::to_string(w) + "x" + std::to_string(h) +
+               " corner rays (render.corners), more than the limit of " + std::to_string(kMaxImagePixels);
+    }
+    return "image of " + size + " pixels is larger than the limit of " + std::to_string(kMaxImagePixels) + " pixels";
 }
 
 inline constexpr std::uint32_t kMaxAa = 64;

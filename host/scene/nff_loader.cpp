@@ -313,7 +313,9 @@ private:
                 expect_count(l, 2, "width height");
                 c.width = whole(l, 1, "'resolution' width", 1, limits::kMaxImageSide);
                 c.height = whole(l, 2, "'resolution' height", 1, limits::kMaxImageSide);
-                if (const std::string problem = limits::image_size_problem(c.width, c.height); !problem.empty()) {
+                // NFF scenes render by the SPD corner rule (read() below).
+                if (const std::string problem = limits::image_size_problem(c.width, c.height, true);
+                    !problem.empty()) {
                     fail(l.number, problem);
                 }
             }

@@ -91,6 +91,13 @@ struct Triangle {
     std::uint32_t material = 0;
 };
 
+// The quad corner, corner + e1, corner + e1 + e2, corner + e2 as two triangles
+// sharing the diagonal, both facing cross(e1, e2): what the scene file's "quad" is.
+inline std::array<Triangle, 2> quad_triangles(dvec3 corner, dvec3 e1, dvec3 e2, std::uint32_t material) {
+    return {Triangle{{corner, corner + e1, corner + e1 + e2}, std::nullopt, material},
+            Triangle{{corner, corner + e1 + e2, corner + e2}, std::nullopt, material}};
+}
+
 // An annulus: the points of the plane through `center` perpendicular to `normal`
 // whose distance from the centre lies in [inner, outer]; inner 0 is a disc. Its
 // front face is the side `normal` points to.
