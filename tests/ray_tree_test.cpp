@@ -351,10 +351,7 @@ TEST(DecisionHash, DifferentDecisionsHashDifferently) {
     auto spawn_from = [&](vec3 origin, vec3 dir) {
         return [&k, origin, dir] {
             const Kernel::PendingRay ray{Kernel::Ray(origin, dir), vec3(1.0f), 0u};
-            const Kernel::Hit hit = k.closest_hit(ray.ray, kernel::INFINITY_T);
-            Kernel::RayQueue q{};
-            Kernel::SampleResult s{};
-            k.spawn_children(ray, hit, q, s);
+            spawn(k, ray, k.closest_hit(ray.ray, kernel::INFINITY_T));
         };
     };
     const auto total = spawn_from(vec3(0.0f, 0.9f, 0.0f), vec3(1, 0, 0));
