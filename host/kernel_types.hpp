@@ -11,6 +11,12 @@ using uint = std::uint32_t;
 
 #include "kernel/constants.glsl"
 #include "kernel/layout.glsl"
+// sums.glsl's functions take their in-out arguments by reference, as the Kernel's do.
+#define INOUT(T) T&
+#define HOST_INLINE inline
+#include "kernel/sums.glsl"
+#undef HOST_INLINE
+#undef INOUT
 
 // Sizes and offsets: vec4 members only, so these hold by construction (one 16-byte
 // texel a member); the asserts catch anyone adding a vec3 or a scalar.
@@ -28,9 +34,13 @@ static_assert(offsetof(Params, grid_res) == 208 && offsetof(Params, more_counts)
 static_assert(offsetof(Params, ray_tree) == 240);
 static_assert(offsetof(Params, area_lights) == 256 && offsetof(Params, emitter_area) == 272);
 static_assert(sizeof(Counters) == 48);
+static_assert(sizeof(PixelSum) == 48);
 
 inline bool operator==(const Counters& a, const Counters& b) {
     return a.rays == b.rays && a.work == b.work && a.tree == b.tree;
+}
+inline bool operator==(const PixelSum& a, const PixelSum& b) {
+    return a.red == b.red && a.green == b.green && a.blue == b.blue;
 }
 inline Counters operator+(const Counters& a, const Counters& b) {
     return {a.rays + b.rays, a.work + b.work, a.tree + b.tree};

@@ -11,6 +11,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "kernel/features.glsl"
 #include "kernel/constants.glsl"
 #include "kernel/layout.glsl"
+#include "kernel/sums.glsl"
 
 // Binding numbers are mirrored in host/gpu/vulkan_pipeline.hpp (enum Binding).
 layout(std140, binding = 0) uniform ParamsBlock { Params params; };
@@ -23,7 +24,7 @@ layout(binding = 1) uniform usamplerBuffer material_texels;    // 5 texels per M
 layout(binding = 2) uniform usamplerBuffer sphere_texels;      // 2 texels per Sphere
 layout(binding = 3) uniform usamplerBuffer triangle_texels;    // 7 texels per Triangle
 layout(binding = 4) uniform usamplerBuffer light_texels;       // 2 texels per PointLight
-layout(binding = 5, rgba32f) uniform imageBuffer accum;        // 1 texel per pixel
+layout(binding = 5, rgba32ui) uniform uimageBuffer sums;       // 3 texels per pixel (PixelSum)
 layout(binding = 6, rgba32ui) uniform uimageBuffer counters;   // 3 texels per pixel (Counters)
 layout(binding = 7) uniform usamplerBuffer grid_cell_starts;    // r32ui, cells + 1 entries
 layout(binding = 8) uniform usamplerBuffer grid_refs;           // r32ui, one per reference
@@ -78,11 +79,14 @@ void main() {
         return;
     }
     uint index = py * params.image.x + px;
-    vec4 sums = imageLoad(accum, int(index));
+    PixelSum sum = PixelSum(imageLoad(sums, int(3u * index)), imageLoad(sums, int(3u * index + 1u)),
+                            imageLoad(sums, int(3u * index + 2u)));
     Counters counts = Counters(imageLoad(counters, int(3u * index)), imageLoad(counters, int(3u * index + 1u)),
                                imageLoad(counters, int(3u * index + 2u)));
-    accumulate_sample(render_sample(px, py, pass.x), sums, counts);
-    imageStore(accum, int(index), sums);
+    accumulate_sample(render_sample(px, py, pass.x), sum, counts);
+    imageStore(sums, int(3u * index), sum.red);
+    imageStore(sums, int(3u * index + 1u), sum.green);
+    imageStore(sums, int(3u * index + 2u), sum.blue);
     imageStore(counters, int(3u * index), counts.rays);
     imageStore(counters, int(3u * index + 1u), counts.work);
     imageStore(counters, int(3u * index + 2u), counts.tree);

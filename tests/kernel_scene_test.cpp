@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "ref/kernel.hpp"
+#include "render/pixel_sums.hpp"
 
 namespace {
 
@@ -28,6 +29,8 @@ using vkrt::kernel::uvec4;
 using vkrt::kernel::vec3;
 using vkrt::kernel::vec4;
 namespace kernel = vkrt::kernel;
+using vkrt::radiance_sum;
+using vkrt::samples_summed;
 
 Kernel::Ray ray(vec3 origin, vec3 dir) { return Kernel::Ray(origin, dir); }
 
@@ -602,13 +605,18 @@ TEST(RenderSample, EachSampleStartsWithAFullBudget) {
 TEST(AccumulateSample, GoodSamplesAddRadianceAndCount) {
     const TestScene scene = tiny_view();
     Kernel k = tiny_kernel(scene);
-    vec4 accum(0.0f);
+    kernel::PixelSum accum{};
     kernel::Counters counters{};
     const Kernel::SampleResult hit = k.render_sample(1, 1, 0);
     const Kernel::SampleResult miss = k.render_sample(3, 0, 0);
     k.accumulate_sample(hit, accum, counters);
     k.accumulate_sample(miss, accum, counters);
-    EXPECT_EQ(accum, vec4(hit.radiance + miss.radiance, 2.0f));
+    kernel::PixelSum want{};
+    kernel::add_sample(want, hit.radiance);
+    kernel::add_sample(want, miss.radiance);
+    EXPECT_EQ(accum, want);
+    EXPECT_EQ(samples_summed(accum), 2u);
+    EXPECT_NEAR(radiance_sum(accum).r, double(hit.radiance.r) + double(miss.radiance.r), 1e-11);
     EXPECT_EQ(counters.rays[kernel::RAYS_EYE], 2u);
     EXPECT_EQ(counters.rays[kernel::RAYS_SHADOW], 1u);
     EXPECT_EQ(counters.work[kernel::WORK_TRUNCATED], 0u);
@@ -618,11 +626,11 @@ TEST(AccumulateSample, GoodSamplesAddRadianceAndCount) {
 TEST(AccumulateSample, TruncatedSampleAddsNoRadianceAndNoSampleCount) {
     const TestScene scene = tiny_view();
     Kernel k = tiny_kernel(scene);
-    vec4 accum(0.0f);
+    kernel::PixelSum accum{};
     kernel::Counters counters{};
     k.accumulate_sample(k.render_sample(1, 1, 0), accum, counters);
-    const vec4 after_good = accum;
-    ASSERT_EQ(after_good.w, 1.0f);
+    const kernel::PixelSum after_good = accum;
+    ASSERT_EQ(samples_summed(after_good), 1u);
 
     // A sphere pixel needs at least one sphere test and one light iteration: a budget
     // of one cannot cover it, however loop entries are charged.
@@ -648,7 +656,7 @@ TEST(AccumulateSample, TruncatedSampleAddsNoRadianceAndNoSampleCount) {
     // The budget restored, the next sample counts again.
     k.params.limits.x = kernel::DEFAULT_LOOP_BUDGET;
     k.accumulate_sample(k.render_sample(1, 1, 3), accum, counters);
-    EXPECT_EQ(accum.w, 2.0f);
+    EXPECT_EQ(samples_summed(accum), 2u);
     EXPECT_EQ(counters.work[kernel::WORK_TRUNCATED], 2u);
 }
 
@@ -665,20 +673,22 @@ Kernel::SampleResult sample_result(vec3 radiance, std::uint32_t shadow_rays, std
 
 TEST(AccumulateSample, NonFiniteSampleIsCountedNotSummed) {
     Kernel k;
-    vec4 accum(1.0f, 2.0f, 3.0f, 1.0f);
+    kernel::PixelSum accum{};
+    kernel::add_sample(accum, vec3(1.0f, 2.0f, 3.0f));
+    const kernel::PixelSum before = accum;
     kernel::Counters counters{uvec4(1u, 0u, 0u, 0u), uvec4(0u), uvec4(0u)};
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float inf = std::numeric_limits<float>::infinity();
     k.accumulate_sample(sample_result(vec3(0.0f, nan, 0.0f), 2u, 3u, 5u, false), accum, counters);
     k.accumulate_sample(sample_result(vec3(inf, 0.0f, 0.0f), 0u, 0u, 1u, false), accum, counters);
-    EXPECT_EQ(accum, vec4(1.0f, 2.0f, 3.0f, 1.0f));
+    EXPECT_EQ(accum, before);
     EXPECT_EQ(counters.rays, uvec4(3u, 2u, 0u, 0u));
     EXPECT_EQ(counters.work, uvec4(3u, 6u, 0u, 2u));
     // Truncation takes precedence: a cut sample is reported as cut, whatever its value.
     k.accumulate_sample(sample_result(vec3(nan), 0u, 0u, 0u, true), accum, counters);
     EXPECT_EQ(counters.rays, uvec4(4u, 2u, 0u, 0u));
     EXPECT_EQ(counters.work, uvec4(3u, 6u, 1u, 2u));
-    EXPECT_EQ(accum, vec4(1.0f, 2.0f, 3.0f, 1.0f));
+    EXPECT_EQ(accum, before);
 }
 
 }  // namespace

@@ -393,9 +393,14 @@ TEST(Corners, EachPixelAveragesItsFourCornersLeavingOutLostOnes) {
     RenderResult r;
     r.width = 3;
     r.height = 2;
-    // Corner radiance sums over `a` samples; corner (2, 1) lost its sample.
-    r.accum = {glm::vec4(1, 2, 3, 1), glm::vec4(2, 4, 6, 2), glm::vec4(9, 9, 9, 1),
-               glm::vec4(3, 3, 3, 1), glm::vec4(5, 5, 5, 1), glm::vec4(0, 0, 0, 0)};
+    // Corner radiance sums over `n` samples; corner (2, 1) lost its sample.
+    auto sums = [](glm::vec3 sum, std::uint32_t n) {
+        kernel::PixelSum s{};
+        for (std::uint32_t i = 0; i < n; ++i) kernel::add_sample(s, sum / float(n));
+        return s;
+    };
+    r.sums = {sums({1, 2, 3}, 1), sums({2, 4, 6}, 2), sums({9, 9, 9}, 1),
+              sums({3, 3, 3}, 1), sums({5, 5, 5}, 1), kernel::PixelSum{}};
     const Image image = resolve_image(r, true);
     ASSERT_EQ(image.width, 2u);
     ASSERT_EQ(image.height, 1u);

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "gpu/vulkan_backend.hpp"
+#include "render/pixel_sums.hpp"
 
 namespace vkrt {
 namespace {
@@ -80,6 +81,13 @@ TEST(VulkanBackend, UnknownDeviceListsTheAvailableOnes) {
     EXPECT_THROW(make_vulkan_backend(VulkanOptions{"99", false}), GpuError);
 }
 
+// The sums of `n` samples of radiance `v`, as the kernel adds them.
+kernel::PixelSum repeated(glm::vec3 v, std::uint32_t n) {
+    kernel::PixelSum s{};
+    for (std::uint32_t i = 0; i < n; ++i) kernel::add_sample(s, v);
+    return s;
+}
+
 TEST(VulkanBackend, TinyRenderHasExactSums) {
     testing::internal::CaptureStderr();
     {
@@ -89,19 +97,15 @@ TEST(VulkanBackend, TinyRenderHasExactSums) {
         const RenderResult r = backend->render(scene, SampleRange{0, samples});
         ASSERT_EQ(r.width, kSize);
         ASSERT_EQ(r.height, kSize);
-        ASSERT_EQ(r.accum.size(), kSize * kSize);
+        ASSERT_EQ(r.sums.size(), kSize * kSize);
         ASSERT_EQ(r.counters.size(), kSize * kSize);
         for (std::uint32_t y = 0; y < kSize; ++y) {
             for (std::uint32_t x = 0; x < kSize; ++x) {
-                const glm::vec4 a = r.accum[y * kSize + x];
                 const glm::uvec4 c = r.counters[y * kSize + x].rays;
                 SCOPED_TRACE("pixel " + std::to_string(x) + "," + std::to_string(y));
-                EXPECT_EQ(a.w, float(samples));
                 // No lights, no ambient, no emission: the sphere is black.
-                const glm::vec3 expected = on_sphere(x, y) ? glm::vec3(0.0f) : glm::vec3(kBackground) * float(samples);
-                EXPECT_EQ(a.x, expected.x);
-                EXPECT_EQ(a.y, expected.y);
-                EXPECT_EQ(a.z, expected.z);
+                const glm::vec3 expected = on_sphere(x, y) ? glm::vec3(0.0f) : glm::vec3(kBackground);
+                EXPECT_EQ(r.sums[y * kSize + x], repeated(expected, samples));
                 EXPECT_EQ(c, glm::uvec4(samples, 0, 0, 0));
             }
         }
@@ -123,11 +127,11 @@ TEST(VulkanBackend, SplitRangesGiveTheSameSums) {
     const RenderResult first = backend->render(scene, SampleRange{0, 1});
     const RenderResult second = backend->render(scene, SampleRange{1, 1});
     bool any_partial = false;
-    for (std::size_t i = 0; i < whole.accum.size(); ++i) {
-        EXPECT_EQ(whole.accum[i], first.accum[i] + second.accum[i]) << "pixel " << i;
+    for (std::size_t i = 0; i < whole.sums.size(); ++i) {
+        EXPECT_EQ(whole.sums[i], kernel::add_sums(first.sums[i], second.sums[i])) << "pixel " << i;
         EXPECT_EQ(whole.counters[i], first.counters[i] + second.counters[i]) << "pixel " << i;
         // With jitter the rim pixels see the sphere in some samples only.
-        any_partial = any_partial || (first.accum[i] != second.accum[i]);
+        any_partial = any_partial || (first.sums[i] != second.sums[i]);
     }
     EXPECT_TRUE(any_partial) << "the two samples should differ somewhere";
     EXPECT_EQ(backend->validation_messages(), 0u);
@@ -146,8 +150,8 @@ TEST(VulkanBackend, ManySamplesSpanSeveralBatches) {
     EXPECT_EQ(reported.front(), 1u);
     EXPECT_EQ(reported.back(), samples);
     EXPECT_TRUE(std::is_sorted(reported.begin(), reported.end()));
-    for (std::size_t i = 0; i < r.accum.size(); ++i) {
-        EXPECT_EQ(r.accum[i].w, float(samples));
+    for (std::size_t i = 0; i < r.sums.size(); ++i) {
+        EXPECT_EQ(samples_summed(r.sums[i]), samples);
         EXPECT_EQ(r.counters[i].rays.x, samples);
     }
     EXPECT_EQ(backend->validation_messages(), 0u);
@@ -166,9 +170,9 @@ TEST(VulkanBackend, TallImagesAreDispatchedInBandsCoveringEveryRowOnce) {
         EXPECT_EQ(total, samples * 4);
         reported.push_back(done);
     });
-    ASSERT_EQ(r.accum.size(), 4u * 200u);
-    for (std::size_t i = 0; i < r.accum.size(); ++i) {
-        ASSERT_EQ(r.accum[i].w, float(samples)) << "pixel " << i;
+    ASSERT_EQ(r.sums.size(), 4u * 200u);
+    for (std::size_t i = 0; i < r.sums.size(); ++i) {
+        ASSERT_EQ(samples_summed(r.sums[i]), samples) << "pixel " << i;
         ASSERT_EQ(r.counters[i].rays.x, samples) << "pixel " << i;
     }
     ASSERT_FALSE(reported.empty());
@@ -208,13 +212,13 @@ TEST(VulkanBackend, SpecializationConstantsCompileTrianglesOut) {
         const std::uint32_t samples = 2;
         const RenderResult with = backend->render(glowing_triangle_scene(true), SampleRange{0, samples});
         const RenderResult without = backend->render(glowing_triangle_scene(false), SampleRange{0, samples});
-        ASSERT_EQ(with.accum.size(), kSize * kSize);
-        ASSERT_EQ(without.accum.size(), kSize * kSize);
+        ASSERT_EQ(with.sums.size(), kSize * kSize);
+        ASSERT_EQ(without.sums.size(), kSize * kSize);
         const glm::vec3 emission(1.0f, 0.5f, 0.125f);
-        for (std::size_t i = 0; i < with.accum.size(); ++i) {
+        for (std::size_t i = 0; i < with.sums.size(); ++i) {
             SCOPED_TRACE("pixel " + std::to_string(i));
-            EXPECT_EQ(with.accum[i], glm::vec4(emission * float(samples), float(samples)));
-            EXPECT_EQ(without.accum[i], glm::vec4(glm::vec3(kBackground) * float(samples), float(samples)));
+            EXPECT_EQ(with.sums[i], repeated(emission, samples));
+            EXPECT_EQ(without.sums[i], repeated(glm::vec3(kBackground), samples));
             EXPECT_EQ(with.counters[i].rays, glm::uvec4(samples, 0, 0, 0));
             EXPECT_EQ(without.counters[i].rays, glm::uvec4(samples, 0, 0, 0));
         }
@@ -233,7 +237,7 @@ TEST(VulkanBackend, StagingPathMatchesMappedPath) {
     const std::unique_ptr<Backend> backend = lavapipe();
     unsetenv("VKRT_VULKAN_FORCE_STAGING");
     const RenderResult staged = backend->render(scene, SampleRange{0, 3});
-    EXPECT_EQ(staged.accum, mapped.accum);
+    EXPECT_EQ(staged.sums, mapped.sums);
     EXPECT_EQ(staged.counters, mapped.counters);
     EXPECT_EQ(backend->validation_messages(), 0u);
 }

@@ -170,6 +170,10 @@ int run_render(const RenderArgs& args) {
         fmt::print(stderr, "warning: {} samples were NaN or infinite and were left out of the average\n",
                    s.nonfinite_samples);
     }
+    if (s.clamped_samples > 0) {
+        fmt::print(stderr, "warning: {} samples had a radiance above {:.3g} and were clamped to it\n",
+                   s.clamped_samples, double(kernel::SUM_SAMPLE_MAX));
+    }
     if (s.validation_messages > 0) {
         throw std::runtime_error(fmt::format("the Vulkan validation layer reported {} messages (above)",
                                              s.validation_messages));

@@ -157,16 +157,16 @@ RenderResult VulkanBackend::render(const SceneGpu& scene, SampleRange samples,
     const std::optional<VulkanBuffer> refs = array_buffer(context_, "grid refs", scene.grid_refs);
     const std::optional<VulkanBuffer> rings = array_buffer(context_, "rings", scene.rings);
     const std::optional<VulkanBuffer> cylinders = array_buffer(context_, "cylinders", scene.cylinders);
-    VulkanBuffer accum(context_, "accum", pixels * sizeof(glm::vec4), kSumsUsage);
+    VulkanBuffer sums(context_, "sums", pixels * sizeof(kernel::PixelSum), kSumsUsage);
     VulkanBuffer counters(context_, "counters", pixels * sizeof(kernel::Counters), kSumsUsage);
 
     auto or_dummy = [&](const std::optional<VulkanBuffer>& b) { return b ? &*b : &dummy; };
     const std::vector<BufferView> views = write_descriptors(context_.device(), pipeline.set,
                       {&params, or_dummy(materials), or_dummy(spheres), or_dummy(triangles),
-                       or_dummy(lights), &accum, &counters, or_dummy(cell_starts), or_dummy(refs),
+                       or_dummy(lights), &sums, &counters, or_dummy(cell_starts), or_dummy(refs),
                        or_dummy(rings), or_dummy(cylinders), or_dummy(emitters)});
     context_.submit_and_wait([&](VkCommandBuffer cmd) {
-        vkCmdFillBuffer(cmd, accum.get(), 0, VK_WHOLE_SIZE, 0);
+        vkCmdFillBuffer(cmd, sums.get(), 0, VK_WHOLE_SIZE, 0);
         vkCmdFillBuffer(cmd, counters.get(), 0, VK_WHOLE_SIZE, 0);
         vkCmdFillBuffer(cmd, dummy.get(), 0, VK_WHOLE_SIZE, 0);
         memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
@@ -225,9 +225,9 @@ RenderResult VulkanBackend::render(const SceneGpu& scene, SampleRange samples,
     }
     result.render_seconds = timer.on_gpu() ? gpu_seconds : seconds_since(loop_start);
 
-    result.accum.resize(pixels);
+    result.sums.resize(pixels);
     result.counters.resize(pixels);
-    accum.readback(result.accum.data(), accum.size());
+    sums.readback(result.sums.data(), sums.size());
     counters.readback(result.counters.data(), counters.size());
     return result;
 }

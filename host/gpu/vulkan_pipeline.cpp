@@ -11,14 +11,13 @@ namespace {
 VkDescriptorType descriptor_type(std::uint32_t binding) {
     switch (binding) {
     case kParams: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    case kAccum:
+    case kSums:
     case kCounters: return VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
     default: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
     }
 }
 VkFormat texel_format(std::uint32_t binding) {
     switch (binding) {
-    case kAccum: return VK_FORMAT_R32G32B32A32_SFLOAT;
     case kGridCellStarts:
     case kGridRefs: return VK_FORMAT_R32_UINT;  // one uint a texel
     default: return VK_FORMAT_R32G32B32A32_UINT;

@@ -16,7 +16,7 @@ class VulkanBuffer;
 // number below kBindingCount. A binding whose feature the scene leaves out gets the
 // dummy buffer.
 enum Binding : std::uint32_t {
-    kParams, kMaterials, kSpheres, kTriangles, kLights, kAccum, kCounters, kGridCellStarts, kGridRefs, kRings,
+    kParams, kMaterials, kSpheres, kTriangles, kLights, kSums, kCounters, kGridCellStarts, kGridRefs, kRings,
     kCylinders, kEmitters, kBindingCount
 };
 constexpr std::uint32_t kLocalSize = 8;   // local_size_x and _y of render.comp

@@ -60,7 +60,7 @@ public:
         RenderResult out;
         out.width = scene.width();
         out.height = scene.height();
-        out.accum.assign(scene.pixel_count(), glm::vec4(0.0f));
+        out.sums.assign(scene.pixel_count(), kernel::PixelSum{});
         out.counters.assign(scene.pixel_count(), kernel::Counters{});
 
         const std::uint32_t tiles_x = (out.width + kTileSize - 1) / kTileSize;
@@ -80,10 +80,8 @@ public:
                 for (std::uint32_t y = y0; y < y1; ++y) {
                     for (std::uint32_t x = x0; x < x1; ++x) {
                         const std::size_t index = std::size_t(y) * out.width + x;
-                        // Samples in index order, as the GPU's sequence of dispatches
-                        // adds them: the float sums then match operation for operation.
                         for (std::uint32_t s = samples.first; s < samples.first + samples.count; ++s) {
-                            k.accumulate_sample(k.render_sample(x, y, s), out.accum[index], out.counters[index]);
+                            k.accumulate_sample(k.render_sample(x, y, s), out.sums[index], out.counters[index]);
                         }
                     }
                 }

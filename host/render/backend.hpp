@@ -32,7 +32,7 @@ using ProgressCallback = std::function<void(std::uint32_t done, std::uint32_t to
 struct RenderResult {
     std::uint32_t width = 0;
     std::uint32_t height = 0;
-    std::vector<glm::vec4> accum;      // rgb = radiance sum, a = samples summed
+    std::vector<kernel::PixelSum> sums;      // exact radiance sums and sample counts (kernel/sums.glsl)
     std::vector<kernel::Counters> counters;  // lanes: kernel::RAYS_*, kernel::WORK_*
     double setup_seconds = 0.0;        // building pipelines, uploading buffers
     double render_seconds = 0.0;       // the sample loop (GPU timestamps where available)

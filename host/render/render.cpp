@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include "render/pixel_sums.hpp"
+
 namespace vkrt {
 
 namespace {
@@ -13,14 +15,18 @@ Image average_corners(const RenderResult& result) {
     Image image(w, h);
     for (std::uint32_t y = 0; y < h; ++y) {
         for (std::uint32_t x = 0; x < w; ++x) {
-            glm::vec4 sum(0.0f);
+            glm::vec3 sum(0.0f);
+            int valid = 0;
             for (std::uint32_t dy = 0; dy < 2; ++dy) {
                 for (std::uint32_t dx = 0; dx < 2; ++dx) {
-                    const glm::vec4& corner = result.accum[std::size_t(y + dy) * result.width + x + dx];
-                    if (corner.a > 0.0f) sum += glm::vec4(glm::vec3(corner) / corner.a, 1.0f);
+                    const kernel::PixelSum& corner = result.sums[std::size_t(y + dy) * result.width + x + dx];
+                    if (samples_summed(corner) > 0) {
+                        sum += mean_radiance(corner);
+                        ++valid;
+                    }
                 }
             }
-            const glm::vec3 c = sum.a > 0.0f ? glm::vec3(sum) / sum.a : glm::vec3(0.0f);
+            const glm::vec3 c = valid > 0 ? sum / float(valid) : glm::vec3(0.0f);
             const std::size_t p = std::size_t(y) * w + x;
             image.rgb[p * 3 + 0] = c.r;
             image.rgb[p * 3 + 1] = c.g;
@@ -51,12 +57,11 @@ std::vector<std::uint32_t> pixel_decisions(const RenderResult& result, bool corn
 Image resolve_image(const RenderResult& result, bool corners) {
     if (corners) return average_corners(result);
     Image image(result.width, result.height);
-    for (std::size_t p = 0; p < result.accum.size(); ++p) {
-        const glm::vec4& sum = result.accum[p];
-        const float scale = sum.a > 0.0f ? 1.0f / sum.a : 0.0f;
-        image.rgb[p * 3 + 0] = sum.r * scale;
-        image.rgb[p * 3 + 1] = sum.g * scale;
-        image.rgb[p * 3 + 2] = sum.b * scale;
+    for (std::size_t p = 0; p < result.sums.size(); ++p) {
+        const glm::vec3 mean = mean_radiance(result.sums[p]);
+        image.rgb[p * 3 + 0] = mean.r;
+        image.rgb[p * 3 + 1] = mean.g;
+        image.rgb[p * 3 + 2] = mean.b;
     }
     return image;
 }
@@ -81,6 +86,7 @@ RenderStats collect_stats(const SceneGpu& scene, const Backend& backend, const R
         s.truncated_samples += c.work[kernel::WORK_TRUNCATED];
         s.nonfinite_samples += c.work[kernel::WORK_NONFINITE];
     }
+    for (const kernel::PixelSum& sum : result.sums) s.clamped_samples += samples_clamped(sum);
     s.setup_seconds = result.setup_seconds;
     s.render_seconds = result.render_seconds;
     s.features = scene.features;

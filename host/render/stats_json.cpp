@@ -22,6 +22,7 @@ nlohmann::json stats_to_json(const RenderStats& s) {
                   {"cells", s.grid.cells}, {"references", s.grid.references}, {"bytes", s.grid.bytes},
                   {"build_seconds", s.grid.build_seconds}}},
         {"samples", {{"truncated", s.truncated_samples}, {"nonfinite", s.nonfinite_samples},
+                     {"clamped", s.clamped_samples},
                      {"loop_budget", s.loop_budget}}},
         {"seconds", {{"flatten", s.flatten_seconds}, {"setup", s.setup_seconds},
                      {"render", s.render_seconds}, {"total", s.total_seconds}}},

@@ -104,7 +104,15 @@ struct Params {
     vec4 emitter_area;   // x total area of the emitters, y/z/w unused
 };
 
-// Per-pixel accumulation: rgb = sum of sample radiance, a = number of samples summed.
+// Per-pixel sums of sample radiance (sums.glsl): each channel's exact sum as a 96-bit
+// fixed-point integer in xyz, least significant word first, in units of 2^-40.
+// red.w = samples summed, green.w = of those, samples clamped to SUM_SAMPLE_MAX,
+// blue.w unused (0).
+struct PixelSum {
+    uvec4 red;
+    uvec4 green;
+    uvec4 blue;
+};
 
 // Per-pixel counters, lanes named in constants.glsl (RAYS_*, WORK_*).
 struct Counters {

@@ -156,10 +156,10 @@ SampleResult render_sample(uint px, uint py, uint sample_index) {
     return s;
 }
 
-// Adds a sample to its pixel's running sums. Truncated or non-finite samples add no
-// radiance and are not counted in accum's sample count, only in their counters, so
-// the host can report them and the average stays that of the good samples.
-void accumulate_sample(SampleResult s, INOUT(vec4) accum, INOUT(Counters) counters) {
+// Adds a sample to its pixel's sums (sums.glsl). Truncated or non-finite samples add
+// no radiance and are not counted in the sums' sample count, only in their counters,
+// so the host can report them and the average stays that of the good samples.
+void accumulate_sample(SampleResult s, INOUT(PixelSum) sum, INOUT(Counters) counters) {
     counters.rays[RAYS_EYE] += 1u;
     counters.rays[RAYS_SHADOW] += s.shadow_rays;
     counters.rays[RAYS_REFLECTION] += s.reflection_rays;
@@ -170,12 +170,12 @@ void accumulate_sample(SampleResult s, INOUT(vec4) accum, INOUT(Counters) counte
     counters.tree[TREE_DROPPED_WEIGHT] += s.dropped_weight;
     counters.tree[TREE_DROPPED_STACK] += s.dropped_stack;
     counters.tree[TREE_DECISIONS] += s.decisions;   // wraps; a sum, so any split adds up alike
-    float sum = s.radiance.x + s.radiance.y + s.radiance.z;
+    float total = s.radiance.x + s.radiance.y + s.radiance.z;
     if (s.truncated) {
         counters.work[WORK_TRUNCATED] += 1u;
-    } else if (isnan(sum) || isinf(sum)) {
+    } else if (isnan(total) || isinf(total)) {
         counters.work[WORK_NONFINITE] += 1u;
     } else {
-        accum += vec4(s.radiance, 1.0f);
+        add_sample(sum, s.radiance);
     }
 }

@@ -1,0 +1,33 @@
+#pragma once
+// Reading a pixel's exact sums (shaders/kernel/sums.glsl) on the host: the 96-bit
+// fixed-point words back to radiance, and the mean the image shows.
+#include <cmath>
+#include <cstdint>
+
+#include <glm/vec3.hpp>
+
+#include "kernel_types.hpp"
+
+namespace vkrt {
+
+// One channel's sum, words (lo, mid, hi) in units of 2^-40, as a double. Rounded
+// once to 53 bits, the same way for any split that produced the same words.
+inline double channel_sum(const glm::uvec4& words) {
+    const double integer = (double(words.z) * 4294967296.0 + double(words.y)) * 4294967296.0 + double(words.x);
+    return std::ldexp(integer, -40);
+}
+
+inline std::uint32_t samples_summed(const kernel::PixelSum& s) { return s.red.w; }
+inline std::uint32_t samples_clamped(const kernel::PixelSum& s) { return s.green.w; }
+
+inline glm::dvec3 radiance_sum(const kernel::PixelSum& s) {
+    return {channel_sum(s.red), channel_sum(s.green), channel_sum(s.blue)};
+}
+
+// The mean radiance of the pixel's good samples; black where it has none.
+inline glm::vec3 mean_radiance(const kernel::PixelSum& s) {
+    const std::uint32_t n = samples_summed(s);
+    return n != 0 ? glm::vec3(radiance_sum(s) / double(n)) : glm::vec3(0.0f);
+}
+
+}  // namespace vkrt
