@@ -651,9 +651,33 @@ TEST_F(SceneLoaderTest, BadRingsAndCylinders) {
 
 // ---- not supported yet ------------------------------------------------------------
 
-TEST_F(SceneLoaderTest, LaterFeaturesAreRefusedClearly) {
-    expect_error(Parts{.render = R"({"mode": "global"})"}, {": render.mode: ", "not supported yet"});
-    expect_error(Parts{.render = R"({"mode": "fast"})"}, {": render.mode: unknown mode 'fast'"});
+TEST_F(SceneLoaderTest, GlobalModeFieldsAndTheirMistakes) {
+    expect_error(Parts{.render = R"({"mode": "fast"})"}, {": render.mode: unknown mode 'fast'", "\"global\""});
+    expect_error(Parts{.render = R"({"nee": false})"}, {": render.nee: only used in global mode"});
+    expect_error(Parts{.render = R"({"mode": "local", "max_bounces": 2})"}, {": render.max_bounces: only used"});
+    expect_error(Parts{.render = R"({"mode": "global", "estimator": "bdpt"})"},
+                 {": render.estimator: unknown estimator 'bdpt'"});
+    expect_error(Parts{.render = R"({"mode": "global", "hemisphere": "sphere"})"},
+                 {": render.hemisphere: unknown hemisphere 'sphere'", "\"cosine\""});
+    expect_error(Parts{.render = R"({"mode": "global", "estimator": "paper", "nee": true})"},
+                 {": render.nee: the paper estimator has no next-event estimation"});
+    expect_error(Parts{.render = R"({"mode": "global", "max_bounces": 1001})"}, {": render.max_bounces: "});
+
+    const vkrt::Scene path = load(Parts{.render = R"({"mode": "global"})"}.text());
+    EXPECT_EQ(path.render.mode, vkrt::RenderMode::Global);
+    EXPECT_EQ(path.render.estimator, vkrt::Estimator::Path);
+    EXPECT_EQ(path.render.hemisphere, vkrt::Hemisphere::Cosine);
+    EXPECT_TRUE(path.render.nee);
+    EXPECT_TRUE(path.render.jitter);
+    EXPECT_EQ(path.render.max_bounces, 8u);
+    EXPECT_EQ(path.render.samples_per_pixel(), 16u);
+    const vkrt::Scene paper = load(Parts{.render = R"({"mode": "global", "estimator": "paper", "max_bounces": 0,
+                                                       "jitter": false, "spp": 3})"}.text());
+    EXPECT_EQ(paper.render.hemisphere, vkrt::Hemisphere::Angles);
+    EXPECT_FALSE(paper.render.nee);
+    EXPECT_FALSE(paper.render.jitter);
+    EXPECT_EQ(paper.render.max_bounces, 0u);
+    EXPECT_EQ(paper.render.samples_per_pixel(), 3u);
 }
 
 TEST_F(SceneLoaderTest, AreaLightsAreObjectsNotLightEntries) {

@@ -87,16 +87,54 @@ GridSettings read_grid(const Node& n) {
     return g;
 }
 
+// The fields of global mode; an error in local mode, where they would do nothing.
+void read_global(const Node& n, RenderSettings& r) {
+    for (const char* field : {"estimator", "hemisphere", "nee", "max_bounces"}) {
+        if (auto v = n.find(field); v && r.mode != RenderMode::Global) {
+            v->fail("only used in global mode (add \"mode\": \"global\")");
+        }
+    }
+    if (auto v = n.find("estimator")) {
+        const std::string e = v->string();
+        if (e == "paper") r.estimator = Estimator::Paper;
+        else if (e == "path") r.estimator = Estimator::Path;
+        else v->fail(fmt::format("unknown estimator {} (expected \"paper\" or \"path\")", json::quote_user(e)));
+    }
+    // The paper draws its angles uniformly (its Fig. 13); path tracing defaults to
+    // cosine-weighted directions, the best of the three for diffuse surfaces.
+    r.hemisphere = r.estimator == Estimator::Paper ? Hemisphere::Angles : Hemisphere::Cosine;
+    if (auto v = n.find("hemisphere")) {
+        const std::string h = v->string();
+        if (h == "angles") r.hemisphere = Hemisphere::Angles;
+        else if (h == "uniform") r.hemisphere = Hemisphere::Uniform;
+        else if (h == "cosine") r.hemisphere = Hemisphere::Cosine;
+        else v->fail(fmt::format("unknown hemisphere {} (expected \"angles\", \"uniform\" or \"cosine\")",
+                                 json::quote_user(h)));
+    }
+    if (auto v = n.find("nee")) {
+        r.nee = v->boolean();
+        if (r.estimator == Estimator::Paper && r.nee) {
+            v->fail("the paper estimator has no next-event estimation (use \"estimator\": \"path\")");
+        }
+    }
+    if (r.estimator == Estimator::Paper) r.nee = false;
+    if (auto v = n.find("max_bounces")) r.max_bounces = whole32(*v, 0, limits::kMaxBounces);
+    // Global illumination is a Monte Carlo estimate over the pixel too.
+    if (r.mode == RenderMode::Global && !n.find("jitter")) r.jitter = true;
+}
+
 RenderSettings read_render(const Node& n) {
     n.allow_only({"mode", "aa", "jitter", "shadows", "max_depth", "min_weight", "corners", "ambient", "background",
-                  "seed", "spp", "loop_budget", "grid", "light_samples"});
+                  "seed", "spp", "loop_budget", "grid", "light_samples", "estimator", "hemisphere", "nee",
+                  "max_bounces"});
     RenderSettings r;
     if (auto mode = n.find("mode")) {
         const std::string m = mode->string();
-        if (m == "global") mode->fail("global illumination (mode \"global\") is not supported yet; use \"local\"");
-        if (m != "local") mode->fail(fmt::format("unknown mode {} (expected \"local\")", json::quote_user(m)));
-        r.mode = RenderMode::Local;
+        if (m == "local") r.mode = RenderMode::Local;
+        else if (m == "global") r.mode = RenderMode::Global;
+        else mode->fail(fmt::format("unknown mode {} (expected \"local\" or \"global\")", json::quote_user(m)));
     }
+    read_global(n, r);
     if (auto aa = n.find("aa")) r.aa = whole32(*aa, 1, limits::kMaxAa);
     if (auto jitter = n.find("jitter")) r.jitter = jitter->boolean();
     if (auto shadows = n.find("shadows")) r.shadows = shadows->boolean();

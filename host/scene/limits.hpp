@@ -30,6 +30,9 @@ inline constexpr std::uint32_t kMaxAa = 64;
 // measured 6.4e-4 (docs/cli.md). More needs compensated sums, not a bigger number.
 inline constexpr std::uint32_t kMaxSpp = 1u << 16;
 inline constexpr std::uint32_t kMaxDepth = 64;
+// Global mode's bounces; each is one loop iteration of a budget of 65,000 shared with
+// the grid walk, so more than this could never finish (issue 6 tries 1000).
+inline constexpr std::uint32_t kMaxBounces = 1000;
 inline constexpr std::uint32_t kMaxLoopBudget = 65000;  // below lavapipe's 65,535 cap
 // Area-light shadow rays per hit. Each costs at least three loop iterations of the
 // invocation's budget (the sample loop, the walk, a test), so more than this would

@@ -25,7 +25,15 @@ struct Camera {
     std::uint32_t height = 300;
 };
 
-enum class RenderMode { Local };
+// Local: the paper's ray tracer (Phong from lights, the mirror/glass ray tree).
+// Global: Monte Carlo global illumination (kernel/global.glsl).
+enum class RenderMode { Local, Global };
+
+// Global mode's estimators: the paper's, as written (biased), or unbiased path tracing.
+enum class Estimator { Paper, Path };
+
+// How a diffuse bounce draws its direction (kernel/hemisphere.glsl).
+enum class Hemisphere { Angles, Uniform, Cosine };
 
 // The uniform grid (host/accel/grid.hpp). Auto builds it unless the scene is small
 // enough that brute force is faster on the chosen backend (a measured threshold).
@@ -54,8 +62,17 @@ struct RenderSettings {
     // lighting off. docs/scene-format.md says why 16.
     std::uint32_t light_samples = 16;
     GridSettings grid;
+    // Global mode (docs/scene-format.md, "Global illumination").
+    Estimator estimator = Estimator::Path;
+    Hemisphere hemisphere = Hemisphere::Cosine;  // the paper estimator's default is Angles
+    bool nee = true;                  // path: next-event estimation toward area lights, with MIS
+    std::uint32_t max_bounces = 8;    // scattering events after the first hit
 
-    std::uint32_t samples_per_pixel() const { return spp != 0 ? spp : aa * aa; }
+    // Global mode takes 16 samples when neither spp nor aa says otherwise.
+    std::uint32_t samples_per_pixel() const {
+        if (spp != 0) return spp;
+        return mode == RenderMode::Global && aa == 1 ? 16 : aa * aa;
+    }
 };
 
 struct Material {
