@@ -33,16 +33,16 @@ static_assert(offsetof(Params, image) == 96 && offsetof(Params, limits) == 128);
 static_assert(offsetof(Params, grid_res) == 208 && offsetof(Params, more_counts) == 224);
 static_assert(offsetof(Params, ray_tree) == 240);
 static_assert(offsetof(Params, area_lights) == 256 && offsetof(Params, emitter_area) == 272);
-static_assert(sizeof(Counters) == 48);
+static_assert(sizeof(Counters) == 64);
 static_assert(sizeof(PixelSum) == 48);
 
 inline bool operator==(const Counters& a, const Counters& b) {
-    return a.rays == b.rays && a.work == b.work && a.tree == b.tree;
+    return a.rays == b.rays && a.work == b.work && a.tree == b.tree && a.paths == b.paths;
 }
 inline bool operator==(const PixelSum& a, const PixelSum& b) {
     return a.red == b.red && a.green == b.green && a.blue == b.blue;
 }
 inline Counters operator+(const Counters& a, const Counters& b) {
-    return {a.rays + b.rays, a.work + b.work, a.tree + b.tree};
+    return {a.rays + b.rays, a.work + b.work, a.tree + b.tree, a.paths + b.paths};
 }
 }  // namespace vkrt::kernel

@@ -25,7 +25,7 @@ layout(binding = 2) uniform usamplerBuffer sphere_texels;      // 2 texels per S
 layout(binding = 3) uniform usamplerBuffer triangle_texels;    // 7 texels per Triangle
 layout(binding = 4) uniform usamplerBuffer light_texels;       // 2 texels per PointLight
 layout(binding = 5, rgba32ui) uniform uimageBuffer sums;       // 3 texels per pixel (PixelSum)
-layout(binding = 6, rgba32ui) uniform uimageBuffer counters;   // 3 texels per pixel (Counters)
+layout(binding = 6, rgba32ui) uniform uimageBuffer counters;   // 4 texels per pixel (Counters)
 layout(binding = 7) uniform usamplerBuffer grid_cell_starts;    // r32ui, cells + 1 entries
 layout(binding = 8) uniform usamplerBuffer grid_refs;           // r32ui, one per reference
 layout(binding = 9) uniform usamplerBuffer ring_texels;         // 3 texels per Ring
@@ -81,13 +81,14 @@ void main() {
     uint index = py * params.image.x + px;
     PixelSum sum = PixelSum(imageLoad(sums, int(3u * index)), imageLoad(sums, int(3u * index + 1u)),
                             imageLoad(sums, int(3u * index + 2u)));
-    Counters counts = Counters(imageLoad(counters, int(3u * index)), imageLoad(counters, int(3u * index + 1u)),
-                               imageLoad(counters, int(3u * index + 2u)));
+    Counters counts = Counters(imageLoad(counters, int(4u * index)), imageLoad(counters, int(4u * index + 1u)),
+                               imageLoad(counters, int(4u * index + 2u)), imageLoad(counters, int(4u * index + 3u)));
     accumulate_sample(render_sample(px, py, pass.x), sum, counts);
     imageStore(sums, int(3u * index), sum.red);
     imageStore(sums, int(3u * index + 1u), sum.green);
     imageStore(sums, int(3u * index + 2u), sum.blue);
-    imageStore(counters, int(3u * index), counts.rays);
-    imageStore(counters, int(3u * index + 1u), counts.work);
-    imageStore(counters, int(3u * index + 2u), counts.tree);
+    imageStore(counters, int(4u * index), counts.rays);
+    imageStore(counters, int(4u * index + 1u), counts.work);
+    imageStore(counters, int(4u * index + 2u), counts.tree);
+    imageStore(counters, int(4u * index + 3u), counts.paths);
 }

@@ -676,7 +676,7 @@ TEST(AccumulateSample, NonFiniteSampleIsCountedNotSummed) {
     kernel::PixelSum accum{};
     kernel::add_sample(accum, vec3(1.0f, 2.0f, 3.0f));
     const kernel::PixelSum before = accum;
-    kernel::Counters counters{uvec4(1u, 0u, 0u, 0u), uvec4(0u), uvec4(0u)};
+    kernel::Counters counters{uvec4(1u, 0u, 0u, 0u), uvec4(0u), uvec4(0u), uvec4(0u)};
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float inf = std::numeric_limits<float>::infinity();
     k.accumulate_sample(sample_result(vec3(0.0f, nan, 0.0f), 2u, 3u, 5u, false), accum, counters);

@@ -79,6 +79,9 @@ RenderStats collect_stats(const SceneGpu& scene, const Backend& backend, const R
         s.reflection_rays += c.rays[kernel::RAYS_REFLECTION];
         s.refraction_rays += c.rays[kernel::RAYS_REFRACTION];
         s.eye_hits += c.tree[kernel::TREE_EYE_HITS];
+        s.bounce_rays += c.paths[kernel::PATHS_BOUNCE_RAYS];
+        s.roulette_ended += c.paths[kernel::PATHS_ROULETTE];
+        s.paper_dropped += c.paths[kernel::PATHS_PAPER_DROPPED];
         s.dropped_low_weight += c.tree[kernel::TREE_DROPPED_WEIGHT];
         s.dropped_stack_full += c.tree[kernel::TREE_DROPPED_STACK];
         s.cells_visited += c.work[kernel::WORK_CELLS];

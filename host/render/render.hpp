@@ -25,7 +25,10 @@ struct RenderStats {
     std::uint64_t shadow_rays = 0;
     std::uint64_t reflection_rays = 0;
     std::uint64_t refraction_rays = 0;
+    std::uint64_t bounce_rays = 0;          // global mode: rays after a scattering event
     std::uint64_t eye_hits = 0;             // eye rays that hit something
+    std::uint64_t roulette_ended = 0;       // global mode: paths ended by Russian roulette
+    std::uint64_t paper_dropped = 0;        // paper estimator: samples whose gl() was 0, not averaged
     std::uint64_t dropped_low_weight = 0;   // secondary rays not traced: weight below min_weight
     std::uint64_t dropped_stack_full = 0;   // secondary rays not traced: the ray stack was full
     std::uint64_t cells_visited = 0;       // grid cells stepped through, all rays
@@ -44,7 +47,7 @@ struct RenderStats {
 
     GridStats grid;
 
-    std::uint64_t rays() const { return eye_rays + shadow_rays + reflection_rays + refraction_rays; }
+    std::uint64_t rays() const { return eye_rays + shadow_rays + reflection_rays + refraction_rays + bounce_rays; }
     double per_ray(std::uint64_t n) const { return rays() != 0 ? double(n) / double(rays()) : 0.0; }
 };
 

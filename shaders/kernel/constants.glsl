@@ -17,6 +17,11 @@ const uint TREE_EYE_HITS = 0u;       // eye rays that hit something (an SPD coun
 const uint TREE_DROPPED_WEIGHT = 1u; // secondary rays not traced: weight below params.ray_tree.x
 const uint TREE_DROPPED_STACK = 2u;  // secondary rays not traced: the pending-ray stack was full
 const uint TREE_DECISIONS = 3u;      // sum of the samples' decision hashes (budget.glsl)
+// Counters.paths (global mode, global.glsl):
+const uint PATHS_BOUNCE_RAYS = 0u;    // rays traced after a scattering event
+const uint PATHS_ROULETTE = 1u;       // paths ended by Russian roulette
+const uint PATHS_PAPER_DROPPED = 2u;  // paper-estimator samples whose gl() was 0: left out of the average
+const uint PATHS_UNUSED = 3u;
 // Cells and tests cannot overflow a pixel's 32-bit lane: each is at most one loop
 // iteration, a sample has at most kMaxLoopBudget (65,000) of those, and a pixel at
 // most 65,536 samples: 65,000 * 65,536 < 2^32. (Only the cpu backend can lift the

@@ -119,4 +119,5 @@ struct Counters {
     uvec4 rays;
     uvec4 work;
     uvec4 tree;
+    uvec4 paths;
 };

@@ -12,6 +12,9 @@ struct SampleResult {
     uint decisions;        // the hash of its decisions (budget.glsl)
     uint cells_visited;
     uint intersection_tests;
+    uint bounce_rays;      // global mode: rays traced after a scattering event
+    uint roulette;         // global mode: 1 when Russian roulette ended the path
+    bool dropped;          // the paper estimator's gl() was 0: not part of the average
     bool truncated;   // the loop budget ran out: the radiance is incomplete
 };
 
@@ -139,7 +142,7 @@ void trace_ray_tree(PendingRay eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
 
 SampleResult render_sample(uint px, uint py, uint sample_index) {
     work_reset();
-    SampleResult s = SampleResult(vec3(0.0f), 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, false);
+    SampleResult s = SampleResult(vec3(0.0f), 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, false, false);
     Rng rng = rng_start(py * params.image.x + px, sample_index, params.image.w);
     vec2 sub = subpixel_position(sample_index, rng);
     PendingRay eye = PendingRay(camera_ray(float(px) + sub.x, float(py) + sub.y), vec3(1.0f), 0u);
@@ -156,9 +159,10 @@ SampleResult render_sample(uint px, uint py, uint sample_index) {
     return s;
 }
 
-// Adds a sample to its pixel's sums (sums.glsl). Truncated or non-finite samples add
-// no radiance and are not counted in the sums' sample count, only in their counters,
-// so the host can report them and the average stays that of the good samples.
+// Adds a sample to its pixel's sums (sums.glsl). Truncated, non-finite and dropped
+// (paper estimator) samples add no radiance and are not counted in the sums' sample
+// count, only in their counters, so the host can report them and the average stays
+// that of the good samples.
 void accumulate_sample(SampleResult s, INOUT(PixelSum) sum, INOUT(Counters) counters) {
     counters.rays[RAYS_EYE] += 1u;
     counters.rays[RAYS_SHADOW] += s.shadow_rays;
@@ -170,9 +174,13 @@ void accumulate_sample(SampleResult s, INOUT(PixelSum) sum, INOUT(Counters) coun
     counters.tree[TREE_DROPPED_WEIGHT] += s.dropped_weight;
     counters.tree[TREE_DROPPED_STACK] += s.dropped_stack;
     counters.tree[TREE_DECISIONS] += s.decisions;   // wraps; a sum, so any split adds up alike
+    counters.paths[PATHS_BOUNCE_RAYS] += s.bounce_rays;
+    counters.paths[PATHS_ROULETTE] += s.roulette;
     float total = s.radiance.x + s.radiance.y + s.radiance.z;
     if (s.truncated) {
         counters.work[WORK_TRUNCATED] += 1u;
+    } else if (s.dropped) {
+        counters.paths[PATHS_PAPER_DROPPED] += 1u;
     } else if (isnan(total) || isinf(total)) {
         counters.work[WORK_NONFINITE] += 1u;
     } else {
