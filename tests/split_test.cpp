@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 
 #include "gpu/vulkan_backend.hpp"
 #include "ref/ref_backend.hpp"
@@ -40,9 +41,43 @@ void expect_split_invariant(Backend& backend) {
     EXPECT_GT(differing, 10u);
 }
 
+// A session renders pass after pass on the same pipeline and buffers: each pass
+// returns its own samples alone (the sums buffer starts from zero every time), and
+// the passes add up to the one-call render.
+void expect_session_passes_add_up(Backend& backend) {
+    const Scene scene = test::load_at_size(test::source_dir() / "scenes" / "spheres_triangles.json", 32, 24);
+    const SceneGpu gpu = build_scene_gpu(scene);
+    const RenderResult whole = backend.render(gpu, SampleRange{0, 5});
+
+    const std::unique_ptr<RenderSession> session = backend.begin(gpu);
+    RenderResult total = session->render(SampleRange{0, 1});
+    for (const SampleRange pass : {SampleRange{1, 1}, SampleRange{2, 3}}) {
+        const RenderResult part = session->render(pass);
+        for (std::size_t p = 0; p < part.sums.size(); ++p) {
+            ASSERT_EQ(samples_summed(part.sums[p]), pass.count) << "pixel " << p;
+            total.sums[p] = kernel::add_sums(total.sums[p], part.sums[p]);
+            total.counters[p] = total.counters[p] + part.counters[p];
+        }
+    }
+    EXPECT_EQ(total.sums, whole.sums);
+    EXPECT_EQ(total.counters, whole.counters);
+    EXPECT_GE(session->setup_seconds(), 0.0);
+}
+
 TEST(Split, ReferenceBackend) {
     auto backend = make_reference_backend();
     expect_split_invariant(*backend);
+}
+
+TEST(Split, ReferenceSessionPasses) {
+    auto backend = make_reference_backend();
+    expect_session_passes_add_up(*backend);
+}
+
+TEST(Split, VulkanSessionPasses) {
+    auto backend = make_vulkan_backend(VulkanOptions{"", true});
+    expect_session_passes_add_up(*backend);
+    EXPECT_EQ(backend->validation_messages(), 0u);
 }
 
 TEST(Split, VulkanBackend) {

@@ -1,5 +1,6 @@
 // The Vulkan backend: one compute pipeline specialised for the scene's feature set,
-// one dispatch per sample index, submitted in batches sized to the device's speed.
+// one dispatch per sample index and band of rows, submitted in batches sized to the
+// device's speed; a session keeps all of it for pass after pass.
 #include "gpu/vulkan_backend.hpp"
 
 #include <algorithm>
@@ -100,6 +101,155 @@ void check_counts(const SceneGpu& scene) {
     }
 }
 
+// Refuses, before anything is created, a scene this device cannot dispatch.
+void check_dispatchable(const VulkanContext& context, const SceneGpu& scene) {
+    const std::uint32_t width = scene.width();
+    const std::uint32_t height = scene.height();
+    if (scene.pixel_count() == 0) {
+        throw GpuError("scene: the image has no pixels (" + std::to_string(width) + "x" +
+                       std::to_string(height) + ")");
+    }
+    const VkPhysicalDeviceLimits& limits = context.properties().limits;
+    if ((width + kLocalSize - 1) / kLocalSize > limits.maxComputeWorkGroupCount[0] ||
+        (height + kLocalSize - 1) / kLocalSize > limits.maxComputeWorkGroupCount[1]) {
+        throw GpuError("image " + std::to_string(width) + "x" + std::to_string(height) +
+                       " needs more workgroups than this device dispatches at once");
+    }
+    check_counts(scene);
+}
+
+// The pipeline, the uploaded scene and the sums buffers of one scene, kept for as
+// many passes as the caller renders: on lavapipe creating the pipeline alone takes
+// 0.1-0.2 s, more than a pass of a small image.
+class VulkanSession final : public RenderSession {
+public:
+    VulkanSession(const VulkanContext& context, const SceneGpu& scene)
+        : context_(context),
+          width_(scene.width()),
+          height_(scene.height()),
+          groups_x_((width_ + kLocalSize - 1) / kLocalSize),
+          groups_y_((height_ + kLocalSize - 1) / kLocalSize),
+          setup_start_(Clock::now()),
+          pipeline_(make_pipeline(context, scene.features)),
+          params_(context, "params", sizeof(kernel::Params), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT),
+          // Stands in for every array the scene leaves out: the shader still declares
+          // the binding, but with the feature off nothing reads it.
+          dummy_(context, "unused", 16, kSceneUsage),
+          materials_(array_buffer(context, "materials", scene.materials)),
+          spheres_(array_buffer(context, "spheres", scene.spheres)),
+          triangles_(array_buffer(context, "triangles", scene.triangles)),
+          lights_(array_buffer(context, "lights", scene.lights)),
+          emitters_(array_buffer(context, "emitters", scene.emitters)),
+          cell_starts_(array_buffer(context, "grid cell starts", scene.grid_cell_starts)),
+          refs_(array_buffer(context, "grid refs", scene.grid_refs)),
+          rings_(array_buffer(context, "rings", scene.rings)),
+          cylinders_(array_buffer(context, "cylinders", scene.cylinders)),
+          sums_(context, "sums", scene.pixel_count() * sizeof(kernel::PixelSum), kSumsUsage),
+          counters_(context, "counters", scene.pixel_count() * sizeof(kernel::Counters), kSumsUsage),
+          views_(write_descriptors(context.device(), pipeline_.set,
+                                   {&params_, or_dummy(materials_), or_dummy(spheres_), or_dummy(triangles_),
+                                    or_dummy(lights_), &sums_, &counters_, or_dummy(cell_starts_),
+                                    or_dummy(refs_), or_dummy(rings_), or_dummy(cylinders_),
+                                    or_dummy(emitters_)})),
+          timer_(context) {
+        params_.upload(&scene.params, sizeof(kernel::Params));
+        context_.submit_and_wait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, dummy_.get(), 0, VK_WHOLE_SIZE, 0); });
+        setup_seconds_ = seconds_since(setup_start_);
+    }
+
+    double setup_seconds() const override { return setup_seconds_; }
+    RenderResult render(SampleRange samples, const ProgressCallback& progress) override;
+
+private:
+    const VulkanBuffer* or_dummy(const std::optional<VulkanBuffer>& b) const { return b ? &*b : &dummy_; }
+
+    const VulkanContext& context_;
+    std::uint32_t width_, height_, groups_x_, groups_y_;
+    Clock::time_point setup_start_;
+    Pipeline pipeline_;
+    VulkanBuffer params_;
+    VulkanBuffer dummy_;
+    std::optional<VulkanBuffer> materials_, spheres_, triangles_, lights_, emitters_, cell_starts_, refs_, rings_,
+        cylinders_;
+    VulkanBuffer sums_;
+    VulkanBuffer counters_;
+    std::vector<BufferView> views_;
+    BatchTimer timer_;
+    double setup_seconds_ = 0.0;
+    // Dispatches per submission, carried from pass to pass so that a later pass
+    // starts at the size the earlier ones found rather than at 1 again.
+    std::uint32_t batch_ = 1;
+};
+
+RenderResult VulkanSession::render(SampleRange samples, const ProgressCallback& progress) {
+    // Each pass starts from zero sums; the barrier orders the fill after the previous
+    // pass's shader writes (also across submissions: a barrier's scope spans them).
+    context_.submit_and_wait([&](VkCommandBuffer cmd) {
+        memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, kShaderAccess, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_ACCESS_TRANSFER_WRITE_BIT);
+        vkCmdFillBuffer(cmd, sums_.get(), 0, VK_WHOLE_SIZE, 0);
+        vkCmdFillBuffer(cmd, counters_.get(), 0, VK_WHOLE_SIZE, 0);
+        memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, kShaderAccess);
+    });
+
+    RenderResult result;
+    result.width = width_;
+    result.height = height_;
+
+    // The work, in order: sample by sample, each in bands of rows. The sums are
+    // exact integers, so neither banding nor batching changes a bit of the image.
+    const std::uint32_t bands = (groups_y_ + kBandGroups - 1) / kBandGroups;
+    // At most 65,536 samples (limits.hpp) of at most 512 bands (32,768 rows): the
+    // count fits the progress callback's 32 bits.
+    const std::uint32_t items = samples.count * bands;
+    const Clock::time_point loop_start = Clock::now();
+    double gpu_seconds = 0.0;
+    for (std::uint32_t done = 0; done < items;) {
+        const std::uint32_t n = std::min(batch_, items - done);
+        const Clock::time_point submitted = Clock::now();
+        context_.submit_and_wait([&](VkCommandBuffer cmd) {
+            timer_.begin(cmd);
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.pipeline.get());
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.layout.get(), 0, 1,
+                                    &pipeline_.set, 0, nullptr);
+            for (std::uint32_t item = done; item < done + n; ++item) {
+                const std::uint32_t sample = samples.first + item / bands;
+                const std::uint32_t band = item % bands;
+                // Each dispatch adds to the sums an earlier one wrote (also across
+                // batches: a barrier's scope spans earlier submissions).
+                if (item != 0) {
+                    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, kShaderAccess);
+                }
+                const std::uint32_t first_group = band * kBandGroups;
+                const std::array<std::uint32_t, 4> pass{sample, first_group * kLocalSize, 0, 0};
+                vkCmdPushConstants(cmd, pipeline_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, kPushBytes,
+                                   pass.data());
+                vkCmdDispatch(cmd, groups_x_, std::min(kBandGroups, groups_y_ - first_group), 1);
+            }
+            timer_.end(cmd);
+        });
+        const double wall = seconds_since(submitted);
+        result.longest_submit_seconds = std::max(result.longest_submit_seconds, wall);
+        if (timer_.on_gpu()) {
+            gpu_seconds += timer_.batch_seconds();
+        }
+        done += n;
+        if (progress) {
+            progress(done, items);
+        }
+        batch_ = next_batch(n, wall);
+    }
+    result.render_seconds = timer_.on_gpu() ? gpu_seconds : seconds_since(loop_start);
+
+    result.sums.resize(std::size_t(width_) * height_);
+    result.counters.resize(result.sums.size());
+    sums_.readback(result.sums.data(), sums_.size());
+    counters_.readback(result.counters.data(), counters_.size());
+    return result;
+}
+
 class VulkanBackend final : public Backend {
 public:
     explicit VulkanBackend(const VulkanOptions& options) : context_(options) {}
@@ -115,122 +265,14 @@ public:
     std::string device_name() const override { return context_.properties().deviceName; }
     std::uint32_t validation_messages() const override { return context_.validation_messages(); }
 
-    RenderResult render(const SceneGpu& scene, SampleRange samples,
-                        const ProgressCallback& progress) override;
+    std::unique_ptr<RenderSession> begin(const SceneGpu& scene) override {
+        check_dispatchable(context_, scene);
+        return std::make_unique<VulkanSession>(context_, scene);
+    }
 
 private:
     VulkanContext context_;
 };
-
-RenderResult VulkanBackend::render(const SceneGpu& scene, SampleRange samples,
-                                   const ProgressCallback& progress) {
-    const std::uint32_t width = scene.width();
-    const std::uint32_t height = scene.height();
-    const std::size_t pixels = scene.pixel_count();
-    if (pixels == 0) {
-        throw GpuError("scene: the image has no pixels (" + std::to_string(width) + "x" +
-                       std::to_string(height) + ")");
-    }
-    const std::uint32_t groups_x = (width + kLocalSize - 1) / kLocalSize;
-    const std::uint32_t groups_y = (height + kLocalSize - 1) / kLocalSize;
-    const VkPhysicalDeviceLimits& limits = context_.properties().limits;
-    if (groups_x > limits.maxComputeWorkGroupCount[0] || groups_y > limits.maxComputeWorkGroupCount[1]) {
-        throw GpuError("image " + std::to_string(width) + "x" + std::to_string(height) +
-                       " needs more workgroups than this device dispatches at once");
-    }
-    check_counts(scene);
-
-    const Clock::time_point setup_start = Clock::now();
-    const Pipeline pipeline = make_pipeline(context_, scene.features);
-
-    VulkanBuffer params(context_, "params", sizeof(kernel::Params), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
-    params.upload(&scene.params, sizeof(kernel::Params));
-    // Stands in for every array the scene leaves out: the shader still declares the
-    // binding, but with the feature off nothing reads it.
-    VulkanBuffer dummy(context_, "unused", 16, kSceneUsage);
-    const std::optional<VulkanBuffer> materials = array_buffer(context_, "materials", scene.materials);
-    const std::optional<VulkanBuffer> spheres = array_buffer(context_, "spheres", scene.spheres);
-    const std::optional<VulkanBuffer> triangles = array_buffer(context_, "triangles", scene.triangles);
-    const std::optional<VulkanBuffer> lights = array_buffer(context_, "lights", scene.lights);
-    const std::optional<VulkanBuffer> emitters = array_buffer(context_, "emitters", scene.emitters);
-    const std::optional<VulkanBuffer> cell_starts = array_buffer(context_, "grid cell starts", scene.grid_cell_starts);
-    const std::optional<VulkanBuffer> refs = array_buffer(context_, "grid refs", scene.grid_refs);
-    const std::optional<VulkanBuffer> rings = array_buffer(context_, "rings", scene.rings);
-    const std::optional<VulkanBuffer> cylinders = array_buffer(context_, "cylinders", scene.cylinders);
-    VulkanBuffer sums(context_, "sums", pixels * sizeof(kernel::PixelSum), kSumsUsage);
-    VulkanBuffer counters(context_, "counters", pixels * sizeof(kernel::Counters), kSumsUsage);
-
-    auto or_dummy = [&](const std::optional<VulkanBuffer>& b) { return b ? &*b : &dummy; };
-    const std::vector<BufferView> views = write_descriptors(context_.device(), pipeline.set,
-                      {&params, or_dummy(materials), or_dummy(spheres), or_dummy(triangles),
-                       or_dummy(lights), &sums, &counters, or_dummy(cell_starts), or_dummy(refs),
-                       or_dummy(rings), or_dummy(cylinders), or_dummy(emitters)});
-    context_.submit_and_wait([&](VkCommandBuffer cmd) {
-        vkCmdFillBuffer(cmd, sums.get(), 0, VK_WHOLE_SIZE, 0);
-        vkCmdFillBuffer(cmd, counters.get(), 0, VK_WHOLE_SIZE, 0);
-        vkCmdFillBuffer(cmd, dummy.get(), 0, VK_WHOLE_SIZE, 0);
-        memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, kShaderAccess);
-    });
-    const BatchTimer timer(context_);
-
-    RenderResult result;
-    result.width = width;
-    result.height = height;
-    result.setup_seconds = seconds_since(setup_start);
-
-    // The work, in order: sample by sample, each in bands of rows. A pixel's samples
-    // still add up in sample order, so banding changes no bit of the image.
-    const std::uint32_t bands = (groups_y + kBandGroups - 1) / kBandGroups;
-    // At most 65,536 samples (limits.hpp) of at most 512 bands (32,768 rows): the
-    // count fits the progress callback's 32 bits.
-    const std::uint32_t items = samples.count * bands;
-    const Clock::time_point loop_start = Clock::now();
-    double gpu_seconds = 0.0;
-    std::uint32_t batch = 1;
-    for (std::uint32_t done = 0; done < items;) {
-        const std::uint32_t n = std::min(batch, items - done);
-        const Clock::time_point submitted = Clock::now();
-        context_.submit_and_wait([&](VkCommandBuffer cmd) {
-            timer.begin(cmd);
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline.get());
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout.get(), 0, 1,
-                                    &pipeline.set, 0, nullptr);
-            for (std::uint32_t item = done; item < done + n; ++item) {
-                const std::uint32_t sample = samples.first + item / bands;
-                const std::uint32_t band = item % bands;
-                // Each dispatch adds to the sums an earlier one wrote (also across
-                // batches: a barrier's scope spans earlier submissions).
-                if (item != 0) {
-                    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, kShaderAccess);
-                }
-                const std::uint32_t first_group = band * kBandGroups;
-                const std::array<std::uint32_t, 4> pass{sample, first_group * kLocalSize, 0, 0};
-                vkCmdPushConstants(cmd, pipeline.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, kPushBytes,
-                                   pass.data());
-                vkCmdDispatch(cmd, groups_x, std::min(kBandGroups, groups_y - first_group), 1);
-            }
-            timer.end(cmd);
-        });
-        const double wall = seconds_since(submitted);
-        if (timer.on_gpu()) {
-            gpu_seconds += timer.batch_seconds();
-        }
-        done += n;
-        if (progress) {
-            progress(done, items);
-        }
-        batch = next_batch(n, wall);
-    }
-    result.render_seconds = timer.on_gpu() ? gpu_seconds : seconds_since(loop_start);
-
-    result.sums.resize(pixels);
-    result.counters.resize(pixels);
-    sums.readback(result.sums.data(), sums.size());
-    counters.readback(result.counters.data(), counters.size());
-    return result;
-}
 
 }  // namespace
 

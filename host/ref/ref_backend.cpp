@@ -43,25 +43,21 @@ kernel::Kernel make_kernel(const SceneGpu& scene) {
 
 namespace {
 
-class ReferenceBackend final : public Backend {
+// The reference has nothing to set up: a session only remembers the scene and the
+// thread count, and each pass starts its threads afresh.
+class ReferenceSession final : public RenderSession {
 public:
-    explicit ReferenceBackend(unsigned threads)
-        : threads_(threads != 0 ? threads : std::max(1u, std::thread::hardware_concurrency())) {}
+    ReferenceSession(const SceneGpu& scene, unsigned threads) : scene_(scene), threads_(threads) {}
 
-    std::string name() const override { return "cpu"; }
-    AccelPolicy accel_policy() const override { return {kBruteForceBelow, 0xFFFFFFFFu}; }
-    std::string device_name() const override {
-        return "C++ reference, " + std::to_string(threads_) + " thread" + (threads_ == 1 ? "" : "s");
-    }
+    double setup_seconds() const override { return 0.0; }
 
-    RenderResult render(const SceneGpu& scene, SampleRange samples,
-                        const ProgressCallback& progress) override {
+    RenderResult render(SampleRange samples, const ProgressCallback& progress) override {
         const auto start = std::chrono::steady_clock::now();
         RenderResult out;
-        out.width = scene.width();
-        out.height = scene.height();
-        out.sums.assign(scene.pixel_count(), kernel::PixelSum{});
-        out.counters.assign(scene.pixel_count(), kernel::Counters{});
+        out.width = scene_.width();
+        out.height = scene_.height();
+        out.sums.assign(scene_.pixel_count(), kernel::PixelSum{});
+        out.counters.assign(scene_.pixel_count(), kernel::Counters{});
 
         const std::uint32_t tiles_x = (out.width + kTileSize - 1) / kTileSize;
         const std::uint32_t tiles_y = (out.height + kTileSize - 1) / kTileSize;
@@ -71,7 +67,7 @@ public:
         std::mutex progress_mutex;
 
         auto worker = [&] {
-            kernel::Kernel k = make_kernel(scene);
+            kernel::Kernel k = make_kernel(scene_);
             for (std::uint32_t tile = next_tile++; tile < tile_count; tile = next_tile++) {
                 const std::uint32_t x0 = (tile % tiles_x) * kTileSize;
                 const std::uint32_t y0 = (tile / tiles_x) * kTileSize;
@@ -80,7 +76,7 @@ public:
                 for (std::uint32_t y = y0; y < y1; ++y) {
                     for (std::uint32_t x = x0; x < x1; ++x) {
                         const std::size_t index = std::size_t(y) * out.width + x;
-                        for (std::uint32_t s = samples.first; s < samples.first + samples.count; ++s) {
+                        for (std::uint32_t s = samples.first; s < samples.end(); ++s) {
                             k.accumulate_sample(k.render_sample(x, y, s), out.sums[index], out.counters[index]);
                         }
                     }
@@ -102,6 +98,25 @@ public:
         out.render_seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         return out;
+    }
+
+private:
+    const SceneGpu& scene_;
+    unsigned threads_;
+};
+
+class ReferenceBackend final : public Backend {
+public:
+    explicit ReferenceBackend(unsigned threads)
+        : threads_(threads != 0 ? threads : std::max(1u, std::thread::hardware_concurrency())) {}
+
+    std::string name() const override { return "cpu"; }
+    AccelPolicy accel_policy() const override { return {kBruteForceBelow, 0xFFFFFFFFu}; }
+    std::string device_name() const override {
+        return "C++ reference, " + std::to_string(threads_) + " thread" + (threads_ == 1 ? "" : "s");
+    }
+    std::unique_ptr<RenderSession> begin(const SceneGpu& scene) override {
+        return std::make_unique<ReferenceSession>(scene, threads_);
     }
 
 private:
