@@ -11,6 +11,7 @@
 #include <optional>
 #include <vector>
 
+#include "gpu/band_batcher.hpp"
 #include "gpu/batch_timer.hpp"
 #include "gpu/vulkan_buffer.hpp"
 #include "gpu/vulkan_context.hpp"
@@ -23,6 +24,8 @@ namespace {
 using namespace gpu;
 using Clock = std::chrono::steady_clock;
 
+// Short submissions keep a GPU's watchdog away (Windows' TDR fires at 2 s) and the
+// progress callback lively; long ones amortise the per-submission cost. Aim between.
 constexpr double kTargetSubmitSeconds = 0.25;
 
 // Scenes with fewer primitives render faster by brute force than through the grid on lavapipe:
@@ -38,16 +41,6 @@ constexpr VkAccessFlags kShaderAccess = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SH
 
 double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// Short submissions keep a GPU's watchdog away and the progress callback lively;
-// long ones amortise the per-submission cost. Aim between: about kTargetSubmitSeconds.
-// Growth and shrinkage are limited to 4x per step because the first, tiny batches
-// are dominated by fixed costs and would suggest far too large a jump.
-std::uint32_t next_batch(std::uint32_t batch, double seconds) {
-    const double scale = seconds > 0.0 ? std::clamp(kTargetSubmitSeconds / seconds, 0.25, 4.0) : 4.0;
-    const double next = std::round(batch * scale);
-    return static_cast<std::uint32_t>(std::clamp(next, 1.0, double(kMaxBatch)));
 }
 
 // A scene array as a buffer, or nothing when the scene leaves it out.
@@ -151,7 +144,8 @@ public:
                                     or_dummy(lights_), &sums_, &counters_, or_dummy(cell_starts_),
                                     or_dummy(refs_), or_dummy(rings_), or_dummy(cylinders_),
                                     or_dummy(emitters_)})),
-          timer_(context) {
+          timer_(context),
+          batcher_(((groups_y_ + kBandGroups - 1) / kBandGroups), kTargetSubmitSeconds, kMaxBatch) {
         params_.upload(&scene.params, sizeof(kernel::Params));
         context_.submit_and_wait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, dummy_.get(), 0, VK_WHOLE_SIZE, 0); });
         setup_seconds_ = seconds_since(setup_start_);
@@ -175,10 +169,10 @@ private:
     VulkanBuffer counters_;
     std::vector<BufferView> views_;
     BatchTimer timer_;
+    // Dispatches per submission, from the bands' measured costs; kept from pass to
+    // pass so that a later pass need not measure them again.
+    BandBatcher batcher_;
     double setup_seconds_ = 0.0;
-    // Dispatches per submission, carried from pass to pass so that a later pass
-    // starts at the size the earlier ones found rather than at 1 again.
-    std::uint32_t batch_ = 1;
 };
 
 RenderResult VulkanSession::render(SampleRange samples, const ProgressCallback& progress) {
@@ -206,7 +200,7 @@ RenderResult VulkanSession::render(SampleRange samples, const ProgressCallback& 
     const Clock::time_point loop_start = Clock::now();
     double gpu_seconds = 0.0;
     for (std::uint32_t done = 0; done < items;) {
-        const std::uint32_t n = std::min(batch_, items - done);
+        const std::uint32_t n = batcher_.next(done, items - done);
         const Clock::time_point submitted = Clock::now();
         context_.submit_and_wait([&](VkCommandBuffer cmd) {
             timer_.begin(cmd);
@@ -239,7 +233,7 @@ RenderResult VulkanSession::render(SampleRange samples, const ProgressCallback& 
         if (progress) {
             progress(done, items);
         }
-        batch_ = next_batch(n, wall);
+        batcher_.measured(done - n, n, wall);
     }
     result.render_seconds = timer_.on_gpu() ? gpu_seconds : seconds_since(loop_start);
 
