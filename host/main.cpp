@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -49,6 +50,25 @@ CLI::Validator non_negative() {
         ">= 0");
 }
 
+// A time budget: finite and above zero (a budget of 0 could render nothing).
+CLI::Validator positive_seconds() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            std::size_t used = 0;
+            double value = 0.0;
+            try {
+                value = std::stod(text, &used);
+            } catch (const std::exception&) {
+                used = 0;
+            }
+            if (used != text.size() || !(value > 0.0) || !std::isfinite(value)) {
+                return fmt::format("expected a number of seconds above 0, got '{}'", text);
+            }
+            return {};
+        },
+        "SECONDS > 0");
+}
+
 // The command as typed, for the header of `vkrt bench`'s table.
 std::string command_line(int argc, char** argv) {
     std::string line;
@@ -84,6 +104,9 @@ int main(int argc, char** argv) {
         ->check(whole_number(1, limits::kMaxImageSide));
     r->add_option("--spp", render.spp, "Samples per pixel (default: the scene's, else aa*aa)")
         ->check(whole_number(1, limits::kMaxSpp));
+    r->add_option("--time", render.time,
+                  "Render progressive passes for this many seconds, then stop (with --spp: whichever comes first)")
+        ->check(positive_seconds());
     r->add_option("--seed", render.seed, "Random seed, overrides the scene")
         ->check(whole_number(0, 0xffffffffu));
     r->add_option("--grid", render.grid,

@@ -77,13 +77,18 @@ void warn_ignored_options(const RenderArgs& args) {
     }
 }
 
+std::string progress_detail(const ProgressiveStatus& status) {
+    return fmt::format("{} spp, {:.3g} spp/s", status.whole_samples, status.samples_per_second());
+}
+
 std::string default_output(const std::string& scene) {
     return std::filesystem::path(scene).stem().string() + ".png";
 }
 
 void print_summary(const RenderStats& s, const std::string& output) {
     fmt::print("backend   {} on {}\n", s.backend, s.device);
-    fmt::print("image     {}x{}, {} samples per pixel\n", s.width, s.height, s.samples_per_pixel);
+    fmt::print("image     {}x{}, {} samples per pixel in {} pass{}{}\n", s.width, s.height, s.samples_per_pixel,
+               s.passes, s.passes == 1 ? "" : "es", s.stopped_by_time ? " (stopped by --time)" : "");
     auto list = [](const std::vector<std::string>& names) {
         return names.empty() ? std::string("(none)") : fmt::format("{}", fmt::join(names, ", "));
     };
@@ -104,8 +109,8 @@ void print_summary(const RenderStats& s, const std::string& output) {
     }
     fmt::print("per ray   {:.2f} cells visited, {:.2f} intersection tests\n", s.per_ray(s.cells_visited),
                s.per_ray(s.intersection_tests));
-    fmt::print("seconds   setup {:.3f}, render {:.3f}, total {:.3f}\n", s.flatten_seconds + s.setup_seconds,
-               s.render_seconds, s.total_seconds);
+    fmt::print("seconds   setup {:.3f}, render {:.3f}, passes {:.3f}, total {:.3f}\n",
+               s.flatten_seconds + s.setup_seconds, s.render_seconds, s.pass_seconds, s.total_seconds);
     fmt::print("wrote     {}\n", output);
 }
 
@@ -149,9 +154,13 @@ int run_render(const RenderArgs& args) {
     const auto backend_start = std::chrono::steady_clock::now();
     auto backend = make_backend(args);
     const double backend_seconds = seconds_since(backend_start);
+    RenderPlan plan;
+    plan.seconds = args.time;
+    // A time budget alone renders as many samples as fit, up to the most a pixel takes.
+    if (args.time && !args.spp) plan.samples = limits::kMaxSpp;
     ProgressReporter progress("rendering", !args.quiet);
-    RenderOutcome outcome = render_scene(scene, *backend, [&](std::uint32_t done, std::uint32_t total) {
-        progress.update(done, total);
+    RenderOutcome outcome = render_scene(scene, *backend, plan, [&](const ProgressiveStatus& status) {
+        progress.update(status.fraction(), status.seconds_left, progress_detail(status));
     });
     progress.finish();
     write_image(outcome.image, output);

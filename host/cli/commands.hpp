@@ -17,6 +17,7 @@ struct RenderArgs {
     std::optional<std::uint32_t> width;
     std::optional<std::uint32_t> height;
     std::optional<std::uint32_t> spp;
+    std::optional<double> time;  // seconds of progressive passes; with spp, whichever ends first
     std::optional<std::uint32_t> seed;
     std::string grid;    // empty: the scene's choice; else auto, on or off
     unsigned threads = 0;

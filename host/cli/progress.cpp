@@ -1,5 +1,6 @@
 #include "cli/progress.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 #include <fmt/format.h>
@@ -14,27 +15,28 @@ ProgressReporter::ProgressReporter(std::string label, bool enabled)
       start_(std::chrono::steady_clock::now()),
       last_draw_(start_) {}
 
-void ProgressReporter::update(std::uint32_t done, std::uint32_t total) {
-    if (!enabled_ || total == 0) return;
+void ProgressReporter::update(double fraction, double seconds_left, const std::string& detail) {
+    if (!enabled_) return;
     const auto now = std::chrono::steady_clock::now();
     const double elapsed = std::chrono::duration<double>(now - start_).count();
     if (elapsed < 1.0) return;
-    const double fraction = double(done) / double(total);
-    const double left = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+    fraction = std::clamp(fraction, 0.0, 1.0);
     if (terminal_) {
-        if (std::chrono::duration<double>(now - last_draw_).count() < 0.1 && done != total) return;
+        if (std::chrono::duration<double>(now - last_draw_).count() < 0.1 && fraction < 1.0) return;
         last_draw_ = now;
         constexpr int kWidth = 30;
         const int filled = int(fraction * kWidth);
-        fmt::print(stderr, "\r{} [{}{}] {:3.0f}%  {:.1f} s left ", label_, std::string(filled, '#'),
-                   std::string(kWidth - filled, '.'), fraction * 100.0, left);
+        // Trailing spaces wipe the end of a longer line drawn before.
+        fmt::print(stderr, "\r{} [{}{}] {:3.0f}%  {}, {:.1f} s left   ", label_, std::string(filled, '#'),
+                   std::string(kWidth - filled, '.'), fraction * 100.0, detail, seconds_left);
         std::fflush(stderr);
         shown_ = true;
     } else {
         const int decile = int(fraction * 10.0);
         if (decile == last_decile_) return;
         last_decile_ = decile;
-        fmt::print(stderr, "{}: {:.0f}% ({:.1f} s elapsed, {:.1f} s left)\n", label_, fraction * 100.0, elapsed, left);
+        fmt::print(stderr, "{}: {:.0f}% ({}, {:.1f} s elapsed, {:.1f} s left)\n", label_, fraction * 100.0, detail,
+                   elapsed, seconds_left);
     }
 }
 

@@ -3,7 +3,6 @@
 // in place on a terminal, a plain line every tenth of the work otherwise, nothing
 // when quiet.
 #include <chrono>
-#include <cstdint>
 #include <string>
 
 namespace vkrt {
@@ -11,7 +10,9 @@ namespace vkrt {
 class ProgressReporter {
 public:
     ProgressReporter(std::string label, bool enabled);
-    void update(std::uint32_t done, std::uint32_t total);
+    // `fraction` of the work is done and `seconds_left` estimated; `detail` (e.g.
+    // "12 spp, 3.4 spp/s") is shown beside the bar.
+    void update(double fraction, double seconds_left, const std::string& detail);
     void finish();
 
 private:

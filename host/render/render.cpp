@@ -1,6 +1,8 @@
 #include "render/render.hpp"
 
 #include <chrono>
+#include <limits>
+#include <memory>
 
 #include "render/pixel_sums.hpp"
 
@@ -92,6 +94,7 @@ RenderStats collect_stats(const SceneGpu& scene, const Backend& backend, const R
     for (const kernel::PixelSum& sum : result.sums) s.clamped_samples += samples_clamped(sum);
     s.setup_seconds = result.setup_seconds;
     s.render_seconds = result.render_seconds;
+    s.longest_submit_seconds = result.longest_submit_seconds;
     s.features = scene.features;
     s.buffers = scene.built_buffers();
     s.validation_messages = backend.validation_messages();
@@ -100,16 +103,29 @@ RenderStats collect_stats(const SceneGpu& scene, const Backend& backend, const R
     return s;
 }
 
-RenderOutcome render_scene(const Scene& scene, Backend& backend, const ProgressCallback& progress) {
+RenderOutcome render_scene(const Scene& scene, Backend& backend, const RenderPlan& plan,
+                           const ProgressiveCallback& progress) {
     using clock = std::chrono::steady_clock;
     const auto start = clock::now();
     const SceneGpu gpu = build_scene_gpu(scene, backend.accel_policy());
     const auto flattened = clock::now();
-    const RenderResult result = backend.render(gpu, SampleRange{0, gpu.samples_per_pixel}, progress);
+    const std::unique_ptr<RenderSession> session = backend.begin(gpu);
+    const SampleRange samples{plan.first_sample, plan.samples.value_or(gpu.samples_per_pixel)};
+    ProgressiveRender render(*session, {samples, plan.seconds});
+    while (render.next_pass(std::numeric_limits<std::uint32_t>::max(), progress)) {
+    }
+    RenderResult result = render.total();
+    result.setup_seconds = session->setup_seconds();
     RenderOutcome out{resolve_image(result, gpu.corners), collect_stats(gpu, backend, result),
-                      pixel_decisions(result, gpu.corners)};
+                      pixel_decisions(result, gpu.corners), {}, gpu.corners};
     out.stats.width = out.image.width;
     out.stats.height = out.image.height;
+    out.stats.samples_per_pixel = render.samples_done();
+    out.stats.first_sample = plan.first_sample;
+    out.stats.passes = render.passes();
+    out.stats.stopped_by_time = render.stopped_by_time();
+    out.stats.pass_seconds = render.seconds();
+    out.sums = std::move(result);
     out.stats.flatten_seconds = std::chrono::duration<double>(flattened - start).count();
     out.stats.total_seconds = std::chrono::duration<double>(clock::now() - start).count();
     return out;

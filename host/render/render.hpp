@@ -4,12 +4,14 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "accel/grid.hpp"
 #include "image/image.hpp"
 #include "render/backend.hpp"
+#include "render/progressive.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_gpu.hpp"
 
@@ -20,7 +22,10 @@ struct RenderStats {
     std::string device;
     std::uint32_t width = 0;
     std::uint32_t height = 0;
-    std::uint32_t samples_per_pixel = 0;
+    std::uint32_t samples_per_pixel = 0;  // rendered (with a time budget, as many as fitted)
+    std::uint32_t first_sample = 0;       // the first sample index rendered (split rendering)
+    std::uint32_t passes = 0;             // progressive passes (render/progressive.hpp)
+    bool stopped_by_time = false;         // the time budget ended the render, not the sample count
     std::uint64_t eye_rays = 0;
     std::uint64_t shadow_rays = 0;
     std::uint64_t reflection_rays = 0;
@@ -39,6 +44,8 @@ struct RenderStats {
     double flatten_seconds = 0.0;         // Scene -> SceneGpu
     double setup_seconds = 0.0;           // backend set-up (pipelines, uploads)
     double render_seconds = 0.0;
+    double pass_seconds = 0.0;            // wall clock of the passes, read-back and accumulation included
+    double longest_submit_seconds = 0.0;  // Vulkan: the longest single queue submission
     double total_seconds = 0.0;
     FeatureSet features;
     std::vector<BufferSize> buffers;
@@ -58,6 +65,18 @@ struct RenderOutcome {
     // two backends when every ray hit the same things, was lit and shadowed alike
     // and reflected or refracted alike; what the cross-check tells flips apart by.
     std::vector<std::uint32_t> decisions;
+    // The exact per-pixel sums and counters the image was resolved from (for
+    // partial files), over the kernel's grid of rays (with `corners`, one larger).
+    RenderResult sums;
+    bool corners = false;
+};
+
+// What to render of a scene: by default every sample it asks for, in one go of
+// progressive passes.
+struct RenderPlan {
+    std::uint32_t first_sample = 0;        // the first sample index (split rendering)
+    std::optional<std::uint32_t> samples;  // how many samples at most; default the scene's spp
+    std::optional<double> seconds;         // a time budget (render/pass_plan.hpp)
 };
 
 // Each pixel's sum divided by its count of good samples (black where there is none).
@@ -67,7 +86,8 @@ Image resolve_image(const RenderResult& result, bool corners = false);
 
 RenderStats collect_stats(const SceneGpu& scene, const Backend& backend, const RenderResult& result);
 
-// Renders every sample the scene asks for.
-RenderOutcome render_scene(const Scene& scene, Backend& backend, const ProgressCallback& progress = {});
+// Renders the plan's samples in progressive passes through one backend session.
+RenderOutcome render_scene(const Scene& scene, Backend& backend, const RenderPlan& plan = {},
+                           const ProgressiveCallback& progress = {});
 
 }  // namespace vkrt

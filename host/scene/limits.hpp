@@ -26,8 +26,8 @@ inline std::string image_size_problem(std::uint32_t width, std::uint32_t height,
 }
 
 inline constexpr std::uint32_t kMaxAa = 64;
-// Pixel sums are 32-bit floats: at 65,536 identical samples their rounding error
-// measured 6.4e-4 (docs/cli.md). More needs compensated sums, not a bigger number.
+// Pixel sums are exact 96-bit fixed point (kernel/sums.glsl): 65,536 samples of the
+// largest radiance a sample may carry still fit them. Also what --time alone stops at.
 inline constexpr std::uint32_t kMaxSpp = 1u << 16;
 inline constexpr std::uint32_t kMaxDepth = 64;
 // Global mode's bounces; each is one loop iteration of a budget of 65,000 shared with

@@ -1,0 +1,32 @@
+#pragma once
+// Adding renders of disjoint sample ranges of one scene: the exact sums of
+// kernel/sums.glsl make the total the very result of one render of the union.
+#include <stdexcept>
+
+#include "render/backend.hpp"
+
+namespace vkrt {
+
+// total += part, pixel by pixel; an empty total takes the part's size. Times add
+// up too (the longest submission is the longer of the two).
+inline void accumulate(RenderResult& total, const RenderResult& part) {
+    if (total.sums.empty()) {
+        total.width = part.width;
+        total.height = part.height;
+        total.sums.assign(part.sums.size(), kernel::PixelSum{});
+        total.counters.assign(part.counters.size(), kernel::Counters{});
+    }
+    if (total.width != part.width || total.height != part.height || total.sums.size() != part.sums.size() ||
+        total.counters.size() != part.counters.size()) {
+        throw std::logic_error("accumulate: renders of different sizes");
+    }
+    for (std::size_t p = 0; p < total.sums.size(); ++p) {
+        total.sums[p] = kernel::add_sums(total.sums[p], part.sums[p]);
+        total.counters[p] = total.counters[p] + part.counters[p];
+    }
+    total.setup_seconds += part.setup_seconds;
+    total.render_seconds += part.render_seconds;
+    total.longest_submit_seconds = std::max(total.longest_submit_seconds, part.longest_submit_seconds);
+}
+
+}  // namespace vkrt
