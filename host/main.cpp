@@ -8,6 +8,7 @@
 
 #include "cli/bench.hpp"
 #include "cli/commands.hpp"
+#include "render/sample_ranges.hpp"
 #include "scene/limits.hpp"
 
 namespace {
@@ -107,6 +108,20 @@ int main(int argc, char** argv) {
     r->add_option("--time", render.time,
                   "Render progressive passes for this many seconds, then stop (with --spp: whichever comes first)")
         ->check(positive_seconds());
+    CLI::Option* samples_opt =
+        r->add_option("--samples", render.samples,
+                      "Render only the samples A to B-1 of every pixel, to a partial file (.exr) that vkrt merge adds "
+                      "up with others (default output: <scene name>_A-B.exr)")
+            ->check(CLI::Validator(
+                [](const std::string& text) {
+                    try {
+                        parse_sample_range(text, limits::kMaxSpp);
+                    } catch (const std::invalid_argument& e) {
+                        return std::string(e.what());
+                    }
+                    return std::string();
+                },
+                "A:B"));
     r->add_option("--seed", render.seed, "Random seed, overrides the scene")
         ->check(whole_number(0, 0xffffffffu));
     r->add_option("--grid", render.grid,
@@ -126,6 +141,18 @@ int main(int argc, char** argv) {
     r->add_flag("--validate", render.validate,
                 "Enable the Vulkan validation layer; any message makes the render fail");
     r->add_flag("-q,--quiet", render.quiet, "Print nothing but warnings and errors");
+    // A partial file is a fixed range of samples: a count or a time budget would
+    // contradict it.
+    samples_opt->excludes("--spp")->excludes("--time");
+
+    cli::MergeArgs merge;
+    CLI::App* m = app.add_subcommand("merge", "Add up partial files of disjoint sample ranges into one image");
+    m->add_option("partials", merge.partials, "Partial files (.exr) written by vkrt render --samples or vkrt merge")
+        ->required();
+    m->add_option("-o,--output", merge.output,
+                  "Output image; .exr writes a partial file again (mergeable), other formats an image")
+        ->required();
+    m->add_flag("-q,--quiet", merge.quiet, "Print nothing but warnings and errors");
 
     cli::CompareArgs compare;
     CLI::App* c = app.add_subcommand("compare", "Compare two images; exit 1 when over a given bound");
@@ -186,15 +213,21 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         // One line and status 1, like every other mistake (docs/cli.md).
         if (app.get_subcommands().empty() && argc > 1 && argv[1][0] != '-') {
-            fmt::print(stderr, "error: unknown command '{}' (expected render, compare, bench or devices)\n", argv[1]);
+            fmt::print(stderr, "error: unknown command '{}' (expected render, merge, compare, bench or devices)\n",
+                       argv[1]);
             return 1;
         }
         fmt::print(stderr, "error: {} (see vkrt {}--help)\n", e.what(),
-                   r->parsed() ? "render " : c->parsed() ? "compare " : b->parsed() ? "bench " : "");
+                   r->parsed()   ? "render "
+                   : m->parsed() ? "merge "
+                   : c->parsed() ? "compare "
+                   : b->parsed() ? "bench "
+                                 : "");
         return 1;
     }
     try {
         if (r->parsed()) return cli::run_render(render);
+        if (m->parsed()) return cli::run_merge(merge);
         if (c->parsed()) return cli::run_compare(compare);
         if (b->parsed()) return cli::run_bench(bench);
         return cli::run_devices();

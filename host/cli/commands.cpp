@@ -7,11 +7,14 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "cli/output_paths.hpp"
 #include "cli/progress.hpp"
 #include "gpu/vulkan_backend.hpp"
 #include "image/compare.hpp"
 #include "ref/ref_backend.hpp"
+#include "render/partial_file.hpp"
 #include "render/render.hpp"
+#include "render/sample_ranges.hpp"
 #include "render/stats_json.hpp"
 #include "scene/limits.hpp"
 #include "scene/load_scene.hpp"
@@ -51,23 +54,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-void check_writable_file(const std::filesystem::path& file, const char* what) {
-    const std::filesystem::path dir = file.parent_path().empty() ? "." : file.parent_path();
-    if (!std::filesystem::is_directory(dir)) {
-        throw std::runtime_error(fmt::format("{}: cannot write the {} there: no directory {}", file.string(), what,
-                                             dir.string()));
-    }
-}
-
-void check_writable_image(const std::filesystem::path& file) {
-    check_writable_file(file, "image");
-    if (!can_write_image_format(file)) {
-        throw std::runtime_error(fmt::format(
-            "{}: unknown image format '{}' (use .png or .ppm for 8-bit sRGB, .exr or .hdr for linear float)",
-            file.string(), file.extension().string()));
-    }
-}
-
 void warn_ignored_options(const RenderArgs& args) {
     if (args.backend == "vulkan" && args.threads != 0) {
         fmt::print(stderr, "warning: --threads applies to --backend cpu only; ignored\n");
@@ -81,14 +67,19 @@ std::string progress_detail(const ProgressiveStatus& status) {
     return fmt::format("{} spp, {:.3g} spp/s", status.whole_samples, status.samples_per_second());
 }
 
-std::string default_output(const std::string& scene) {
-    return std::filesystem::path(scene).stem().string() + ".png";
+// <scene name>.png, or for a partial render <scene name>_A-B.exr.
+std::string default_output(const std::string& scene, const std::optional<SampleRange>& samples) {
+    const std::string stem = std::filesystem::path(scene).stem().string();
+    return samples ? fmt::format("{}_{}-{}.exr", stem, samples->first, samples->end()) : stem + ".png";
 }
 
-void print_summary(const RenderStats& s, const std::string& output) {
+void print_summary(const RenderStats& s, const std::string& output, bool partial) {
     fmt::print("backend   {} on {}\n", s.backend, s.device);
-    fmt::print("image     {}x{}, {} samples per pixel in {} pass{}{}\n", s.width, s.height, s.samples_per_pixel,
-               s.passes, s.passes == 1 ? "" : "es", s.stopped_by_time ? " (stopped by --time)" : "");
+    const std::string range = partial ? fmt::format("samples {}:{}, ", s.first_sample, s.first_sample + s.samples_per_pixel)
+                                      : std::string();
+    fmt::print("image     {}x{}, {}{} samples per pixel in {} pass{}{}\n", s.width, s.height, range,
+               s.samples_per_pixel, s.passes, s.passes == 1 ? "" : "es",
+               s.stopped_by_time ? " (stopped by --time)" : "");
     auto list = [](const std::vector<std::string>& names) {
         return names.empty() ? std::string("(none)") : fmt::format("{}", fmt::join(names, ", "));
     };
@@ -111,7 +102,7 @@ void print_summary(const RenderStats& s, const std::string& output) {
                s.per_ray(s.intersection_tests));
     fmt::print("seconds   setup {:.3f}, render {:.3f}, passes {:.3f}, total {:.3f}\n",
                s.flatten_seconds + s.setup_seconds, s.render_seconds, s.pass_seconds, s.total_seconds);
-    fmt::print("wrote     {}\n", output);
+    fmt::print("wrote     {}{}\n", output, partial ? " (a partial file: vkrt merge adds it up with others)" : "");
 }
 
 }  // namespace
@@ -144,10 +135,16 @@ int run_render(const RenderArgs& args) {
     Scene scene = load_scene(args.scene);
     for (const std::string& warning : scene.warnings) fmt::print(stderr, "warning: {}\n", warning);
     apply_overrides(args, scene);
-    const std::string output = args.output.empty() ? default_output(args.scene) : args.output;
+    std::optional<SampleRange> samples;
+    if (!args.samples.empty()) samples = parse_sample_range(args.samples, limits::kMaxSpp);  // checked by the parser
+    const std::string output = args.output.empty() ? default_output(args.scene, samples) : args.output;
 
     // Mistakes in the output paths are found now, not after a long render.
     check_writable_image(output);
+    if (samples && !is_exr(output)) {
+        throw std::runtime_error(fmt::format(
+            "{}: --samples writes a partial file, which is OpenEXR: give -o a name ending in .exr", output));
+    }
     if (!args.stats_file.empty()) check_writable_file(args.stats_file, "stats file");
     warn_ignored_options(args);
 
@@ -158,12 +155,22 @@ int run_render(const RenderArgs& args) {
     plan.seconds = args.time;
     // A time budget alone renders as many samples as fit, up to the most a pixel takes.
     if (args.time && !args.spp) plan.samples = limits::kMaxSpp;
+    if (samples) {
+        plan.first_sample = samples->first;
+        plan.samples = samples->count;
+    }
     ProgressReporter progress("rendering", !args.quiet);
     RenderOutcome outcome = render_scene(scene, *backend, plan, [&](const ProgressiveStatus& status) {
         progress.update(status.fraction(), status.seconds_left, progress_detail(status));
     });
     progress.finish();
-    write_image(outcome.image, output);
+    if (samples) {
+        write_partial(PartialFile{outcome.sums, {*samples}, std::filesystem::path(args.scene).filename().string(),
+                                  scene.render.seed, outcome.fingerprint, backend->name(), outcome.corners},
+                      output);
+    } else {
+        write_image(outcome.image, output);
+    }
 
     RenderStats& s = outcome.stats;
     s.setup_seconds += backend_seconds;         // device and instance creation
@@ -173,7 +180,7 @@ int run_render(const RenderArgs& args) {
         out << stats_to_json(s).dump(2) << '\n';
         if (!out) throw std::runtime_error(fmt::format("{}: cannot write the stats file", args.stats_file));
     }
-    if (!args.quiet) print_summary(s, output);
+    if (!args.quiet) print_summary(s, output, samples.has_value());
 
     if (s.nonfinite_samples > 0) {
         fmt::print(stderr, "warning: {} samples were NaN or infinite and were left out of the average\n",

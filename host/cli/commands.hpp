@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "scene/scene.hpp"
 
@@ -18,6 +19,7 @@ struct RenderArgs {
     std::optional<std::uint32_t> height;
     std::optional<std::uint32_t> spp;
     std::optional<double> time;  // seconds of progressive passes; with spp, whichever ends first
+    std::string samples;         // "A:B": render samples [A, B) only, to a partial file
     std::optional<std::uint32_t> seed;
     std::string grid;    // empty: the scene's choice; else auto, on or off
     unsigned threads = 0;
@@ -38,7 +40,14 @@ struct CompareArgs {
     double threshold = 1e-3;
 };
 
+struct MergeArgs {
+    std::vector<std::string> partials;
+    std::string output;
+    bool quiet = false;
+};
+
 int run_render(const RenderArgs& args);
+int run_merge(const MergeArgs& args);
 int run_compare(const CompareArgs& args);
 int run_devices();
 

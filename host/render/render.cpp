@@ -4,6 +4,7 @@
 #include <limits>
 #include <memory>
 
+#include "render/fingerprint.hpp"
 #include "render/pixel_sums.hpp"
 
 namespace vkrt {
@@ -126,6 +127,7 @@ RenderOutcome render_scene(const Scene& scene, Backend& backend, const RenderPla
     out.stats.stopped_by_time = render.stopped_by_time();
     out.stats.pass_seconds = render.seconds();
     out.sums = std::move(result);
+    out.fingerprint = scene_fingerprint(gpu);
     out.stats.flatten_seconds = std::chrono::duration<double>(flattened - start).count();
     out.stats.total_seconds = std::chrono::duration<double>(clock::now() - start).count();
     return out;

@@ -69,6 +69,7 @@ struct RenderOutcome {
     // partial files), over the kernel's grid of rays (with `corners`, one larger).
     RenderResult sums;
     bool corners = false;
+    std::uint64_t fingerprint = 0;  // of the flattened scene (render/fingerprint.hpp)
 };
 
 // What to render of a scene: by default every sample it asks for, in one go of

@@ -1,0 +1,36 @@
+#include "cli/output_paths.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "image/image.hpp"
+
+namespace vkrt::cli {
+
+void check_writable_file(const std::filesystem::path& file, const char* what) {
+    const std::filesystem::path dir = file.parent_path().empty() ? "." : file.parent_path();
+    if (!std::filesystem::is_directory(dir)) {
+        throw std::runtime_error(fmt::format("{}: cannot write the {} there: no directory {}", file.string(), what,
+                                             dir.string()));
+    }
+}
+
+void check_writable_image(const std::filesystem::path& file) {
+    check_writable_file(file, "image");
+    if (!can_write_image_format(file)) {
+        throw std::runtime_error(fmt::format(
+            "{}: unknown image format '{}' (use .png or .ppm for 8-bit sRGB, .exr or .hdr for linear float)",
+            file.string(), file.extension().string()));
+    }
+}
+
+bool is_exr(const std::filesystem::path& file) {
+    std::string ext = file.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext == ".exr";
+}
+
+}  // namespace vkrt::cli

@@ -1,0 +1,59 @@
+#include "render/fingerprint.hpp"
+
+#include <fmt/format.h>
+
+#include <vector>
+
+namespace vkrt {
+namespace {
+
+class Fnv1a {
+public:
+    void add(const void* data, std::size_t bytes) {
+        const auto* p = static_cast<const unsigned char*>(data);
+        for (std::size_t i = 0; i < bytes; ++i) {
+            hash_ = (hash_ ^ p[i]) * 0x100000001b3ull;
+        }
+    }
+    // The length first, so that moving an element from one array to the next
+    // changes the hash.
+    template <class T>
+    void add(const std::vector<T>& items) {
+        const std::uint64_t n = items.size();
+        add(&n, sizeof n);
+        add(items.data(), items.size() * sizeof(T));
+    }
+    std::uint64_t value() const { return hash_; }
+
+private:
+    std::uint64_t hash_ = 0xcbf29ce484222325ull;
+};
+
+}  // namespace
+
+std::uint64_t scene_fingerprint(const SceneGpu& scene) {
+    kernel::Params params = scene.params;
+    // The grid's box, cells and resolution (see the header for why).
+    params.grid_min = params.grid_max = params.grid_cell = params.grid_inv_cell = kernel::vec4(0.0f);
+    params.grid_res = kernel::uvec4(0u);
+    Fnv1a h;
+    h.add(&params, sizeof params);  // vec4 members only: no padding bytes
+    for (std::uint32_t id = 0; id < kFeatureCount; ++id) {
+        const std::uint8_t on = id != std::uint32_t(Feature::HAS_GRID) && scene.features.has(id) ? 1 : 0;
+        h.add(&on, 1);
+    }
+    const std::uint8_t corners = scene.corners ? 1 : 0;
+    h.add(&corners, 1);
+    h.add(scene.materials);
+    h.add(scene.spheres);
+    h.add(scene.triangles);
+    h.add(scene.lights);
+    h.add(scene.rings);
+    h.add(scene.cylinders);
+    h.add(scene.emitters);
+    return h.value();
+}
+
+std::string format_fingerprint(std::uint64_t fingerprint) { return fmt::format("{:016x}", fingerprint); }
+
+}  // namespace vkrt

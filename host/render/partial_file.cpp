@@ -1,0 +1,158 @@
+#include "render/partial_file.hpp"
+
+#include <array>
+#include <bit>
+#include <cstring>
+
+#include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
+
+#include "image/image.hpp"
+#include "render/fingerprint.hpp"
+#include "render/pixel_sums.hpp"
+#include "render/sample_ranges.hpp"
+#include "scene/limits.hpp"
+
+namespace vkrt {
+namespace {
+
+// Bumped when the channels or attributes change meaning; a reader refuses others.
+constexpr int kFormatVersion = 1;
+
+// The words of a PixelSum and of Counters, in the order of their layout.
+constexpr std::array<const char*, 12> kSumChannels = {
+    "vkrt.sum.r0", "vkrt.sum.r1", "vkrt.sum.r2", "vkrt.sum.count",    // red words, samples summed
+    "vkrt.sum.g0", "vkrt.sum.g1", "vkrt.sum.g2", "vkrt.sum.clamped",  // green words, samples clamped
+    "vkrt.sum.b0", "vkrt.sum.b1", "vkrt.sum.b2", "vkrt.sum.unused"};
+constexpr std::array<const char*, 16> kCounterChannels = {
+    "vkrt.rays.0", "vkrt.rays.1", "vkrt.rays.2", "vkrt.rays.3", "vkrt.work.0",  "vkrt.work.1",
+    "vkrt.work.2", "vkrt.work.3", "vkrt.tree.0", "vkrt.tree.1", "vkrt.tree.2",  "vkrt.tree.3",
+    "vkrt.paths.0", "vkrt.paths.1", "vkrt.paths.2", "vkrt.paths.3"};
+constexpr int kChannels = 3 + int(kSumChannels.size()) + int(kCounterChannels.size());
+
+std::uint32_t& sum_word(kernel::PixelSum& s, std::size_t i) {
+    glm::uvec4& v = i < 4 ? s.red : i < 8 ? s.green : s.blue;
+    return v[glm::length_t(i % 4)];
+}
+std::uint32_t& counter_word(kernel::Counters& c, std::size_t i) {
+    glm::uvec4& v = i < 4 ? c.rays : i < 8 ? c.work : i < 12 ? c.tree : c.paths;
+    return v[glm::length_t(i % 4)];
+}
+
+[[noreturn]] void not_partial(const std::string& name, const std::string& why) {
+    throw ImageError(fmt::format("{}: not a vkrt partial file ({}); partial files come from "
+                                 "`vkrt render --samples A:B` or `vkrt merge -o NAME.exr`",
+                                 name, why));
+}
+
+}  // namespace
+
+void write_partial(const PartialFile& partial, const std::filesystem::path& file) {
+    const std::string name = file.string();
+    const RenderResult& r = partial.sums;
+    auto out = OIIO::ImageOutput::create(name);
+    if (!out) throw ImageError(fmt::format("{}: cannot write this image format ({})", name, OIIO::geterror()));
+    OIIO::ImageSpec spec(int(r.width), int(r.height), kChannels, OIIO::TypeDesc::FLOAT);
+    spec.channelnames = {"R", "G", "B"};
+    spec.channelformats.assign(3, OIIO::TypeDesc::FLOAT);
+    for (const char* c : kSumChannels) spec.channelnames.emplace_back(c);
+    for (const char* c : kCounterChannels) spec.channelnames.emplace_back(c);
+    spec.channelformats.resize(kChannels, OIIO::TypeDesc::UINT32);
+    spec.attribute("oiio:ColorSpace", "Linear");
+    spec.attribute("vkrt:partial_version", kFormatVersion);
+    spec.attribute("vkrt:samples", format_sample_ranges(partial.samples));
+    spec.attribute("vkrt:scene", partial.scene);
+    spec.attribute("vkrt:seed", std::to_string(partial.seed));  // a string: EXR has no unsigned attribute
+    spec.attribute("vkrt:fingerprint", format_fingerprint(partial.fingerprint));
+    spec.attribute("vkrt:backend", partial.backend);
+    spec.attribute("vkrt:corners", partial.corners ? 1 : 0);
+
+    // Every channel is 4 bytes: one uint32 array holds the pixels in the native
+    // per-channel formats, the floats by their bits.
+    std::vector<std::uint32_t> pixels(r.sums.size() * kChannels);
+    for (std::size_t p = 0; p < r.sums.size(); ++p) {
+        std::uint32_t* px = &pixels[p * kChannels];
+        const glm::vec3 mean = mean_radiance(r.sums[p]);
+        for (int c = 0; c < 3; ++c) px[c] = std::bit_cast<std::uint32_t>(mean[c]);
+        kernel::PixelSum s = r.sums[p];
+        for (std::size_t i = 0; i < kSumChannels.size(); ++i) px[3 + i] = sum_word(s, i);
+        kernel::Counters k = r.counters[p];
+        for (std::size_t i = 0; i < kCounterChannels.size(); ++i) px[3 + kSumChannels.size() + i] = counter_word(k, i);
+    }
+    if (!out->open(name, spec)) throw ImageError(fmt::format("{}: cannot open for writing: {}", name, out->geterror()));
+    if (!out->write_image(OIIO::TypeDesc::UNKNOWN, pixels.data()) || !out->close()) {
+        throw ImageError(fmt::format("{}: writing failed: {}", name, out->geterror()));
+    }
+}
+
+PartialFile read_partial(const std::filesystem::path& file) {
+    const std::string name = file.string();
+    if (!std::filesystem::exists(file)) throw ImageError(fmt::format("{}: no such file", name));
+    auto in = OIIO::ImageInput::open(name);
+    if (!in) throw ImageError(fmt::format("{}: cannot read image ({})", name, OIIO::geterror()));
+    const OIIO::ImageSpec& spec = in->spec();
+
+    PartialFile partial;
+    const int version = spec.get_int_attribute("vkrt:partial_version", 0);
+    if (version == 0) not_partial(name, "it has no vkrt:partial_version attribute");
+    if (version != kFormatVersion) {
+        throw ImageError(fmt::format("{}: a vkrt partial file of format version {}, but this vkrt reads version {}",
+                                     name, version, kFormatVersion));
+    }
+    const std::string samples = spec.get_string_attribute("vkrt:samples");
+    const auto ranges = parse_sample_ranges(samples, limits::kMaxSpp);
+    if (!ranges) not_partial(name, fmt::format("its vkrt:samples attribute '{}' is no list of ranges A:B", samples));
+    partial.samples = normalize_sample_ranges(*ranges);
+    partial.scene = spec.get_string_attribute("vkrt:scene");
+    partial.seed = std::uint32_t(std::stoul(spec.get_string_attribute("vkrt:seed", "0")));
+    partial.fingerprint = std::stoull(spec.get_string_attribute("vkrt:fingerprint", "0"), nullptr, 16);
+    partial.backend = spec.get_string_attribute("vkrt:backend");
+    partial.corners = spec.get_int_attribute("vkrt:corners", 0) != 0;
+
+    // Channels by name, wherever the file put them (OpenEXR stores them sorted by
+    // name), at their byte offsets in a pixel of native per-channel formats.
+    std::vector<std::size_t> offset(std::size_t(spec.nchannels));
+    std::size_t pixel_bytes = 0;
+    for (int c = 0; c < spec.nchannels; ++c) {
+        offset[std::size_t(c)] = pixel_bytes;
+        pixel_bytes += spec.channelformat(c).size();
+    }
+    auto find = [&](const char* channel) {
+        for (int c = 0; c < spec.nchannels; ++c) {
+            if (spec.channelnames[std::size_t(c)] == channel) {
+                if (spec.channelformat(c) != OIIO::TypeDesc::UINT32) {
+                    not_partial(name, fmt::format("channel {} is not 32-bit unsigned", channel));
+                }
+                return offset[std::size_t(c)];
+            }
+        }
+        not_partial(name, fmt::format("it has no channel {}", channel));
+    };
+    std::array<std::size_t, kSumChannels.size()> sum_at{};
+    for (std::size_t i = 0; i < kSumChannels.size(); ++i) sum_at[i] = find(kSumChannels[i]);
+    std::array<std::size_t, kCounterChannels.size()> counter_at{};
+    for (std::size_t i = 0; i < kCounterChannels.size(); ++i) counter_at[i] = find(kCounterChannels[i]);
+
+    const std::size_t pixels = std::size_t(spec.width) * std::size_t(spec.height);
+    std::vector<unsigned char> data(pixels * pixel_bytes);
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UNKNOWN, data.data())) {
+        throw ImageError(fmt::format("{}: reading failed: {}", name, in->geterror()));
+    }
+    RenderResult& r = partial.sums;
+    r.width = std::uint32_t(spec.width);
+    r.height = std::uint32_t(spec.height);
+    r.sums.resize(pixels);
+    r.counters.resize(pixels);
+    auto word = [&](std::size_t p, std::size_t at) {
+        std::uint32_t w = 0;
+        std::memcpy(&w, &data[p * pixel_bytes + at], sizeof w);
+        return w;
+    };
+    for (std::size_t p = 0; p < pixels; ++p) {
+        for (std::size_t i = 0; i < sum_at.size(); ++i) sum_word(r.sums[p], i) = word(p, sum_at[i]);
+        for (std::size_t i = 0; i < counter_at.size(); ++i) counter_word(r.counters[p], i) = word(p, counter_at[i]);
+    }
+    return partial;
+}
+
+}  // namespace vkrt

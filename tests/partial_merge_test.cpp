@@ -1,0 +1,237 @@
+// Split rendering through the real program: `vkrt render --samples A:B` writes
+// partial files and `vkrt merge` adds them up into the image of one run, bit for
+// bit; and every mistake a user can make with them is one clear error.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "image/image.hpp"
+#include "render/partial_file.hpp"
+#include "render/sample_ranges.hpp"
+#include "scene/limits.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using namespace vkrt;
+namespace fs = std::filesystem;
+
+std::string q(const fs::path& p) { return test::shell_quote(p.string()); }
+
+// Jittered antialiasing: every sample index traces different rays.
+const fs::path& jittered_scene() {
+    static const fs::path scene = test::source_dir() / "scenes" / "spheres_triangles.json";
+    return scene;
+}
+
+class PartialMerge : public ::testing::Test {
+public:
+    void SetUp() override {
+        dir_ = test::temp_dir(std::string("partial_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    }
+    // Renders the jittered scene at 32x24 with extra arguments; fails the test on error.
+    void render(const std::string& backend, const std::string& args) {
+        const test::ProgramRun run = test::run_vkrt("render " + q(jittered_scene()) + " --width 32 --height 24 -q --backend " +
+                                                        backend + (backend == "vulkan" ? " --validate " : " ") + args,
+                                                    dir_);
+        ASSERT_EQ(run.code, 0) << args << "\n" << run.stderr_text;
+    }
+    test::ProgramRun merge(const std::string& args) { return test::run_vkrt("merge " + args, dir_); }
+    fs::path at(const std::string& name) const { return dir_ / name; }
+
+    fs::path dir_;  // public: the free helper below drives the fixture too
+};
+
+std::string read_file(const fs::path& file) {
+    std::ifstream in(file);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Samples 0:2 and 2:5 merged, in either order, against one render of 5 samples:
+// the float pixels of the EXR files are equal exactly, and so are the sums and
+// counters the partial files carry.
+void expect_split_equals_whole(PartialMerge& t, const std::string& backend) {
+    t.render(backend, "--samples 0:2 -o " + q(t.at("a.exr")));
+    t.render(backend, "--samples 2:5 -o " + q(t.at("b.exr")));
+    t.render(backend, "--spp 5 -o " + q(t.at("whole.exr")));
+    t.render(backend, "--samples 0:5 -o " + q(t.at("whole_partial.exr")));
+    ASSERT_EQ(t.merge(q(t.at("a.exr")) + " " + q(t.at("b.exr")) + " -q -o " + q(t.at("ab.exr"))).code, 0);
+    ASSERT_EQ(t.merge(q(t.at("b.exr")) + " " + q(t.at("a.exr")) + " -q -o " + q(t.at("ba.exr"))).code, 0);
+
+    const Image whole = read_image(t.at("whole.exr"));
+    for (const char* merged : {"ab.exr", "ba.exr"}) {
+        SCOPED_TRACE(merged);
+        const Image image = read_image(t.at(merged));
+        ASSERT_EQ(image.width, 32u);
+        ASSERT_EQ(image.height, 24u);
+        EXPECT_EQ(image.rgb, whole.rgb);
+        const PartialFile partial = read_partial(t.at(merged));
+        const PartialFile reference = read_partial(t.at("whole_partial.exr"));
+        EXPECT_EQ(partial.sums.sums, reference.sums.sums);
+        EXPECT_EQ(partial.sums.counters, reference.sums.counters);
+        ASSERT_EQ(partial.samples.size(), 1u);
+        EXPECT_EQ(partial.samples[0].first, 0u);
+        EXPECT_EQ(partial.samples[0].count, 5u);
+        EXPECT_EQ(partial.backend, backend);
+    }
+    // The two halves really differ: the merge added different samples.
+    const Image a = read_image(t.at("a.exr")), b = read_image(t.at("b.exr"));
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < a.rgb.size(); ++i) differing += std::abs(a.rgb[i] - b.rgb[i]) > 1e-4f ? 1 : 0;
+    EXPECT_GT(differing, 30u);
+}
+
+TEST_F(PartialMerge, ReferenceBackendMergesBitForBit) { expect_split_equals_whole(*this, "cpu"); }
+
+// The issue asks for 1e-6 relative on Vulkan; the exact sums give bit for bit, and
+// that is what is asserted.
+TEST_F(PartialMerge, VulkanBackendMergesBitForBit) { expect_split_equals_whole(*this, "vulkan"); }
+
+// Three partials merged in any grouping and order give the same file contents, and
+// a merge's .exr output is itself a partial that merges again.
+TEST_F(PartialMerge, OrderAndGroupingDoNotMatter) {
+    render("cpu", "--samples 0:1 -o " + q(at("p0.exr")));
+    render("cpu", "--samples 1:3 -o " + q(at("p1.exr")));
+    render("cpu", "--samples 3:6 -o " + q(at("p2.exr")));
+    ASSERT_EQ(merge(q(at("p0.exr")) + " " + q(at("p1.exr")) + " " + q(at("p2.exr")) + " -q -o " + q(at("flat.exr"))).code, 0);
+    ASSERT_EQ(merge(q(at("p2.exr")) + " " + q(at("p0.exr")) + " -q -o " + q(at("p20.exr"))).code, 0);
+    ASSERT_EQ(merge(q(at("p1.exr")) + " " + q(at("p20.exr")) + " -q -o " + q(at("nested.exr"))).code, 0);
+    const PartialFile flat = read_partial(at("flat.exr"));
+    const PartialFile nested = read_partial(at("nested.exr"));
+    EXPECT_EQ(flat.sums.sums, nested.sums.sums);
+    EXPECT_EQ(flat.sums.counters, nested.sums.counters);
+    EXPECT_EQ(format_sample_ranges(nested.samples), "0:6");
+    EXPECT_EQ(read_image(at("flat.exr")).rgb, read_image(at("nested.exr")).rgb);
+    // And to an 8-bit image, as render writes one.
+    ASSERT_EQ(merge(q(at("nested.exr")) + " -q -o " + q(at("nested.png"))).code, 0);
+    render("cpu", "--spp 6 -o " + q(at("whole.png")));
+    EXPECT_EQ(read_image(at("nested.png")).rgb, read_image(at("whole.png")).rgb);
+}
+
+// The attributes say what was rendered; without -o the name says the range.
+TEST_F(PartialMerge, PartialFileRecordsItsRenderAndHasADefaultName) {
+    const fs::path previous = fs::current_path();
+    fs::current_path(dir_);
+    render("cpu", "--samples 4:7 --seed 11");
+    fs::current_path(previous);
+    ASSERT_TRUE(fs::exists(at("spheres_triangles_4-7.exr")));
+    const PartialFile p = read_partial(at("spheres_triangles_4-7.exr"));
+    EXPECT_EQ(format_sample_ranges(p.samples), "4:7");
+    EXPECT_EQ(p.scene, "spheres_triangles.json");
+    EXPECT_EQ(p.seed, 11u);
+    EXPECT_EQ(p.backend, "cpu");
+    EXPECT_FALSE(p.corners);
+    EXPECT_NE(p.fingerprint, 0u);
+    ASSERT_EQ(p.sums.sums.size(), 32u * 24u);
+    for (const kernel::PixelSum& s : p.sums.sums) ASSERT_EQ(s.red.w, 3u);  // every pixel has the 3 samples
+}
+
+// A merge that leaves a hole still works, and says so.
+TEST_F(PartialMerge, GapsAreWarnedAbout) {
+    render("cpu", "--samples 0:2 -o " + q(at("a.exr")));
+    render("cpu", "--samples 5:6 -o " + q(at("c.exr")));
+    const test::ProgramRun run = merge(q(at("a.exr")) + " " + q(at("c.exr")) + " -o " + q(at("gap.exr")));
+    ASSERT_EQ(run.code, 0) << run.stderr_text;
+    EXPECT_NE(run.stderr_text.find("warning: the partials leave out samples 2:5"), std::string::npos) << run.stderr_text;
+    EXPECT_NE(run.stderr_text.find("average of the 3 samples"), std::string::npos) << run.stderr_text;
+    const std::string log = read_file(at("stdout.txt"));
+    EXPECT_NE(log.find("samples 0:2,5:6: 3 per pixel"), std::string::npos) << log;
+    EXPECT_EQ(format_sample_ranges(read_partial(at("gap.exr")).samples), "0:2,5:6");
+}
+
+// Exit 1 and one "error: " line holding every piece.
+void expect_error(const test::ProgramRun& run, const std::vector<std::string>& pieces) {
+    EXPECT_EQ(run.code, 1) << run.stderr_text;
+    std::vector<std::string> errors;
+    std::istringstream lines(run.stderr_text);
+    for (std::string line; std::getline(lines, line);) {
+        if (line.rfind("error: ", 0) == 0) errors.push_back(line);
+    }
+    ASSERT_EQ(errors.size(), 1u) << run.stderr_text;
+    for (const std::string& piece : pieces) {
+        EXPECT_NE(errors[0].find(piece), std::string::npos) << "missing '" << piece << "' in: " << errors[0];
+    }
+}
+
+TEST_F(PartialMerge, BadSampleRangesAreRefused) {
+    const std::string base = "render " + q(jittered_scene()) + " --backend cpu --width 32 --height 24 -o " + q(at("x.exr"));
+    expect_error(test::run_vkrt(base + " --samples 5:2", dir_), {"--samples", "'5:2'", "empty range", "below the end"});
+    expect_error(test::run_vkrt(base + " --samples 3:3", dir_), {"--samples", "'3:3'", "empty range"});
+    expect_error(test::run_vkrt(base + " --samples 0:65537", dir_), {"--samples", "'0:65537'", "65536"});
+    for (const char* malformed : {"7", "a:b", "1:", ":4", "-1:3", "1:2:3", "1.5:3"}) {
+        expect_error(test::run_vkrt(base + " --samples " + test::shell_quote(malformed), dir_),
+                     {"--samples", "expected A:B", malformed});
+    }
+    expect_error(test::run_vkrt(base + " --samples 0:2 --spp 2", dir_), {"--samples", "--spp"});
+    expect_error(test::run_vkrt(base + " --samples 0:2 --time 1", dir_), {"--samples", "--time"});
+    expect_error(test::run_vkrt("render " + q(jittered_scene()) + " --backend cpu --samples 0:2 -o " + q(at("x.png")), dir_),
+                 {"x.png", "--samples writes a partial file", ".exr"});
+    EXPECT_FALSE(fs::exists(at("x.exr")));
+    EXPECT_FALSE(fs::exists(at("x.png")));
+}
+
+TEST_F(PartialMerge, MismatchedPartialsAreRefused) {
+    render("cpu", "--samples 0:3 -o " + q(at("a.exr")));
+    render("cpu", "--samples 2:5 -o " + q(at("overlapping.exr")));
+    render("cpu", "--samples 3:5 --seed 8 -o " + q(at("other_seed.exr")));
+    render("cpu", "--spp 2 -o " + q(at("plain.exr")));
+    const test::ProgramRun other_scene = test::run_vkrt(
+        "render " + q(test::source_dir() / "scenes" / "default.json") +
+            " --backend cpu --width 32 --height 24 -q --samples 3:5 -o " + q(at("other_scene.exr")),
+        dir_);
+    ASSERT_EQ(other_scene.code, 0) << other_scene.stderr_text;
+    const test::ProgramRun other_size = test::run_vkrt(
+        "render " + q(jittered_scene()) + " --backend cpu --width 16 --height 24 -q --samples 3:5 -o " +
+            q(at("other_size.exr")),
+        dir_);
+    ASSERT_EQ(other_size.code, 0) << other_size.stderr_text;
+    const std::string a = q(at("a.exr")), out = " -o " + q(at("out.exr"));
+
+    expect_error(merge(a + " " + q(at("overlapping.exr")) + out), {"a.exr (samples 0:3)", "overlapping.exr (samples 2:5)",
+                                                                  "overlap in samples 2:3"});
+    expect_error(merge(a + " " + a + out), {"a.exr", "given twice"});
+    expect_error(merge(a + " " + q(at("other_seed.exr")) + out), {"other_seed.exr", "seed 8", "seed 7", "not a render of the same scene"});
+    expect_error(merge(a + " " + q(at("other_scene.exr")) + out), {"other_scene.exr", "'default.json'", "'spheres_triangles.json'"});
+    expect_error(merge(a + " " + q(at("other_size.exr")) + out), {"other_size.exr is 16x24", "a.exr is 32x24"});
+    expect_error(merge(a + " " + q(at("plain.exr")) + out), {"plain.exr", "not a vkrt partial file"});
+    std::ofstream(at("text.exr")) << "not an image";
+    expect_error(merge(a + " " + q(at("text.exr")) + out), {"text.exr"});
+    expect_error(merge(a + " " + q(at("missing.exr")) + out), {"missing.exr", "no such file"});
+    expect_error(merge(a + " -o " + q(at("out.xyz"))), {"out.xyz", "unknown image format"});
+    expect_error(merge(a), {"--output", "required"});
+    EXPECT_FALSE(fs::exists(at("out.exr")));
+}
+
+TEST(SampleRanges, ParseAndPrint) {
+    const SampleRange r = parse_sample_range("2:5", limits::kMaxSpp);
+    EXPECT_EQ(r.first, 2u);
+    EXPECT_EQ(r.count, 3u);
+    EXPECT_EQ(format_sample_range(r), "2:5");
+    EXPECT_NO_THROW(parse_sample_range("0:65536", limits::kMaxSpp));
+    EXPECT_THROW(parse_sample_range("0:65537", limits::kMaxSpp), std::invalid_argument);
+    EXPECT_THROW(parse_sample_range("99999999999:1", limits::kMaxSpp), std::invalid_argument);
+    const auto list = parse_sample_ranges("5:8,0:2", limits::kMaxSpp);
+    ASSERT_TRUE(list);
+    EXPECT_EQ(format_sample_ranges(normalize_sample_ranges(*list)), "0:2,5:8");
+    EXPECT_FALSE(parse_sample_ranges("", limits::kMaxSpp));
+    EXPECT_FALSE(parse_sample_ranges("0:2,", limits::kMaxSpp));
+    EXPECT_FALSE(parse_sample_ranges("2:1", limits::kMaxSpp));
+}
+
+TEST(SampleRanges, JoinOverlapAndGaps) {
+    EXPECT_EQ(format_sample_ranges(normalize_sample_ranges({{2, 3}, {0, 2}, {5, 1}})), "0:6");
+    const auto both = overlap({0, 3}, {2, 3});
+    ASSERT_TRUE(both);
+    EXPECT_EQ(format_sample_range(*both), "2:3");
+    EXPECT_FALSE(overlap({0, 2}, {2, 3}));
+    EXPECT_EQ(format_sample_ranges(sample_gaps({{6, 2}, {0, 2}, {3, 1}})), "2:3,4:6");
+    EXPECT_TRUE(sample_gaps({{1, 2}, {3, 1}}).empty());
+    EXPECT_EQ(sample_count({{0, 2}, {5, 3}}), 5u);
+}
+
+}  // namespace
