@@ -9,6 +9,7 @@
 #include "cli/bench.hpp"
 #include "cli/commands.hpp"
 #include "render/sample_ranges.hpp"
+#include "scene/estimator_spec.hpp"
 #include "scene/limits.hpp"
 
 namespace {
@@ -154,6 +155,53 @@ int main(int argc, char** argv) {
         ->required();
     m->add_flag("-q,--quiet", merge.quiet, "Print nothing but warnings and errors");
 
+    cli::ConvergeArgs converge;
+    CLI::App* v = app.add_subcommand(
+        "converge", "Measure error against a reference over render time, per backend and estimator (CSV and plot)");
+    v->add_option("scene", converge.scene, "Scene file (.json)")->required();
+    v->add_option("--reference", converge.reference,
+                  "Reference image (.exr or .hdr, linear); default: render one with path+nee on the first backend and "
+                  "save it beside the CSV as <csv name>_reference.exr");
+    v->add_option("--reference-spp", converge.reference_spp, "Samples per pixel of a reference rendered here")
+        ->check(whole_number(1, limits::kMaxSpp))
+        ->capture_default_str();
+    v->add_option("--backend", converge.backends, "Backend of a curve: vulkan or cpu; repeat for more (default: vulkan)")
+        ->check(CLI::IsMember({"vulkan", "cpu"}))
+        ->allow_extra_args(false);
+    v->add_option("--estimator", converge.estimators,
+                  "Estimator of a curve: paper, path or path+nee, optionally :angles, :uniform or :cosine; repeat for "
+                  "more (default: the scene's own)")
+        ->check(CLI::Validator(
+            [](const std::string& text) {
+                try {
+                    parse_estimator_spec(text);
+                } catch (const std::invalid_argument& e) {
+                    return std::string(e.what());
+                }
+                return std::string();
+            },
+            "SPEC"))
+        ->allow_extra_args(false);
+    v->add_option("--until", converge.until, "Render each curve for this many seconds of passes")
+        ->check(positive_seconds());
+    v->add_option("--spp", converge.spp,
+                  fmt::format("Render each curve to this many samples per pixel (default without --until: {})",
+                              cli::kDefaultConvergeSpp))
+        ->check(whole_number(1, limits::kMaxSpp));
+    v->add_option("--csv", converge.csv, "CSV file of the measurements, one row per checkpoint")->required();
+    v->add_option("--plot", converge.plot, "Draw RMSE against seconds into this PNG (needs gnuplot)");
+    v->add_option("--width", converge.width, "Image width, overrides the scene")
+        ->check(whole_number(1, limits::kMaxImageSide));
+    v->add_option("--height", converge.height, "Image height, overrides the scene")
+        ->check(whole_number(1, limits::kMaxImageSide));
+    v->add_option("--seed", converge.seed, "Random seed, overrides the scene")->check(whole_number(0, 0xffffffffu));
+    v->add_option("--device", converge.device, "Vulkan device: index or name from `vkrt devices` (e.g. lavapipe)");
+    v->add_option("--threads", converge.threads, "CPU threads for the cpu backend (default: all)")
+        ->check(whole_number(0, 1024));
+    v->add_flag("--validate", converge.validate,
+                "Enable the Vulkan validation layer; any message makes the command fail");
+    v->add_flag("-q,--quiet", converge.quiet, "Print nothing but warnings and errors");
+
     cli::CompareArgs compare;
     CLI::App* c = app.add_subcommand("compare", "Compare two images; exit 1 when over a given bound");
     c->add_option("a", compare.a, "First image")->required();
@@ -213,13 +261,14 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         // One line and status 1, like every other mistake (docs/cli.md).
         if (app.get_subcommands().empty() && argc > 1 && argv[1][0] != '-') {
-            fmt::print(stderr, "error: unknown command '{}' (expected render, merge, compare, bench or devices)\n",
+            fmt::print(stderr, "error: unknown command '{}' (expected render, merge, converge, compare, bench or devices)\n",
                        argv[1]);
             return 1;
         }
         fmt::print(stderr, "error: {} (see vkrt {}--help)\n", e.what(),
                    r->parsed()   ? "render "
                    : m->parsed() ? "merge "
+                   : v->parsed() ? "converge "
                    : c->parsed() ? "compare "
                    : b->parsed() ? "bench "
                                  : "");
@@ -228,6 +277,7 @@ int main(int argc, char** argv) {
     try {
         if (r->parsed()) return cli::run_render(render);
         if (m->parsed()) return cli::run_merge(merge);
+        if (v->parsed()) return cli::run_converge(converge);
         if (c->parsed()) return cli::run_compare(compare);
         if (b->parsed()) return cli::run_bench(bench);
         return cli::run_devices();
