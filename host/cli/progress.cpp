@@ -33,7 +33,8 @@ void ProgressReporter::update(double fraction, double seconds_left, const std::s
         shown_ = true;
     } else {
         const int decile = int(fraction * 10.0);
-        if (decile == last_decile_) return;
+        // Estimates of the time left move, so the fraction can step back: never repeat a decile.
+        if (decile <= last_decile_) return;
         last_decile_ = decile;
         fmt::print(stderr, "{}: {:.0f}% ({}, {:.1f} s elapsed, {:.1f} s left)\n", label_, fraction * 100.0, detail,
                    elapsed, seconds_left);
