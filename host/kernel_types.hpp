@@ -28,11 +28,12 @@ static_assert(sizeof(PointLight) == 32);
 static_assert(sizeof(Ring) == 48);
 static_assert(sizeof(Cylinder) == 48);
 static_assert(sizeof(Emitter) == 32);
-static_assert(sizeof(Params) == 288);
+static_assert(sizeof(Params) == 304);
 static_assert(offsetof(Params, image) == 96 && offsetof(Params, limits) == 128);
 static_assert(offsetof(Params, grid_res) == 208 && offsetof(Params, more_counts) == 224);
 static_assert(offsetof(Params, ray_tree) == 240);
 static_assert(offsetof(Params, area_lights) == 256 && offsetof(Params, emitter_area) == 272);
+static_assert(offsetof(Params, global) == 288);
 static_assert(sizeof(Counters) == 64);
 static_assert(sizeof(PixelSum) == 48);
 

@@ -561,6 +561,7 @@ Kernel tiny_kernel(const TestScene& scene) {
     k.params.image = uvec4(4, 4, 1, 0);
     k.HAS_JITTER = false;
     k.HAS_AMBIENT = false;
+    k.HAS_GLOBAL = false;  // local mode: these tests check the paper's shading
     return k;
 }
 

@@ -84,9 +84,14 @@ void print_summary(const RenderStats& s, const std::string& output, bool partial
         return names.empty() ? std::string("(none)") : fmt::format("{}", fmt::join(names, ", "));
     };
     fmt::print("features  kept: {}; left out: {}\n", list(s.features.kept()), list(s.features.left_out()));
-    fmt::print("rays      {} ({} eye of which {} hit, {} shadow, {} reflection, {} refraction), {:.2f} Mrays/s\n",
-               s.rays(), s.eye_rays, s.eye_hits, s.shadow_rays, s.reflection_rays, s.refraction_rays,
+    fmt::print("rays      {} ({} eye of which {} hit, {} shadow, {} reflection, {} refraction, {} bounce), "
+               "{:.2f} Mrays/s\n",
+               s.rays(), s.eye_rays, s.eye_hits, s.shadow_rays, s.reflection_rays, s.refraction_rays, s.bounce_rays,
                s.render_seconds > 0.0 ? double(s.rays()) / s.render_seconds * 1e-6 : 0.0);
+    if (s.features.has(Feature::HAS_GLOBAL)) {
+        fmt::print("paths     {} ended by Russian roulette, {} samples dropped by the paper estimator (gl() = 0)\n",
+                   s.roulette_ended, s.paper_dropped);
+    }
     if (s.dropped_low_weight + s.dropped_stack_full > 0) {
         fmt::print("ray tree  {} secondary rays left out for weighing under render.min_weight, {} for a full stack\n",
                    s.dropped_low_weight, s.dropped_stack_full);

@@ -77,20 +77,24 @@ FeatureSet analyze_features(const Scene& scene) {
     f.set(Feature::HAS_SMOOTH_NORMALS,
           std::any_of(scene.triangles.begin(), scene.triangles.end(),
                       [](const Triangle& t) { return t.normals.has_value(); }));
-    // Emissive primitives light other surfaces only in local mode (global mode, once
-    // it exists, finds them by its own sampling) and only with light samples to send.
+    const bool global = scene.render.mode == RenderMode::Global && has_geometry;
+    // The emitter list is sampled in local mode with light samples to send, and in
+    // global mode by next-event estimation (the path estimator's "nee").
     const bool area_lights =
-        emission && scene.render.mode == RenderMode::Local && scene.render.light_samples > 0;
+        emission && (global ? scene.render.nee : scene.render.mode == RenderMode::Local && scene.render.light_samples > 0);
     const bool any_light = has_lights || area_lights;
 
+    f.set(Feature::HAS_GLOBAL, global);
     f.set(Feature::HAS_POINT_LIGHTS, has_lights && has_geometry);
     f.set(Feature::HAS_SHADOWS, scene.render.shadows && any_light && has_geometry);
-    f.set(Feature::HAS_SPECULAR, specular && any_light);
-    f.set(Feature::HAS_AMBIENT, is_nonzero(scene.render.ambient) && has_geometry);
+    // In global mode the glossy lobe reflects whatever the paths bring, lights or not.
+    f.set(Feature::HAS_SPECULAR, specular && (any_light || global));
+    // Ambient light is local mode's stand-in for the indirect light global mode computes.
+    f.set(Feature::HAS_AMBIENT, is_nonzero(scene.render.ambient) && has_geometry && !global);
     f.set(Feature::HAS_EMISSION, emission);
     f.set(Feature::HAS_JITTER, scene.render.jitter && !scene.render.corners);
     // Glass reflects too: its reflection rays run under HAS_REFRACTION.
-    const bool secondary = scene.render.max_depth > 0 && has_geometry;
+    const bool secondary = (global ? scene.render.max_bounces : scene.render.max_depth) > 0 && has_geometry;
     f.set(Feature::HAS_REFLECTION, secondary && reflection);
     f.set(Feature::HAS_REFRACTION, secondary && refraction);
     f.set(Feature::HAS_AREA_LIGHTS, area_lights);

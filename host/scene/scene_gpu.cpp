@@ -213,6 +213,11 @@ SceneGpu build_scene_gpu(const Scene& scene, const AccelPolicy& policy) {
                         : uvec4(scene.camera.width, scene.camera.height, r.aa, r.seed);
     p.limits = uvec4(r.loop_budget != 0 ? r.loop_budget : kernel::DEFAULT_LOOP_BUDGET, r.max_depth, 0u, 0u);
     p.ray_tree = vec4(static_cast<float>(r.min_weight), 0.0f, 0.0f, 0.0f);
+    const std::uint32_t estimator = r.estimator == Estimator::Paper ? kernel::ESTIMATOR_PAPER : kernel::ESTIMATOR_PATH;
+    const std::uint32_t hemisphere = r.hemisphere == Hemisphere::Angles    ? kernel::HEMISPHERE_ANGLES
+                                     : r.hemisphere == Hemisphere::Uniform ? kernel::HEMISPHERE_UNIFORM
+                                                                           : kernel::HEMISPHERE_COSINE;
+    p.global = uvec4(estimator, hemisphere, 0u, r.max_bounces);
 
     // Buffers only the left-out features read are not built (and so not uploaded).
     const bool any_geometry = scene.primitive_count() != 0;

@@ -17,4 +17,7 @@
 #include "area_lights.glsl"
 #include "shade.glsl"
 #include "specular.glsl"
+#include "sample_result.glsl"
+#include "bsdf.glsl"
+#include "global.glsl"
 #include "sample.glsl"

@@ -58,6 +58,10 @@ const uint HEMISPHERE_ANGLES = 0u;   // the paper's Fig. 13: theta and phi unifo
 const uint HEMISPHERE_UNIFORM = 1u;  // uniform in solid angle
 const uint HEMISPHERE_COSINE = 2u;   // density proportional to cos(theta)
 
+// Global mode's estimators (global.glsl), Params.global.x.
+const uint ESTIMATOR_PAPER = 0u;
+const uint ESTIMATOR_PATH = 1u;
+
 const float INFINITY_T = 3.0e38f;   // "no hit yet"; finite so comparisons stay ordered
 
 // Shadow rays stop this fraction short of their light, so that a light placed exactly

@@ -21,3 +21,4 @@ FEATURE(11, HAS_CYLINDERS)
 FEATURE(12, HAS_AREA_LIGHTS)
 FEATURE(13, HAS_REFLECTION)   // mirror rays (material reflect)
 FEATURE(14, HAS_REFRACTION)   // refraction rays, and the reflection rays of glass (material transmit)
+FEATURE(15, HAS_GLOBAL)       // global illumination (global.glsl) instead of the local ray tree

@@ -102,6 +102,9 @@ struct Params {
     // and the shadow rays each hit sends toward it.
     uvec4 area_lights;   // x emitters, y light samples per hit, z/w unused
     vec4 emitter_area;   // x total area of the emitters, y/z/w unused
+    // Global mode (global.glsl), when HAS_GLOBAL: x estimator (ESTIMATOR_*), y the
+    // hemisphere rule (HEMISPHERE_*), z unused, w max_bounces.
+    uvec4 global;
 };
 
 // Per-pixel sums of sample radiance (sums.glsl): each channel's exact sum as a 96-bit

@@ -1,23 +1,6 @@
 // One sample of one pixel: the unit of work of one invocation (DESIGN.md), and the
 // single entry point that both the compute shader and the reference renderer call.
 
-struct SampleResult {
-    vec3 radiance;
-    uint shadow_rays;
-    uint reflection_rays;
-    uint refraction_rays;
-    uint eye_hits;         // 1 when the eye ray hit something
-    uint dropped_weight;   // secondary rays left out for their low weight
-    uint dropped_stack;    // secondary rays left out because the stack was full
-    uint decisions;        // the hash of its decisions (budget.glsl)
-    uint cells_visited;
-    uint intersection_tests;
-    uint bounce_rays;      // global mode: rays traced after a scattering event
-    uint roulette;         // global mode: 1 when Russian roulette ended the path
-    bool dropped;          // the paper estimator's gl() was 0: not part of the average
-    bool truncated;   // the loop budget ran out: the radiance is incomplete
-};
-
 // A ray waiting to be traced, with the factor its radiance is weighed by in the
 // pixel and its generation (0 for the eye ray).
 struct PendingRay {
@@ -147,7 +130,9 @@ SampleResult render_sample(uint px, uint py, uint sample_index) {
     vec2 sub = subpixel_position(sample_index, rng);
     PendingRay eye = PendingRay(camera_ray(float(px) + sub.x, float(py) + sub.y), vec3(1.0f), 0u);
     // A scene without mirrors or glass skips the tree's loop and its stack.
-    if (HAS_REFLECTION || HAS_REFRACTION) {
+    if (HAS_GLOBAL) {
+        global_sample(eye.ray, rng, s);
+    } else if (HAS_REFLECTION || HAS_REFRACTION) {
         trace_ray_tree(eye, rng, s);
     } else {
         trace_and_shade(eye, rng, s);

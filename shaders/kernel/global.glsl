@@ -1,0 +1,313 @@
+// Global illumination (render.mode "global"): one Monte Carlo sample of the radiance
+// reaching the eye along a ray, by the paper's estimator or by path tracing
+// (params.global: x estimator, y hemisphere, z unused by the kernel (next-event
+// estimation is the HAS_AREA_LIGHTS feature in this mode), w max_bounces). GLSL has
+// no recursion: every bounce is one iteration of a loop, and one tick of the
+// invocation's loop budget.
+//
+// max_bounces counts scattering events after the first hit: with k, light is
+// gathered at the first hit and at up to k further surfaces, so a closed furnace of
+// albedo rho and emission Le shows Le (1 - rho^(k+1)) / (1 - rho).
+//
+// Radiance units: global mode is physical. A point light of intensity I lights a
+// surface with irradiance I cos(theta) / r^2, whose Lambertian radiance is then
+// rho / pi * I cos(theta) / r^2 (local mode keeps the paper's convention, without
+// the fall-off and the 1/pi). Emitters are seen, and light, from their front face.
+
+// The point a ray hits, rounded once (precise: no fused multiply-add) as in local
+// mode. A function because glslang 11 crashes on a `precise` local inside
+// path_sample's loop.
+vec3 hit_point(Ray ray, float t) {
+    precise vec3 p = ray.origin + t * ray.dir;
+    return p;
+}
+
+// Russian roulette starts at this bounce: the first few bounces carry most of the
+// light, and ending them at random would only add noise.
+const uint ROULETTE_START = 3u;
+
+// The power heuristic (Veach, 1997, beta = 2) for a sample drawn with density
+// pdf_this that the other technique would have drawn with pdf_other. Written with
+// the ratio so that neither density is squared: both can be as large as INFINITY_T.
+float power_heuristic(float pdf_this, float pdf_other) {
+    if (!(pdf_this > 0.0f)) {
+        return 0.0f;
+    }
+    float r = min(pdf_other / pdf_this, 1.0e18f);
+    return 1.0f / (1.0f + r * r);
+}
+
+// The density over solid angle with which next_event's light sampler (uniform over
+// the total emitting area, emitters.glsl) picks a point at squared distance r2 whose
+// emitting face is seen at cosine cos_emitter.
+float light_pdf(float r2, float cos_emitter) {
+    return min(r2 / (cos_emitter * params.emitter_area.x), INFINITY_T);
+}
+
+// Direct light at a path vertex through its smooth lobes: every point light (the
+// only way to reach one: no path can hit a point) and, with next-event estimation
+// (HAS_AREA_LIGHTS in global mode), one point on the area lights, weighted by the
+// power heuristic against the BSDF sampling that could have found it too (whose
+// hits are weighted to match in path_sample). p_smooth is the probability of
+// picking the smooth group, part of the BSDF sampling's density.
+vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smooth, INOUT(Rng) rng,
+                INOUT(SampleResult) s) {
+    vec3 sum = vec3(0.0f);
+    vec3 shadow_origin = offset_ray_origin(p, hit.geo_normal);
+    if (HAS_POINT_LIGHTS) {
+        loop_enter();
+        for (uint i = 0u; i < params.counts.z; ++i) {
+            if (!loop_tick()) {
+                break;
+            }
+            PointLight light = load_light(i);
+            vec3 to_light = vec3(light.position) - p;
+            float r2 = dot(to_light, to_light);
+            vec3 l = to_light / sqrt(r2);
+            float cos_theta = dot(hit.normal, l);
+            bool faces = cos_theta > 0.0f && dot(hit.geo_normal, l) > 0.0f;
+            note_decision(faces ? 3u : 2u);
+            if (!faces) {
+                continue;
+            }
+            if (HAS_SHADOWS) {
+                s.shadow_rays += 1u;
+                if (occluded(Ray(shadow_origin, l), sqrt(r2) * SHADOW_RAY_END)) {
+                    continue;
+                }
+            }
+            sum += eval_smooth(lobes, hit.normal, wo, l) * vec3(light.radiance) * (cos_theta / r2);
+        }
+    }
+    if (HAS_AREA_LIGHTS) {
+        EmitterPoint y = sample_emitters(rng);
+        vec3 to_light = y.position - p;
+        float r2 = dot(to_light, to_light);
+        vec3 l = to_light / sqrt(r2);
+        float cos_theta = dot(hit.normal, l);
+        float cos_emitter = -dot(y.normal, l);
+        // As in local mode (area_lights.glsl): written as !(...) so that r = 0 is skipped.
+        bool faces = cos_emitter > 0.0f && cos_theta > 0.0f && dot(hit.geo_normal, l) > 0.0f;
+        note_decision(faces ? 3u : 2u);
+        if (faces) {
+            bool blocked = false;
+            if (HAS_SHADOWS) {
+                s.shadow_rays += 1u;
+                blocked = occluded(Ray(shadow_origin, l), sqrt(r2) * SHADOW_RAY_END);
+            }
+            if (!blocked) {
+                float pdf_light = light_pdf(r2, cos_emitter);
+                float pdf_bsdf = p_smooth * pdf_smooth(lobes, frame, wo, l, params.global.y);
+                sum += eval_smooth(lobes, hit.normal, wo, l) * y.emission *
+                       (cos_theta * power_heuristic(pdf_light, pdf_bsdf) / pdf_light);
+            }
+        }
+    }
+    return sum;
+}
+
+// The ray leaving a mirror or glass hit, and the factor the path's throughput takes:
+// mirror: reflect / P(mirror); glass: transmit / P(glass), reflected with the Fresnel
+// reflectance's probability (which cancels it from the weight) and refracted
+// otherwise; with "fresnel": false always refracted (total internal reflection
+// reflects). `pick` (uniform in [0, total)) chose the group, u decides within glass.
+Ray scatter_delta(Ray ray, Hit hit, vec3 p, Lobes lobes, float total, float pick, float u, INOUT(vec3) beta) {
+    Ray mirrored = Ray(offset_ray_origin(p, hit.geo_normal), mirror_direction(ray.dir, hit.normal));
+    // Guarded so that a pick rounded up to `total` never lands on a group of weight 0.
+    bool mirror = lobes.w_glass == 0.0f ||
+                  (lobes.w_mirror > 0.0f && pick < lobes.w_diffuse + lobes.w_glossy + lobes.w_mirror);
+    if (mirror) {
+        note_decision(13u);
+        beta *= lobes.mirror * (total / lobes.w_mirror);
+        return mirrored;
+    }
+    beta *= lobes.glass * (total / lobes.w_glass);
+    Refraction r = refract_fresnel(ray.dir, hit.normal, hit.front_face ? 1.0f / lobes.ior : lobes.ior);
+    float p_reflect = r.total ? 1.0f : (lobes.fresnel ? r.reflectance : 0.0f);
+    bool reflects = u < p_reflect;
+    note_decision(reflects ? 14u : 15u);
+    return reflects ? mirrored : Ray(offset_ray_origin(p, -hit.geo_normal), r.dir);
+}
+
+// Unbiased path tracing with a throughput loop: emission counted where a path meets
+// an emitter's front face, one lobe group sampled per bounce, next-event estimation
+// with multiple importance sampling when HAS_AREA_LIGHTS, Russian roulette from
+// ROULETTE_START on (survival probability: the throughput's largest channel, at most
+// 0.95, and the throughput divided by it).
+void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
+    Ray ray = eye;
+    vec3 beta = vec3(1.0f);
+    // The solid-angle density of the last bounce when it sampled the smooth lobes;
+    // 0 after the eye or a delta lobe, whose hits on an emitter count in full.
+    float pdf_prev = 0.0f;
+    uint hemisphere = params.global.y;
+    loop_enter();
+    for (uint bounce = 0u; loop_tick(); bounce += 1u) {
+        Hit hit = closest_hit(ray, INFINITY_T);
+        if (!(hit.t < INFINITY_T)) {
+            s.radiance += beta * vec3(params.background);
+            return;
+        }
+        if (bounce == 0u) {
+            s.eye_hits = 1u;
+        }
+        Material m = load_material(hit.material);
+        if (HAS_EMISSION && hit.front_face) {
+            float w = 1.0f;
+            if (HAS_AREA_LIGHTS && pdf_prev > 0.0f) {
+                // geo_normal faces the ray, so this is the emitting face's cosine.
+                w = power_heuristic(pdf_prev, light_pdf(hit.t * hit.t, -dot(hit.geo_normal, ray.dir)));
+            }
+            s.radiance += beta * vec3(m.emission_fresnel) * w;
+        }
+        if (bounce >= params.global.w) {
+            return;
+        }
+        Lobes lobes = material_lobes(m);
+        float total = lobes_total(lobes);
+        if (!(total > 0.0f)) {
+            return;
+        }
+        vec3 p = hit_point(ray, hit.t);
+        vec3 wo = -ray.dir;
+        Basis frame = basis_around(hit.normal);
+        float w_smooth = lobes.w_diffuse + lobes.w_glossy;
+        float p_smooth = w_smooth / total;
+        if ((HAS_POINT_LIGHTS || HAS_AREA_LIGHTS) && w_smooth > 0.0f) {
+            s.radiance += beta * next_event(hit, p, wo, lobes, frame, p_smooth, rng, s);
+        }
+        float pick = rng_next(rng) * total;
+        float u1 = rng_next(rng);
+        float u2 = rng_next(rng);
+        if (pick < w_smooth || !(w_smooth < total)) {
+            note_decision(12u);
+            vec3 wi = sample_smooth(lobes, frame, wo, hemisphere, pick / w_smooth, u1, u2);
+            float cos_theta = dot(wi, hit.normal);
+            float pdf = p_smooth * pdf_smooth(lobes, frame, wo, wi, hemisphere);
+            // Below the surface the lobes are zero: the sample adds nothing, the path ends.
+            if (!(cos_theta > 0.0f && dot(wi, hit.geo_normal) > 0.0f && pdf > 0.0f)) {
+                return;
+            }
+            beta *= eval_smooth(lobes, hit.normal, wo, wi) * (cos_theta / pdf);
+            pdf_prev = pdf;
+            ray = Ray(offset_ray_origin(p, hit.geo_normal), wi);
+        } else {
+            ray = scatter_delta(ray, hit, p, lobes, total, pick, u1, beta);
+            pdf_prev = 0.0f;
+        }
+        if (bounce + 1u >= ROULETTE_START) {
+            float survive = min(max(beta.x, max(beta.y, beta.z)), 0.95f);
+            if (!(rng_next(rng) < survive)) {
+                note_decision(16u);
+                s.roulette = 1u;
+                return;
+            }
+            beta /= survive;
+        }
+        s.bounce_rays += 1u;
+    }
+}
+
+// The paper's gl(): follows random bounces from a ray until it meets a light (an
+// emitter's front face, or the background when nothing is hit) and returns its
+// radiance attenuated by kd * diffuse of every surface on the way, or 0 after
+// `bounces` surfaces without one. Directions are drawn with the hemisphere rule and
+// not weighted by any density: the paper's estimator, as written.
+vec3 paper_gl(Ray start, uint bounces, INOUT(Rng) rng, INOUT(SampleResult) s) {
+    Ray ray = start;
+    vec3 attenuation = vec3(1.0f);
+    loop_enter();
+    for (uint i = 0u; i < bounces; ++i) {
+        if (!loop_tick()) {
+            break;
+        }
+        s.bounce_rays += 1u;
+        Hit hit = closest_hit(ray, INFINITY_T);
+        if (!(hit.t < INFINITY_T)) {
+            return attenuation * vec3(params.background);
+        }
+        Material m = load_material(hit.material);
+        if (HAS_EMISSION && hit.front_face && any(greaterThan(vec3(m.emission_fresnel), vec3(0.0f)))) {
+            return attenuation * vec3(m.emission_fresnel);
+        }
+        attenuation *= vec3(m.diffuse_kd) * m.diffuse_kd.w;
+        // Drawn one statement each: C++ leaves the order of a call's arguments open.
+        float u1 = rng_next(rng);
+        float u2 = rng_next(rng);
+        vec3 d = from_basis(basis_around(hit.normal), sample_hemisphere(params.global.y, u1, u2));
+        if (!any(greaterThan(attenuation, vec3(0.0f))) || !(dot(d, hit.geo_normal) > 0.0f)) {
+            return vec3(0.0f);
+        }
+        vec3 p = hit_point(ray, hit.t);
+        ray = Ray(offset_ray_origin(p, hit.geo_normal), d);
+    }
+    return vec3(0.0f);
+}
+
+// The paper's estimator. The eye ray follows mirrors and glass (a lobe group picked
+// as in path_sample) to the first surface where it picks the smooth group; seeing a
+// light on the way returns its radiance. There one direction d is drawn, the paper's
+// local term (kd diffuse cos(theta) + ks specular cos(alpha)^shininess, as for a
+// point light in local mode) is taken toward d and multiplied by gl(d). A sample
+// whose gl() is 0 is dropped: left out of the pixel's average altogether (its N
+// decreases), which is what biases the estimator; the Counters count them.
+void paper_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
+    Ray ray = eye;
+    vec3 beta = vec3(1.0f);
+    loop_enter();
+    for (uint bounce = 0u; loop_tick(); bounce += 1u) {
+        Hit hit = closest_hit(ray, INFINITY_T);
+        if (!(hit.t < INFINITY_T)) {
+            s.radiance += beta * vec3(params.background);
+            return;
+        }
+        if (bounce == 0u) {
+            s.eye_hits = 1u;
+        }
+        Material m = load_material(hit.material);
+        if (HAS_EMISSION && hit.front_face && any(greaterThan(vec3(m.emission_fresnel), vec3(0.0f)))) {
+            s.radiance += beta * vec3(m.emission_fresnel);
+            return;
+        }
+        Lobes lobes = material_lobes(m);
+        float total = lobes_total(lobes);
+        if (!(total > 0.0f)) {
+            return;  // a black surface: its local term, and the sample, is 0
+        }
+        if (bounce >= params.global.w) {
+            s.dropped = true;  // no bounce left for gl(): it returns 0
+            return;
+        }
+        vec3 p = hit_point(ray, hit.t);
+        float w_smooth = lobes.w_diffuse + lobes.w_glossy;
+        float pick = rng_next(rng) * total;
+        float u1 = rng_next(rng);
+        float u2 = rng_next(rng);
+        if (pick < w_smooth || !(w_smooth < total)) {
+            note_decision(12u);
+            vec3 d = from_basis(basis_around(hit.normal), sample_hemisphere(params.global.y, u1, u2));
+            float cos_theta = dot(d, hit.normal);
+            vec3 g = vec3(0.0f);
+            if (cos_theta > 0.0f && dot(d, hit.geo_normal) > 0.0f) {
+                g = paper_gl(Ray(offset_ray_origin(p, hit.geo_normal), d), params.global.w - bounce, rng, s);
+            }
+            if (!any(greaterThan(g, vec3(0.0f)))) {
+                s.dropped = true;
+                return;
+            }
+            vec3 local = phong_term(m, lobes.diffuse, hit.normal, d, cos_theta, -ray.dir);
+            s.radiance += beta * (total / w_smooth) * local * g;
+            return;
+        }
+        ray = scatter_delta(ray, hit, p, lobes, total, pick, u1, beta);
+        s.bounce_rays += 1u;
+    }
+}
+
+void global_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
+    if (params.global.x == ESTIMATOR_PAPER) {
+        paper_sample(eye, rng, s);
+    } else {
+        path_sample(eye, rng, s);
+    }
+}
