@@ -1,7 +1,7 @@
 // vkrt converge through the real program, on a small local-mode scene with jitter:
 // the CSV's columns and rows per curve, the error figures against a render of the
-// same samples, the reference it renders itself, the plot, and its mistakes.
-// Global mode (the estimators' own differences) is tested once the kernel has it.
+// same samples, the reference it renders itself, the plot, and its mistakes; and
+// on the global-mode room, that the estimator specs reach the kernel.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -154,6 +154,32 @@ TEST(Converge, OneCurvePerEstimator) {
         ASSERT_EQ(curves.count(name), 1u) << name;
         EXPECT_EQ(curves.at(name).size(), 2u) << name;
     }
+}
+
+// In global mode each spec renders with its own estimator: the curves differ, and
+// without --estimator the label is the scene's own settings in full.
+TEST(Converge, EstimatorsReachTheGlobalModeKernel) {
+    const fs::path dir = test::temp_dir("converge_global");
+    const std::string room = q(test::source_dir() / "scenes" / "gallery" / "k_room.json");
+    const std::string base = "converge " + room + " --width 16 --height 12 --backend cpu --spp 2 -q --reference-spp 4 ";
+    const test::ProgramRun run = test::run_vkrt(
+        base + "--estimator path:uniform --estimator path:cosine --estimator paper --csv " + q(dir / "c.csv"), dir);
+    ASSERT_EQ(run.code, 0) << run.stderr_text;
+    EXPECT_EQ(run.stderr_text.find("local mode"), std::string::npos) << run.stderr_text;
+    const auto curves = by_curve(read_csv(dir / "c.csv"));
+    ASSERT_EQ(curves.size(), 3u);
+    const double uniform = curves.at("cpu/path:uniform").front().rmse;
+    const double cosine = curves.at("cpu/path:cosine").front().rmse;
+    const double paper = curves.at("cpu/paper:angles").front().rmse;
+    EXPECT_NE(uniform, cosine);
+    EXPECT_NE(uniform, paper);
+    EXPECT_NE(cosine, paper);
+
+    const test::ProgramRun own = test::run_vkrt(base + "--csv " + q(dir / "own.csv"), dir);
+    ASSERT_EQ(own.code, 0) << own.stderr_text;
+    const auto own_curves = by_curve(read_csv(dir / "own.csv"));
+    ASSERT_EQ(own_curves.size(), 1u);
+    EXPECT_EQ(own_curves.begin()->first, "cpu/path+nee:cosine");
 }
 
 // --until: the curve ends when its time is spent, at checkpoints of 1, 2, 4, ...
