@@ -1,6 +1,7 @@
 #pragma once
 // Adding renders of disjoint sample ranges of one scene: the exact sums of
 // kernel/sums.glsl make the total the very result of one render of the union.
+#include <algorithm>
 #include <stdexcept>
 
 #include "render/backend.hpp"

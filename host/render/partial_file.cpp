@@ -3,6 +3,7 @@
 #include <array>
 #include <bit>
 #include <cstring>
+#include <stdexcept>
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
@@ -104,8 +105,18 @@ PartialFile read_partial(const std::filesystem::path& file) {
     if (!ranges) not_partial(name, fmt::format("its vkrt:samples attribute '{}' is no list of ranges A:B", samples));
     partial.samples = normalize_sample_ranges(*ranges);
     partial.scene = spec.get_string_attribute("vkrt:scene");
-    partial.seed = std::uint32_t(std::stoul(spec.get_string_attribute("vkrt:seed", "0")));
-    partial.fingerprint = std::stoull(spec.get_string_attribute("vkrt:fingerprint", "0"), nullptr, 16);
+    const std::string seed = spec.get_string_attribute("vkrt:seed");
+    const std::string fingerprint = spec.get_string_attribute("vkrt:fingerprint");
+    try {
+        std::size_t used = 0;
+        const unsigned long long value = std::stoull(seed, &used);
+        if (used != seed.size() || value > 0xffffffffull) throw std::invalid_argument("seed");
+        partial.seed = std::uint32_t(value);
+        partial.fingerprint = std::stoull(fingerprint, &used, 16);
+        if (used != fingerprint.size()) throw std::invalid_argument("fingerprint");
+    } catch (const std::logic_error&) {  // invalid_argument and out_of_range alike
+        not_partial(name, fmt::format("its vkrt:seed '{}' or vkrt:fingerprint '{}' is no number", seed, fingerprint));
+    }
     partial.backend = spec.get_string_attribute("vkrt:backend");
     partial.corners = spec.get_int_attribute("vkrt:corners", 0) != 0;
 
