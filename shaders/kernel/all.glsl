@@ -13,6 +13,7 @@
 #include "scene.glsl"
 #include "hemisphere.glsl"
 #include "phong.glsl"
+#include "visibility.glsl"
 #include "emitters.glsl"
 #include "area_lights.glsl"
 #include "shade.glsl"

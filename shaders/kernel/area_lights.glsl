@@ -45,27 +45,12 @@ vec3 shade_area_lights(Ray ray, Hit hit, Material m, INOUT(Rng) rng, INOUT(uint)
         vec3 to_light = y.position - p;
         float r2 = dot(to_light, to_light);
         vec3 l = to_light / sqrt(r2);
-        float cos_theta = dot(hit.normal, l);
+        // The emitter's front must face the point (visibility.glsl tests the rest).
         float cos_emitter = -dot(y.normal, l);
-        // The emitter's front must face the point, and both normals of the surface
-        // must face the emitter (as for point lights). Written as !(...) so that a
-        // sample exactly at the hit point (r = 0, l NaN) is skipped too. A flat
-        // emitter cannot light itself: l lies in its plane, so one of the cosines is
-        // at most a rounding error above 0.
-        bool faces = cos_emitter > 0.0f && cos_theta > 0.0f && dot(hit.geo_normal, l) > 0.0f;
-        note_decision(faces ? 3u : 2u);
-        if (!faces) {
-            continue;
+        if (light_reaches(hit, shadow_origin, l, sqrt(r2), cos_emitter > 0.0f, shadow_rays)) {
+            sum += y.emission * phong_term(m, diffuse, hit.normal, l, dot(hit.normal, l), to_eye) *
+                   (cos_emitter / r2);
         }
-        if (HAS_SHADOWS) {
-            shadow_rays += 1u;
-            // Stopping short of y keeps the emitter itself (and, for a quad, its other
-            // triangle, which meets the ray only in y's plane) from hiding y.
-            if (occluded(Ray(shadow_origin, l), sqrt(r2) * SHADOW_RAY_END)) {
-                continue;
-            }
-        }
-        sum += y.emission * phong_term(m, diffuse, hit.normal, l, cos_theta, to_eye) * (cos_emitter / r2);
     }
     return sum * (params.emitter_area.x / (PI * float(max(samples, 1u))));
 }

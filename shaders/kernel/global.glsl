@@ -64,19 +64,9 @@ vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smoo
             vec3 to_light = vec3(light.position) - p;
             float r2 = dot(to_light, to_light);
             vec3 l = to_light / sqrt(r2);
-            float cos_theta = dot(hit.normal, l);
-            bool faces = cos_theta > 0.0f && dot(hit.geo_normal, l) > 0.0f;
-            note_decision(faces ? 3u : 2u);
-            if (!faces) {
-                continue;
+            if (light_reaches(hit, shadow_origin, l, sqrt(r2), true, s.shadow_rays)) {
+                sum += eval_smooth(lobes, hit.normal, wo, l) * vec3(light.radiance) * (dot(hit.normal, l) / r2);
             }
-            if (HAS_SHADOWS) {
-                s.shadow_rays += 1u;
-                if (occluded(Ray(shadow_origin, l), sqrt(r2) * SHADOW_RAY_END)) {
-                    continue;
-                }
-            }
-            sum += eval_smooth(lobes, hit.normal, wo, l) * vec3(light.radiance) * (cos_theta / r2);
         }
     }
     if (HAS_AREA_LIGHTS) {
@@ -84,23 +74,12 @@ vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smoo
         vec3 to_light = y.position - p;
         float r2 = dot(to_light, to_light);
         vec3 l = to_light / sqrt(r2);
-        float cos_theta = dot(hit.normal, l);
         float cos_emitter = -dot(y.normal, l);
-        // As in local mode (area_lights.glsl): written as !(...) so that r = 0 is skipped.
-        bool faces = cos_emitter > 0.0f && cos_theta > 0.0f && dot(hit.geo_normal, l) > 0.0f;
-        note_decision(faces ? 3u : 2u);
-        if (faces) {
-            bool blocked = false;
-            if (HAS_SHADOWS) {
-                s.shadow_rays += 1u;
-                blocked = occluded(Ray(shadow_origin, l), sqrt(r2) * SHADOW_RAY_END);
-            }
-            if (!blocked) {
-                float pdf_light = light_pdf(r2, cos_emitter);
-                float pdf_bsdf = p_smooth * pdf_smooth(lobes, frame, wo, l, params.global.y);
-                sum += eval_smooth(lobes, hit.normal, wo, l) * y.emission *
-                       (cos_theta * power_heuristic(pdf_light, pdf_bsdf) / pdf_light);
-            }
+        if (light_reaches(hit, shadow_origin, l, sqrt(r2), cos_emitter > 0.0f, s.shadow_rays)) {
+            float pdf_light = light_pdf(r2, cos_emitter);
+            float pdf_bsdf = p_smooth * pdf_smooth(lobes, frame, wo, l, params.global.y);
+            sum += eval_smooth(lobes, hit.normal, wo, l) * y.emission *
+                   (dot(hit.normal, l) * power_heuristic(pdf_light, pdf_bsdf) / pdf_light);
         }
     }
     return sum;

@@ -28,20 +28,9 @@ vec3 shade_local(Ray ray, Hit hit, INOUT(Rng) rng, INOUT(uint) shadow_rays) {
             vec3 to_light = vec3(light.position) - p;
             float dist = length(to_light);
             vec3 l = to_light / dist;
-            float cos_theta = dot(hit.normal, l);
-            // Written as !(x > 0) so that a light exactly at the hit point (NaN) is skipped.
-            bool faces = cos_theta > 0.0f && dot(hit.geo_normal, l) > 0.0f;
-            note_decision(faces ? 3u : 2u);
-            if (!faces) {
-                continue;
+            if (light_reaches(hit, shadow_origin, l, dist, true, shadow_rays)) {
+                color += vec3(light.radiance) * phong_term(m, diffuse, hit.normal, l, dot(hit.normal, l), to_eye);
             }
-            if (HAS_SHADOWS) {
-                shadow_rays += 1u;
-                if (occluded(Ray(shadow_origin, l), dist * SHADOW_RAY_END)) {
-                    continue;
-                }
-            }
-            color += vec3(light.radiance) * phong_term(m, diffuse, hit.normal, l, cos_theta, to_eye);
         }
     }
     if (HAS_AREA_LIGHTS) {

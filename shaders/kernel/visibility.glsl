@@ -1,0 +1,27 @@
+// Whether light arriving along a direction reaches a hit: the one test that point
+// lights and area lights share, in local mode (shade.glsl, area_lights.glsl) and in
+// global mode's next-event estimation (global.glsl).
+
+// l is the unit direction from the hit toward the light point, dist the distance to
+// it; source_faces says whether the light sends light that way (an emitter's front
+// faces the hit; always true for a point light). The light counts only where both
+// of the surface's normals face it (a shading normal alone would let light through
+// a coarse mesh's silhouette), and, with shadows, where nothing lies in between:
+// that costs one shadow ray, counted. Written as plain `> 0` tests so that a light
+// exactly at the hit point (dist 0, l NaN) fails them. A flat emitter cannot light
+// itself: l lies in its plane, so one of the cosines is at most a rounding error
+// above 0.
+bool light_reaches(Hit hit, vec3 shadow_origin, vec3 l, float dist, bool source_faces, INOUT(uint) shadow_rays) {
+    bool faces = source_faces && dot(hit.normal, l) > 0.0f && dot(hit.geo_normal, l) > 0.0f;
+    note_decision(faces ? 3u : 2u);
+    if (!faces) {
+        return false;
+    }
+    if (HAS_SHADOWS) {
+        shadow_rays += 1u;
+        // Shadow rays stop short of the light (SHADOW_RAY_END), so that neither a
+        // lamp on a ceiling nor an emitter's own surface hides it.
+        return !occluded(Ray(shadow_origin, l), dist * SHADOW_RAY_END);
+    }
+    return true;
+}
