@@ -1,11 +1,12 @@
 # Compiles a GLSL compute shader to SPIR-V with glslangValidator and embeds the words
 # as a C array (glslang's own --vn output), wrapped in an INTERFACE library whose
 # include directory holds the generated header. The kernel folder is a dependency,
-# so editing any shared kernel file rebuilds the shader.
+# so editing any shared kernel file rebuilds the shader; DEPENDS names further
+# included files (the float probe's, which live outside kernel/).
 find_program(GLSLANG_VALIDATOR glslangValidator REQUIRED)
 
 function(vkrt_add_shader target)
-  cmake_parse_arguments(ARG "" "SOURCE;VARIABLE;INCLUDE_DIR" "" ${ARGN})
+  cmake_parse_arguments(ARG "" "SOURCE;VARIABLE;INCLUDE_DIR" "DEPENDS" ${ARGN})
   set(out_dir ${CMAKE_BINARY_DIR}/generated)
   set(header ${out_dir}/${ARG_VARIABLE}.h)
   file(GLOB_RECURSE kernel_sources CONFIGURE_DEPENDS ${ARG_INCLUDE_DIR}/kernel/*.glsl)
@@ -14,7 +15,7 @@ function(vkrt_add_shader target)
     COMMAND ${CMAKE_COMMAND} -E make_directory ${out_dir}
     COMMAND ${GLSLANG_VALIDATOR} -V --target-env vulkan1.1 -I${ARG_INCLUDE_DIR}
             --vn ${ARG_VARIABLE} -o ${header} ${ARG_SOURCE}
-    DEPENDS ${ARG_SOURCE} ${kernel_sources}
+    DEPENDS ${ARG_SOURCE} ${kernel_sources} ${ARG_DEPENDS}
     COMMENT "Compiling ${ARG_SOURCE} to SPIR-V"
     VERBATIM)
   add_custom_target(${target}_build DEPENDS ${header})
