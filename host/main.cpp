@@ -252,7 +252,13 @@ int main(int argc, char** argv) {
     spd->excludes(scene_opt)->excludes(width_opt)->excludes(height_opt)->excludes(sweep_opt)->excludes(threshold_opt);
     b->add_flag("-q,--quiet", bench.quiet, "No progress lines on standard error");
 
-    app.add_subcommand("devices", "List the Vulkan devices");
+    cli::DevicesArgs devices;
+    CLI::App* d = app.add_subcommand("devices", "List the Vulkan devices");
+    CLI::Option* float_profile =
+        d->add_flag("--float-profile", devices.float_profile,
+                    "Probe each device's float arithmetic against the CPU's and print a table (docs/numerics.md)");
+    d->add_option("--device", devices.device, "With --float-profile: only this device, index or name (e.g. lavapipe)")
+        ->needs(float_profile);
 
     try {
         app.parse(argc, argv);
@@ -271,6 +277,7 @@ int main(int argc, char** argv) {
                    : v->parsed() ? "converge "
                    : c->parsed() ? "compare "
                    : b->parsed() ? "bench "
+                   : d->parsed() ? "devices "
                                  : "");
         return 1;
     }
@@ -280,7 +287,7 @@ int main(int argc, char** argv) {
         if (v->parsed()) return cli::run_converge(converge);
         if (c->parsed()) return cli::run_compare(compare);
         if (b->parsed()) return cli::run_bench(bench);
-        return cli::run_devices();
+        return cli::run_devices(devices);
     } catch (const std::exception& e) {
         fmt::print(stderr, "error: {}\n", e.what());
         // compare keeps 1 for "over the bound", so a script can tell the two apart.

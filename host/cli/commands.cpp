@@ -7,10 +7,14 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "cli/float_profile_table.hpp"
 #include "cli/output_paths.hpp"
 #include "cli/progress.hpp"
+#include "gpu/float_probe.hpp"
 #include "gpu/vulkan_backend.hpp"
 #include "image/compare.hpp"
+#include "probe/cpu_float_probe.hpp"
+#include "probe/float_profile.hpp"
 #include "ref/ref_backend.hpp"
 #include "render/partial_file.hpp"
 #include "render/render.hpp"
@@ -233,7 +237,18 @@ int run_compare(const CompareArgs& args) {
     return over ? 1 : 0;
 }
 
-int run_devices() {
+int run_devices(const DevicesArgs& args) {
+    if (args.float_profile) {
+        // The devices first: a bad --device is refused before any output.
+        const std::vector<DeviceProbeRun> runs = run_vulkan_float_probe(VulkanOptions{args.device, false});
+        std::vector<probe::FloatProfile> columns{
+            probe::summarize("cpu", probe::run_cpu_float_probe(probe::probe_cases()))};
+        for (const DeviceProbeRun& run : runs) {
+            columns.push_back(probe::summarize(run.device, run.results));
+        }
+        fmt::print("{}", float_profile_table(columns));
+        return 0;
+    }
     const auto devices = list_vulkan_devices();
     for (const DeviceInfo& d : devices) {
         // Users are told to pick Mesa's CPU driver by its project name, which the

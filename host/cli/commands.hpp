@@ -65,6 +65,11 @@ struct ConvergeArgs {
     bool quiet = false;
 };
 
+struct DevicesArgs {
+    bool float_profile = false;  // probe float behaviour (docs/numerics.md) instead of listing
+    std::string device;          // with float_profile: only this device (as render's --device)
+};
+
 // Without --spp or --until, a curve runs to this many samples per pixel.
 inline constexpr std::uint32_t kDefaultConvergeSpp = 64;
 
@@ -72,6 +77,6 @@ int run_render(const RenderArgs& args);
 int run_converge(const ConvergeArgs& args);
 int run_merge(const MergeArgs& args);
 int run_compare(const CompareArgs& args);
-int run_devices();
+int run_devices(const DevicesArgs& args);
 
 }  // namespace vkrt::cli

@@ -1,0 +1,13 @@
+#pragma once
+// The table of `vkrt devices --float-profile`: one row per property, one column per
+// profile (the CPU first), and the Vulkan spec's bound last (docs/numerics.md).
+#include <string>
+#include <vector>
+
+#include "probe/float_profile.hpp"
+
+namespace vkrt::cli {
+
+std::string float_profile_table(const std::vector<probe::FloatProfile>& columns);
+
+}  // namespace vkrt::cli
