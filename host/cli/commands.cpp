@@ -241,10 +241,11 @@ int run_devices(const DevicesArgs& args) {
     if (args.float_profile) {
         // The devices first: a bad --device is refused before any output.
         const std::vector<DeviceProbeRun> runs = run_vulkan_float_probe(VulkanOptions{args.device, false});
-        std::vector<probe::FloatProfile> columns{
-            probe::summarize("cpu", probe::run_cpu_float_probe(probe::probe_cases()))};
+        const std::vector<glm::vec4> cpu = probe::run_cpu_float_probe(probe::probe_cases());
+        std::vector<probe::FloatProfile> columns{probe::summarize("cpu", cpu)};
         for (const DeviceProbeRun& run : runs) {
             columns.push_back(probe::summarize(run.device, run.results));
+            probe::note_differences(columns.back(), run.results, cpu);
         }
         fmt::print("{}", float_profile_table(columns));
         return 0;

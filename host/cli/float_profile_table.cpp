@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "probe/float_cases.hpp"
+
 namespace vkrt::cli {
 
 namespace {
@@ -70,6 +72,12 @@ std::vector<Row> rows() {
         {"length, max ULP", [](const FloatProfile& p) { return ulps(p.ulp_length); }, "sqrt(dot(x, x))"},
         {"unit_vector (ray.glsl), max ULP", [](const FloatProfile& p) { return ulps(p.ulp_unit_vector); },
          "x / sqrt(dot(x, x))"},
+        {"normalize, cases differing from cpu",
+         [](const FloatProfile& p) { return fmt::format("{} of {}", p.normalize_differing, probe::kProbeSamples); },
+         ""},
+        {"unit_vector, cases differing from cpu",
+         [](const FloatProfile& p) { return fmt::format("{} of {}", p.unit_vector_differing, probe::kProbeSamples); },
+         ""},
         {"exp2 on [-10, 10], max ULP", [](const FloatProfile& p) { return ulps(p.ulp_exp2); }, "3 + 2|x|: 23"},
         {"log2 outside [0.5, 2], max ULP", [](const FloatProfile& p) { return ulps(p.ulp_log2); }, "3"},
         {"sin on [-pi, pi], max abs error", [](const FloatProfile& p) { return fmt::format("{:.2g}", p.abs_sin); },
@@ -105,6 +113,7 @@ std::string float_profile_table(const std::vector<FloatProfile>& columns) {
         for (std::size_t c = 0; c < line.size(); ++c) {
             text += c + 1 < line.size() ? fmt::format("{:<{}}  ", line[c], width[c]) : line[c];
         }
+        text.erase(text.find_last_not_of(' ') + 1);  // a row with an empty last cell
         out += text + "\n";
     }
     return out;

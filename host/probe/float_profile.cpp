@@ -89,6 +89,22 @@ std::uint64_t float_distance(float a, float b) {
     return static_cast<std::uint64_t>(d < 0 ? -d : d);
 }
 
+void note_differences(FloatProfile& profile, const std::vector<glm::vec4>& results,
+                      const std::vector<glm::vec4>& cpu_results) {
+    if (results.size() != cpu_results.size()) {
+        throw std::runtime_error("float probe: result lists of different lengths");
+    }
+    auto differing = [&](Measured m) {
+        std::size_t n = 0;
+        for (std::size_t i = first_case(m); i < first_case(m) + kProbeSamples; ++i) {
+            n += std::bit_cast<glm::uvec4>(results[i]) != std::bit_cast<glm::uvec4>(cpu_results[i]);
+        }
+        return n;
+    };
+    profile.normalize_differing = differing(Measured::Normalize);
+    profile.unit_vector_differing = differing(Measured::UnitVector);
+}
+
 FloatProfile summarize(std::string name, const std::vector<glm::vec4>& results) {
     const std::vector<ProbeCase> cases = probe_cases();
     if (results.size() != cases.size()) {

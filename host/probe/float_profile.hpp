@@ -2,6 +2,7 @@
 // What the float probe's results say about one column (the CPU or a device): how it
 // rounds a*b+c, whether it keeps denormals, its special values, and the largest error
 // of its built-in functions against double precision (docs/numerics.md).
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -48,10 +49,19 @@ struct FloatProfile {
                   ulp_unit_vector = 0, ulp_exp2 = 0, ulp_log2 = 0;
     // Largest absolute error over [-pi, pi].
     double abs_sin = 0.0, abs_cos = 0.0;
+
+    // Of normalize's and unit_vector's kProbeSamples cases, how many differ in any bit
+    // from the CPU column's (note_differences): a worst case can match while the
+    // values do not, and it is the values that must agree for bit-identical backends.
+    std::size_t normalize_differing = 0, unit_vector_differing = 0;
 };
 
 // Reads a column's results: one vec4 per case of probe_cases(), in its order.
 FloatProfile summarize(std::string name, const std::vector<glm::vec4>& results);
+
+// Fills the *_differing counts of `profile` from its results and the CPU's.
+void note_differences(FloatProfile& profile, const std::vector<glm::vec4>& results,
+                      const std::vector<glm::vec4>& cpu_results);
 
 // The number of floats between a and b (0 when equal, +0 and -0 included); a NaN on
 // either side is as far as it gets.
