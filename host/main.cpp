@@ -259,6 +259,8 @@ int main(int argc, char** argv) {
                     "Probe each device's float arithmetic against the CPU's and print a table (docs/numerics.md)");
     d->add_option("--device", devices.device, "With --float-profile: only this device, index or name (e.g. lavapipe)")
         ->needs(float_profile);
+    d->add_option("--json", devices.json, "With --float-profile: also write the profile to this JSON file")
+        ->needs(float_profile);
 
     try {
         app.parse(argc, argv);

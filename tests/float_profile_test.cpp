@@ -3,6 +3,8 @@
 // cleanly and within the Vulkan spec's precision table, and the command prints it.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -131,9 +133,11 @@ std::string read_file(const std::filesystem::path& file) {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-TEST(FloatProfile, CommandPrintsTheTable) {
+TEST(FloatProfile, CommandPrintsTheTableAndWritesJson) {
     const std::filesystem::path dir = test::temp_dir("float_profile_command");
-    const test::ProgramRun run = test::run_vkrt("devices --float-profile --device lavapipe", dir);
+    const std::filesystem::path json_file = dir / "profile.json";
+    const test::ProgramRun run = test::run_vkrt(
+        "devices --float-profile --device lavapipe --json " + test::shell_quote(json_file.string()), dir);
     EXPECT_EQ(run.code, 0) << run.stderr_text;
     const std::string out = read_file(dir / "stdout.txt");
     for (const char* piece : {"property", "cpu", "llvmpipe", "Vulkan spec", "a*b+c, precise", "2^-126 * 0.5",
@@ -141,6 +145,15 @@ TEST(FloatProfile, CommandPrintsTheTable) {
                               "cos on [-pi, pi], max abs error"}) {
         EXPECT_NE(out.find(piece), std::string::npos) << piece << "\n" << out;
     }
+    const nlohmann::json json = nlohmann::json::parse(read_file(json_file));
+    ASSERT_EQ(json.at("columns").size(), 2u);
+    const nlohmann::json& cpu = json["columns"][0];
+    EXPECT_EQ(cpu.at("name"), "cpu");
+    EXPECT_EQ(cpu.at("max_ulp").at("div"), 0);
+    EXPECT_EQ(cpu.at("one_over_neg_zero"), "-inf");
+    EXPECT_EQ(cpu.at("mul_denormal_input"), "1e-40");
+    EXPECT_EQ(cpu.at("product_sum_fused"), false);
+    EXPECT_NE(json["columns"][1].at("name").get<std::string>().find("llvmpipe"), std::string::npos);
 }
 
 // Standard error without its final newline: the whole of it must be one line.
@@ -157,6 +170,10 @@ TEST(FloatProfile, CommandRefusesAnUnknownDevice) {
     const test::ProgramRun lone = test::run_vkrt("devices --device lavapipe", dir);
     EXPECT_EQ(lone.code, 1);
     test::expect_error_message(without_newline(lone.stderr_text), "error: --device requires --float-profile", {});
+    const test::ProgramRun unwritable =
+        test::run_vkrt("devices --float-profile --json " + test::shell_quote((dir / "no" / "such.json").string()), dir);
+    EXPECT_EQ(unwritable.code, 1);
+    test::expect_error_message(without_newline(unwritable.stderr_text), "error: ", {"cannot write the JSON file"});
 }
 
 }  // namespace

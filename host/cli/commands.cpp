@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "cli/float_profile_json.hpp"
 #include "cli/float_profile_table.hpp"
 #include "cli/output_paths.hpp"
 #include "cli/progress.hpp"
@@ -239,7 +240,13 @@ int run_compare(const CompareArgs& args) {
 
 int run_devices(const DevicesArgs& args) {
     if (args.float_profile) {
-        // The devices first: a bad --device is refused before any output.
+        // Opened first, so an unwritable path is refused before any probing.
+        std::ofstream json;
+        if (!args.json.empty()) {
+            json.open(args.json);
+            if (!json) throw std::runtime_error(fmt::format("{}: cannot write the JSON file", args.json));
+        }
+        // The devices before any output: a bad --device is refused with nothing printed.
         const std::vector<DeviceProbeRun> runs = run_vulkan_float_probe(VulkanOptions{args.device, false});
         const std::vector<glm::vec4> cpu = probe::run_cpu_float_probe(probe::probe_cases());
         std::vector<probe::FloatProfile> columns{probe::summarize("cpu", cpu)};
@@ -248,6 +255,10 @@ int run_devices(const DevicesArgs& args) {
             probe::note_differences(columns.back(), run.results, cpu);
         }
         fmt::print("{}", float_profile_table(columns));
+        if (json.is_open()) {
+            json << float_profile_json(columns).dump(2) << "\n";
+            if (!json) throw std::runtime_error(fmt::format("{}: cannot write the JSON file", args.json));
+        }
         return 0;
     }
     const auto devices = list_vulkan_devices();

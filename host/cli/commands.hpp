@@ -68,6 +68,7 @@ struct ConvergeArgs {
 struct DevicesArgs {
     bool float_profile = false;  // probe float behaviour (docs/numerics.md) instead of listing
     std::string device;          // with float_profile: only this device (as render's --device)
+    std::string json;            // with float_profile: also write the profile here
 };
 
 // Without --spp or --until, a curve runs to this many samples per pixel.
