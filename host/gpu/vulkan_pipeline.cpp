@@ -1,5 +1,8 @@
 #include "gpu/vulkan_pipeline.hpp"
 
+#include <algorithm>
+#include <vector>
+
 #include "gpu/vulkan_buffer.hpp"
 #include "render_comp_spv.h"
 
@@ -26,43 +29,84 @@ VkFormat texel_format(std::uint32_t binding) {
 
 }  // namespace
 
-Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features) {
-    const VkDevice device = context.device();
+Pipeline make_compute_pipeline(VkDevice device, std::span<const std::uint32_t> spirv,
+                               std::span<const VkDescriptorType> types, std::uint32_t push_bytes,
+                               const VkSpecializationInfo* specialization) {
     Pipeline p;
-
-    std::array<VkDescriptorSetLayoutBinding, kBindingCount> bindings{};
-    for (std::uint32_t i = 0; i < kBindingCount; ++i) {
-        bindings[i].binding = i;
-        bindings[i].descriptorType = descriptor_type(i);
-        bindings[i].descriptorCount = 1;
-        bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+    std::vector<VkDescriptorSetLayoutBinding> bindings(types.size());
+    std::vector<VkDescriptorPoolSize> sizes;
+    for (std::uint32_t i = 0; i < types.size(); ++i) {
+        bindings[i] = {i, types[i], 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+        auto same = std::find_if(sizes.begin(), sizes.end(), [&](const VkDescriptorPoolSize& size) {
+            return size.type == types[i];
+        });
+        if (same != sizes.end()) {
+            ++same->descriptorCount;
+        } else {
+            sizes.push_back({types[i], 1});
+        }
     }
     VkDescriptorSetLayoutCreateInfo set_info{};
     set_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-    set_info.bindingCount = kBindingCount;
+    set_info.bindingCount = std::uint32_t(bindings.size());
     set_info.pBindings = bindings.data();
     VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
     check(vkCreateDescriptorSetLayout(device, &set_info, nullptr, &set_layout), "vkCreateDescriptorSetLayout");
     p.set_layout = {device, set_layout};
 
-    const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, kPushBytes};
+    const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes};
     VkPipelineLayoutCreateInfo layout_info{};
     layout_info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
     layout_info.setLayoutCount = 1;
     layout_info.pSetLayouts = &set_layout;
-    layout_info.pushConstantRangeCount = 1;
-    layout_info.pPushConstantRanges = &push;
+    layout_info.pushConstantRangeCount = push_bytes != 0 ? 1 : 0;
+    layout_info.pPushConstantRanges = push_bytes != 0 ? &push : nullptr;
     VkPipelineLayout layout = VK_NULL_HANDLE;
     check(vkCreatePipelineLayout(device, &layout_info, nullptr, &layout), "vkCreatePipelineLayout");
     p.layout = {device, layout};
 
     VkShaderModuleCreateInfo module_info{};
     module_info.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
-    module_info.codeSize = sizeof(render_comp_spv);
-    module_info.pCode = render_comp_spv;
+    module_info.codeSize = spirv.size_bytes();
+    module_info.pCode = spirv.data();
     VkShaderModule raw_module = VK_NULL_HANDLE;
     check(vkCreateShaderModule(device, &module_info, nullptr, &raw_module), "vkCreateShaderModule");
     const DeviceHandle<VkShaderModule, vkDestroyShaderModule> module(device, raw_module);
+
+    VkComputePipelineCreateInfo pipeline_info{};
+    pipeline_info.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
+    pipeline_info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    pipeline_info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    pipeline_info.stage.module = raw_module;
+    pipeline_info.stage.pName = "main";
+    pipeline_info.stage.pSpecializationInfo = specialization;
+    pipeline_info.layout = layout;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    check(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipeline_info, nullptr, &pipeline),
+          "vkCreateComputePipelines");
+    p.pipeline = {device, pipeline};
+
+    VkDescriptorPoolCreateInfo pool_info{};
+    pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+    pool_info.maxSets = 1;
+    pool_info.poolSizeCount = std::uint32_t(sizes.size());
+    pool_info.pPoolSizes = sizes.data();
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    check(vkCreateDescriptorPool(device, &pool_info, nullptr, &pool), "vkCreateDescriptorPool");
+    p.pool = {device, pool};
+
+    VkDescriptorSetAllocateInfo alloc{};
+    alloc.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+    alloc.descriptorPool = pool;
+    alloc.descriptorSetCount = 1;
+    alloc.pSetLayouts = &set_layout;
+    check(vkAllocateDescriptorSets(device, &alloc, &p.set), "vkAllocateDescriptorSets");
+    return p;
+}
+
+Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features) {
+    std::array<VkDescriptorType, kBindingCount> types{};
+    for (std::uint32_t i = 0; i < kBindingCount; ++i) types[i] = descriptor_type(i);
 
     // One VkBool32 per feature, constant_id = feature id: a feature that is off is
     // compiled out by the driver.
@@ -78,40 +122,7 @@ Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features)
     specialization.dataSize = sizeof(values);
     specialization.pData = values.data();
 
-    VkComputePipelineCreateInfo pipeline_info{};
-    pipeline_info.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
-    pipeline_info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-    pipeline_info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    pipeline_info.stage.module = raw_module;
-    pipeline_info.stage.pName = "main";
-    pipeline_info.stage.pSpecializationInfo = &specialization;
-    pipeline_info.layout = layout;
-    VkPipeline pipeline = VK_NULL_HANDLE;
-    check(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipeline_info, nullptr, &pipeline),
-          "vkCreateComputePipelines");
-    p.pipeline = {device, pipeline};
-
-    const std::array<VkDescriptorPoolSize, 3> sizes{{
-        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-        {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, kBindingCount - 3},
-        {VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, 2},
-    }};
-    VkDescriptorPoolCreateInfo pool_info{};
-    pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-    pool_info.maxSets = 1;
-    pool_info.poolSizeCount = sizes.size();
-    pool_info.pPoolSizes = sizes.data();
-    VkDescriptorPool pool = VK_NULL_HANDLE;
-    check(vkCreateDescriptorPool(device, &pool_info, nullptr, &pool), "vkCreateDescriptorPool");
-    p.pool = {device, pool};
-
-    VkDescriptorSetAllocateInfo alloc{};
-    alloc.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
-    alloc.descriptorPool = pool;
-    alloc.descriptorSetCount = 1;
-    alloc.pSetLayouts = &set_layout;
-    check(vkAllocateDescriptorSets(device, &alloc, &p.set), "vkAllocateDescriptorSets");
-    return p;
+    return make_compute_pipeline(context.device(), render_comp_spv, types, kPushBytes, &specialization);
 }
 
 std::vector<BufferView> write_descriptors(VkDevice device, VkDescriptorSet set,

@@ -3,6 +3,7 @@
 // and its one descriptor set.
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "gpu/vulkan_context.hpp"
@@ -36,6 +37,16 @@ struct Pipeline {
     VkDescriptorSet set = VK_NULL_HANDLE;  // freed with the pool
 };
 
+// A compute pipeline from SPIR-V words: a set layout with one binding per entry of
+// `types` (binding i of type types[i]), a pipeline layout with `push_bytes` of push
+// constants (0: none), the pipeline (specialized when `specialization` is given),
+// and one descriptor set from a pool sized for exactly those bindings. Shared by the
+// renderer and the float probe (gpu/float_probe.cpp).
+Pipeline make_compute_pipeline(VkDevice device, std::span<const std::uint32_t> spirv,
+                               std::span<const VkDescriptorType> types, std::uint32_t push_bytes,
+                               const VkSpecializationInfo* specialization);
+
+// The renderer's pipeline (render.comp), specialized for the scene's features.
 Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features);
 
 using BufferView = DeviceHandle<VkBufferView, vkDestroyBufferView>;
