@@ -201,45 +201,31 @@ TEST(Converge, UntilStopsEachCurveByTime) {
     EXPECT_LT(rows.back().seconds, 1.5);
 }
 
-// Exit 1 and one "error: " line holding every piece.
-void expect_error(const test::ProgramRun& run, const std::vector<std::string>& pieces) {
-    EXPECT_EQ(run.code, 1) << run.stderr_text;
-    std::vector<std::string> errors;
-    std::istringstream lines(run.stderr_text);
-    for (std::string line; std::getline(lines, line);) {
-        if (line.rfind("error: ", 0) == 0) errors.push_back(line);
-    }
-    ASSERT_EQ(errors.size(), 1u) << run.stderr_text;
-    for (const std::string& piece : pieces) {
-        EXPECT_NE(errors[0].find(piece), std::string::npos) << "missing '" << piece << "' in: " << errors[0];
-    }
-}
-
 TEST(Converge, MistakesAreOneClearError) {
     const fs::path dir = test::temp_dir("converge_errors");
     ASSERT_EQ(test::run_vkrt("render " + kScene + " --width 8 --height 6 --backend cpu -q -o " + q(dir / "small.exr"), dir).code, 0);
     ASSERT_EQ(test::run_vkrt("render " + kScene + " --width 8 --height 6 --backend cpu -q -o " + q(dir / "small.png"), dir).code, 0);
     const std::string base = "converge " + kScene + " --width 16 --height 12 --backend cpu --spp 2 --csv " + q(dir / "c.csv");
 
-    expect_error(test::run_vkrt(base + " --estimator path:sphere", dir), {"--estimator", "path:sphere", "angles, uniform or cosine"});
-    expect_error(test::run_vkrt(base + " --estimator bidir", dir), {"--estimator", "'bidir'", "paper, path or path+nee"});
-    expect_error(test::run_vkrt(base + " --estimator paper+nee", dir), {"--estimator", "no next-event estimation"});
-    expect_error(test::run_vkrt(base + " --estimator path --estimator path:cosine", dir), {"--estimator", "given twice"});
-    expect_error(test::run_vkrt(base + " --backend cpu", dir), {"--backend cpu", "given twice"});
-    expect_error(test::run_vkrt(base + " --backend metal", dir), {"--backend", "metal"});
-    expect_error(test::run_vkrt(base + " --reference " + q(dir / "missing.exr"), dir), {"missing.exr", "no such file"});
-    expect_error(test::run_vkrt(base + " --reference " + q(dir / "small.exr"), dir), {"small.exr", "8x6", "16x12"});
-    expect_error(test::run_vkrt(base + " --reference " + q(dir / "small.png"), dir), {"small.png", ".exr or .hdr"});
-    expect_error(test::run_vkrt(base + " --until 0", dir), {"--until", "'0'"});
-    expect_error(test::run_vkrt(base + " --plot " + q(dir / "c.jpg"), dir), {"c.jpg", ".png"});
-    expect_error(test::run_vkrt("converge " + kScene + " --csv /nonexistent/dir/c.csv", dir), {"no directory /nonexistent/dir"});
-    expect_error(test::run_vkrt("converge " + kScene, dir), {"--csv", "required"});
+    test::expect_one_error(test::run_vkrt(base + " --estimator path:sphere", dir), {"--estimator", "path:sphere", "angles, uniform or cosine"});
+    test::expect_one_error(test::run_vkrt(base + " --estimator bidir", dir), {"--estimator", "'bidir'", "paper, path or path+nee"});
+    test::expect_one_error(test::run_vkrt(base + " --estimator paper+nee", dir), {"--estimator", "no next-event estimation"});
+    test::expect_one_error(test::run_vkrt(base + " --estimator path --estimator path:cosine", dir), {"--estimator", "given twice"});
+    test::expect_one_error(test::run_vkrt(base + " --backend cpu", dir), {"--backend cpu", "given twice"});
+    test::expect_one_error(test::run_vkrt(base + " --backend metal", dir), {"--backend", "metal"});
+    test::expect_one_error(test::run_vkrt(base + " --reference " + q(dir / "missing.exr"), dir), {"missing.exr", "no such file"});
+    test::expect_one_error(test::run_vkrt(base + " --reference " + q(dir / "small.exr"), dir), {"small.exr", "8x6", "16x12"});
+    test::expect_one_error(test::run_vkrt(base + " --reference " + q(dir / "small.png"), dir), {"small.png", ".exr or .hdr"});
+    test::expect_one_error(test::run_vkrt(base + " --until 0", dir), {"--until", "'0'"});
+    test::expect_one_error(test::run_vkrt(base + " --plot " + q(dir / "c.jpg"), dir), {"c.jpg", ".png"});
+    test::expect_one_error(test::run_vkrt("converge " + kScene + " --csv /nonexistent/dir/c.csv", dir), {"no directory /nonexistent/dir"});
+    test::expect_one_error(test::run_vkrt("converge " + kScene, dir), {"--csv", "required"});
 
     // Without gnuplot, --plot fails before rendering and names the package to install.
     ASSERT_EQ(setenv("VKRT_GNUPLOT", "/nonexistent/gnuplot", 1), 0);
     const test::ProgramRun no_gnuplot = test::run_vkrt(base + " --plot " + q(dir / "c.png"), dir);
     unsetenv("VKRT_GNUPLOT");
-    expect_error(no_gnuplot, {"--plot", "gnuplot-nox"});
+    test::expect_one_error(no_gnuplot, {"--plot", "gnuplot-nox"});
     EXPECT_FALSE(fs::exists(dir / "c.csv")) << "nothing is written after an error";
     EXPECT_FALSE(fs::exists(dir / "c_reference.exr"));
 }

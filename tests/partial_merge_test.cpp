@@ -144,32 +144,18 @@ TEST_F(PartialMerge, GapsAreWarnedAbout) {
     EXPECT_EQ(format_sample_ranges(read_partial(at("gap.exr")).samples), "0:2,5:6");
 }
 
-// Exit 1 and one "error: " line holding every piece.
-void expect_error(const test::ProgramRun& run, const std::vector<std::string>& pieces) {
-    EXPECT_EQ(run.code, 1) << run.stderr_text;
-    std::vector<std::string> errors;
-    std::istringstream lines(run.stderr_text);
-    for (std::string line; std::getline(lines, line);) {
-        if (line.rfind("error: ", 0) == 0) errors.push_back(line);
-    }
-    ASSERT_EQ(errors.size(), 1u) << run.stderr_text;
-    for (const std::string& piece : pieces) {
-        EXPECT_NE(errors[0].find(piece), std::string::npos) << "missing '" << piece << "' in: " << errors[0];
-    }
-}
-
 TEST_F(PartialMerge, BadSampleRangesAreRefused) {
     const std::string base = "render " + q(jittered_scene()) + " --backend cpu --width 32 --height 24 -o " + q(at("x.exr"));
-    expect_error(test::run_vkrt(base + " --samples 5:2", dir_), {"--samples", "'5:2'", "empty range", "below the end"});
-    expect_error(test::run_vkrt(base + " --samples 3:3", dir_), {"--samples", "'3:3'", "empty range"});
-    expect_error(test::run_vkrt(base + " --samples 0:65537", dir_), {"--samples", "'0:65537'", "65536"});
+    test::expect_one_error(test::run_vkrt(base + " --samples 5:2", dir_), {"--samples", "'5:2'", "empty range", "below the end"});
+    test::expect_one_error(test::run_vkrt(base + " --samples 3:3", dir_), {"--samples", "'3:3'", "empty range"});
+    test::expect_one_error(test::run_vkrt(base + " --samples 0:65537", dir_), {"--samples", "'0:65537'", "65536"});
     for (const char* malformed : {"7", "a:b", "1:", ":4", "-1:3", "1:2:3", "1.5:3"}) {
-        expect_error(test::run_vkrt(base + " --samples " + test::shell_quote(malformed), dir_),
+        test::expect_one_error(test::run_vkrt(base + " --samples " + test::shell_quote(malformed), dir_),
                      {"--samples", "expected A:B", malformed});
     }
-    expect_error(test::run_vkrt(base + " --samples 0:2 --spp 2", dir_), {"--samples", "--spp"});
-    expect_error(test::run_vkrt(base + " --samples 0:2 --time 1", dir_), {"--samples", "--time"});
-    expect_error(test::run_vkrt("render " + q(jittered_scene()) + " --backend cpu --samples 0:2 -o " + q(at("x.png")), dir_),
+    test::expect_one_error(test::run_vkrt(base + " --samples 0:2 --spp 2", dir_), {"--samples", "--spp"});
+    test::expect_one_error(test::run_vkrt(base + " --samples 0:2 --time 1", dir_), {"--samples", "--time"});
+    test::expect_one_error(test::run_vkrt("render " + q(jittered_scene()) + " --backend cpu --samples 0:2 -o " + q(at("x.png")), dir_),
                  {"x.png", "--samples writes a partial file", ".exr"});
     EXPECT_FALSE(fs::exists(at("x.exr")));
     EXPECT_FALSE(fs::exists(at("x.png")));
@@ -192,18 +178,18 @@ TEST_F(PartialMerge, MismatchedPartialsAreRefused) {
     ASSERT_EQ(other_size.code, 0) << other_size.stderr_text;
     const std::string a = q(at("a.exr")), out = " -o " + q(at("out.exr"));
 
-    expect_error(merge(a + " " + q(at("overlapping.exr")) + out), {"a.exr (samples 0:3)", "overlapping.exr (samples 2:5)",
+    test::expect_one_error(merge(a + " " + q(at("overlapping.exr")) + out), {"a.exr (samples 0:3)", "overlapping.exr (samples 2:5)",
                                                                   "overlap in samples 2:3"});
-    expect_error(merge(a + " " + a + out), {"a.exr", "given twice"});
-    expect_error(merge(a + " " + q(at("other_seed.exr")) + out), {"other_seed.exr", "seed 8", "seed 7", "not a render of the same scene"});
-    expect_error(merge(a + " " + q(at("other_scene.exr")) + out), {"other_scene.exr", "'default.json'", "'spheres_triangles.json'"});
-    expect_error(merge(a + " " + q(at("other_size.exr")) + out), {"other_size.exr is 16x24", "a.exr is 32x24"});
-    expect_error(merge(a + " " + q(at("plain.exr")) + out), {"plain.exr", "not a vkrt partial file"});
+    test::expect_one_error(merge(a + " " + a + out), {"a.exr", "given twice"});
+    test::expect_one_error(merge(a + " " + q(at("other_seed.exr")) + out), {"other_seed.exr", "seed 8", "seed 7", "not a render of the same scene"});
+    test::expect_one_error(merge(a + " " + q(at("other_scene.exr")) + out), {"other_scene.exr", "'default.json'", "'spheres_triangles.json'"});
+    test::expect_one_error(merge(a + " " + q(at("other_size.exr")) + out), {"other_size.exr is 16x24", "a.exr is 32x24"});
+    test::expect_one_error(merge(a + " " + q(at("plain.exr")) + out), {"plain.exr", "not a vkrt partial file"});
     std::ofstream(at("text.exr")) << "not an image";
-    expect_error(merge(a + " " + q(at("text.exr")) + out), {"text.exr"});
-    expect_error(merge(a + " " + q(at("missing.exr")) + out), {"missing.exr", "no such file"});
-    expect_error(merge(a + " -o " + q(at("out.xyz"))), {"out.xyz", "unknown image format"});
-    expect_error(merge(a), {"--output", "required"});
+    test::expect_one_error(merge(a + " " + q(at("text.exr")) + out), {"text.exr"});
+    test::expect_one_error(merge(a + " " + q(at("missing.exr")) + out), {"missing.exr", "no such file"});
+    test::expect_one_error(merge(a + " -o " + q(at("out.xyz"))), {"out.xyz", "unknown image format"});
+    test::expect_one_error(merge(a), {"--output", "required"});
     EXPECT_FALSE(fs::exists(at("out.exr")));
 }
 

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 
 #include "gpu/vulkan_backend.hpp"
 #include "ref/ref_backend.hpp"
@@ -82,6 +83,19 @@ Scene load_at_size(const std::filesystem::path& file, std::uint32_t width, std::
     scene.camera.width = width;
     scene.camera.height = height;
     return scene;
+}
+
+void expect_one_error(const ProgramRun& run, const std::vector<std::string>& pieces) {
+    EXPECT_EQ(run.code, 1) << run.stderr_text;
+    std::vector<std::string> errors;
+    std::istringstream lines(run.stderr_text);
+    for (std::string line; std::getline(lines, line);) {
+        if (line.rfind("error: ", 0) == 0) errors.push_back(line);
+    }
+    ASSERT_EQ(errors.size(), 1u) << run.stderr_text;
+    for (const std::string& piece : pieces) {
+        EXPECT_NE(errors[0].find(piece), std::string::npos) << "missing '" << piece << "' in: " << errors[0];
+    }
 }
 
 RenderOutcome render_cpu(const Scene& scene) {
