@@ -147,24 +147,6 @@ protected:
 
 using BadInputTest = CaseDirTest<BadInput>;
 
-// Exit status 1 and exactly one "error: " line holding every piece; returns the line.
-std::string expect_one_error(const test::ProgramRun& run, const std::vector<std::string>& pieces) {
-    EXPECT_EQ(run.code, 1) << "stderr:\n" << run.stderr_text;
-    std::vector<std::string> error_lines;
-    std::istringstream lines(run.stderr_text);
-    for (std::string line; std::getline(lines, line);) {
-        if (line.rfind("error: ", 0) == 0) error_lines.push_back(line);
-    }
-    if (error_lines.size() != 1u) {
-        ADD_FAILURE() << "expected one error line; stderr:\n" << run.stderr_text;
-        return {};
-    }
-    for (const std::string& piece : pieces) {
-        EXPECT_NE(error_lines[0].find(piece), std::string::npos) << "missing '" << piece << "' in: " << error_lines[0];
-    }
-    return error_lines[0];
-}
-
 TEST_P(BadInputTest, FailsWithOneClearError) {
     const BadInput& input = GetParam();
     ASSERT_TRUE(fs::exists(VKRT_EXE)) << "program not built: " << VKRT_EXE;
@@ -174,7 +156,7 @@ TEST_P(BadInputTest, FailsWithOneClearError) {
     const fs::path out = dir_ / "out.png";
     const test::ProgramRun run = test::run_vkrt(fmt::format("render {} -o {} --backend cpu", test::shell_quote(file.string()),
                                          test::shell_quote(out.string())), dir_);
-    const std::string line = expect_one_error(run, input.pieces);
+    const std::string line = test::expect_one_error(run, input.pieces);
     EXPECT_NE(line.find(file.filename().string()), std::string::npos) << "no file name in: " << line;
     EXPECT_FALSE(fs::exists(out)) << "an output image was written despite the error";
 }
@@ -206,7 +188,7 @@ TEST_P(BadOptionTest, FailsWithOneClearError) {
             args.replace(at, key.size(), test::shell_quote(value));
         }
     }
-    expect_one_error(test::run_vkrt(args, dir_), GetParam().pieces);
+    test::expect_one_error(test::run_vkrt(args, dir_), GetParam().pieces);
     EXPECT_FALSE(fs::exists(out)) << "an output image was written despite the error";
 }
 

@@ -85,17 +85,21 @@ Scene load_at_size(const std::filesystem::path& file, std::uint32_t width, std::
     return scene;
 }
 
-void expect_one_error(const ProgramRun& run, const std::vector<std::string>& pieces) {
-    EXPECT_EQ(run.code, 1) << run.stderr_text;
-    std::vector<std::string> errors;
+std::string expect_one_error(const ProgramRun& run, const std::vector<std::string>& pieces) {
+    EXPECT_EQ(run.code, 1) << "stderr:\n" << run.stderr_text;
+    std::vector<std::string> error_lines;
     std::istringstream lines(run.stderr_text);
     for (std::string line; std::getline(lines, line);) {
-        if (line.rfind("error: ", 0) == 0) errors.push_back(line);
+        if (line.rfind("error: ", 0) == 0) error_lines.push_back(line);
     }
-    ASSERT_EQ(errors.size(), 1u) << run.stderr_text;
+    if (error_lines.size() != 1u) {
+        ADD_FAILURE() << "expected one error line; stderr:\n" << run.stderr_text;
+        return {};
+    }
     for (const std::string& piece : pieces) {
-        EXPECT_NE(errors[0].find(piece), std::string::npos) << "missing '" << piece << "' in: " << errors[0];
+        EXPECT_NE(error_lines[0].find(piece), std::string::npos) << "missing '" << piece << "' in: " << error_lines[0];
     }
+    return error_lines[0];
 }
 
 RenderOutcome render_cpu(const Scene& scene) {

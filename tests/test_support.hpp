@@ -49,8 +49,9 @@ struct ProgramRun {
 };
 ProgramRun run_vkrt(const std::string& args, const std::filesystem::path& dir);
 
-// The program exited 1 with exactly one "error: " line, holding every piece.
-void expect_one_error(const ProgramRun& run, const std::vector<std::string>& pieces);
+// The program exited 1 with exactly one "error: " line, holding every piece;
+// returns that line (empty after a failure).
+std::string expect_one_error(const ProgramRun& run, const std::vector<std::string>& pieces);
 
 RenderOutcome render_cpu(const Scene& scene);
 // Runs with the Khronos validation layer on; any validation message fails the test.
