@@ -21,7 +21,7 @@ const uint TREE_DECISIONS = 3u;      // sum of the samples' decision hashes (bud
 const uint PATHS_BOUNCE_RAYS = 0u;    // rays traced after a scattering event
 const uint PATHS_ROULETTE = 1u;       // paths ended by Russian roulette
 const uint PATHS_PAPER_DROPPED = 2u;  // paper-estimator samples whose gl() was 0: left out of the average
-const uint PATHS_UNUSED = 3u;
+// Counters.paths.w is unused (0).
 // Cells and tests cannot overflow a pixel's 32-bit lane: each is at most one loop
 // iteration, a sample has at most kMaxLoopBudget (65,000) of those, and a pixel at
 // most 65,536 samples: 65,000 * 65,536 < 2^32. (Only the cpu backend can lift the

@@ -22,6 +22,20 @@ vec3 hit_point(Ray ray, float t) {
     return p;
 }
 
+// Traces a path's next ray into `hit`. When it leaves the scene, adds the background
+// weighed by the path's throughput and returns false; counts the eye ray's hit.
+bool path_hit(Ray ray, uint bounce, vec3 beta, INOUT(SampleResult) s, INOUT(Hit) hit) {
+    hit = closest_hit(ray, INFINITY_T);
+    if (!(hit.t < INFINITY_T)) {
+        s.radiance += beta * vec3(params.background);
+        return false;
+    }
+    if (bounce == 0u) {
+        s.eye_hits = 1u;
+    }
+    return true;
+}
+
 // Russian roulette starts at this bounce: the first few bounces carry most of the
 // light, and ending them at random would only add noise.
 const uint ROULETTE_START = 3u;
@@ -122,13 +136,9 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
     uint hemisphere = params.global.y;
     loop_enter();
     for (uint bounce = 0u; loop_tick(); bounce += 1u) {
-        Hit hit = closest_hit(ray, INFINITY_T);
-        if (!(hit.t < INFINITY_T)) {
-            s.radiance += beta * vec3(params.background);
+        Hit hit;
+        if (!path_hit(ray, bounce, beta, s, hit)) {
             return;
-        }
-        if (bounce == 0u) {
-            s.eye_hits = 1u;
         }
         Material m = load_material(hit.material);
         if (HAS_EMISSION && hit.front_face) {
@@ -235,13 +245,9 @@ void paper_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
     vec3 beta = vec3(1.0f);
     loop_enter();
     for (uint bounce = 0u; loop_tick(); bounce += 1u) {
-        Hit hit = closest_hit(ray, INFINITY_T);
-        if (!(hit.t < INFINITY_T)) {
-            s.radiance += beta * vec3(params.background);
+        Hit hit;
+        if (!path_hit(ray, bounce, beta, s, hit)) {
             return;
-        }
-        if (bounce == 0u) {
-            s.eye_hits = 1u;
         }
         Material m = load_material(hit.material);
         if (HAS_EMISSION && hit.front_face && any(greaterThan(vec3(m.emission_fresnel), vec3(0.0f)))) {
