@@ -7,7 +7,9 @@
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 
 #include "kernel/constants.glsl"
+#define INOUT(T) inout T
 #include "kernel/ray.glsl"  // unit_vector, measured as the kernel uses it
+#include "kernel/rng.glsl"  // rng_next, compared bit for bit with the CPU's
 #include "probe/float_op_ids.glsl"
 #include "probe/float_ops.glsl"
 
@@ -24,5 +26,5 @@ void main() {
     if (i >= uint(cases.length())) {
         return;
     }
-    results[i] = float_op(cases[i].op.x, cases[i].arg);
+    results[i] = float_op(cases[i].op, cases[i].arg);
 }

@@ -119,6 +119,19 @@ TEST(FloatProfile, UnitVectorIsBitIdenticalOnLavapipeAndCpu) {
     EXPECT_GT(p.normalize_differing, 0u);
 }
 
+// Issue 6, case 11: the kernel's random numbers are bit-identical on both backends for
+// the same (pixel, sample, seed, dimension), extreme keys included, and stay in [0, 1)
+// on both: the probe runs rng_next itself (rng.glsl) on lavapipe and on the CPU.
+TEST(FloatProfile, RandomNumbersAreBitIdenticalAndBelowOne) {
+    FloatProfile p = probe::summarize(lavapipe_run().device, lavapipe_run().results);
+    probe::note_differences(p, lavapipe_run().results, probe::run_cpu_float_probe(probe::probe_cases()));
+    EXPECT_EQ(p.rng_differing, 0u);
+    EXPECT_EQ(p.rng_outside, 0u);
+    EXPECT_LT(p.rng_largest, 1.0f);
+    EXPECT_GT(p.rng_largest, 0.99f);  // 4,096 draws: the largest is near 1
+    EXPECT_EQ(cpu_profile().rng_outside, 0u);
+}
+
 TEST(FloatProfile, FloatDistanceCountsFloatsBetween) {
     EXPECT_EQ(probe::float_distance(1.0f, 1.0f), 0u);
     EXPECT_EQ(probe::float_distance(0.0f, -0.0f), 0u);

@@ -113,6 +113,21 @@ TEST(Rng, MatchesThePublishedHash) {
     }
 }
 
+// Issue 6, case 11: whatever the hash, the float stays below 1. The top 256 hashes all
+// give the largest value, 1 - 2^-24; converting all 32 bits instead would round them
+// (and every hash from 2^32 - 128 on) to exactly 1.0.
+TEST(Rng, UnitFloatNeverReachesOne) {
+    Kernel k;
+    EXPECT_EQ(k.unit_float(0u), 0.0f);
+    EXPECT_EQ(k.unit_float(0x100u), 0x1p-24f);
+    for (std::uint32_t h = 0xFFFFFF00u; h != 0u; ++h) ASSERT_EQ(k.unit_float(h), 1.0f - 0x1p-24f) << h;
+    EXPECT_EQ(float(0xFFFFFFFFu) * 0x1p-32f, 1.0f);  // the trap this avoids
+    for (std::uint32_t h = 0x80u; h < 0xFFFFFFFFu - 0x3FFFFFu; h += 0x3FFFFFu) {
+        ASSERT_LT(k.unit_float(h), 1.0f);
+        ASSERT_EQ(k.unit_float(h), float(h >> 8) / 16777216.0f);
+    }
+}
+
 TEST(Rng, IsAPureFunctionOfItsCounters) {
     Kernel k;
     auto a = k.rng_start(3, 4, 5);

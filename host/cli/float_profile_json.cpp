@@ -52,7 +52,9 @@ nlohmann::json column(const FloatProfile& p) {
           {"exp2", p.ulp_exp2},
           {"log2", p.ulp_log2}}},
         {"max_abs_error", {{"sin", p.abs_sin}, {"cos", p.abs_cos}}},
-        {"differing_from_cpu", {{"normalize", p.normalize_differing}, {"unit_vector", p.unit_vector_differing}}},
+        {"differing_from_cpu",
+         {{"normalize", p.normalize_differing}, {"unit_vector", p.unit_vector_differing}, {"rng_next", p.rng_differing}}},
+        {"rng_next", {{"largest", value(p.rng_largest)}, {"outside_unit_interval", p.rng_outside}}},
     };
 }
 

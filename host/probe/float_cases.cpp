@@ -34,6 +34,19 @@ ProbeCase make(uint op, float x, float y = 0.0f, float z = 0.0f) {
     return ProbeCase{glm::vec4(x, y, z, 0.0f), glm::uvec4(op, 0u, 0u, 0u)};
 }
 
+// A stream of the kernel's random numbers: pixel, sample and seed from the hash, every
+// eighth of them at an extreme (0 or 2^32 - 1), and a dimension below 64 (exact as a
+// float argument).
+ProbeCase random_stream(std::uint64_t key) {
+    auto word = [&](std::uint64_t salt) {
+        const std::uint64_t h = mix(key ^ salt);
+        return (h & 7u) == 0 ? ((h >> 3) & 1u ? 0xFFFFFFFFu : 0u) : static_cast<uint>(h >> 32);
+    };
+    ProbeCase c = make(FLOAT_OP_RNG, static_cast<float>(mix(key ^ 0xD1u) % 64u));
+    c.op = glm::uvec4(FLOAT_OP_RNG, word(0xA1u), word(0xB2u), word(0xC3u));
+    return c;
+}
+
 ProbeCase sample(Measured m, std::uint64_t i) {
     const std::uint64_t key = (static_cast<std::uint64_t>(m) << 32) | i;
     const float pi = 3.14159265358979f;
@@ -50,6 +63,7 @@ ProbeCase sample(Measured m, std::uint64_t i) {
     }
     case Measured::Sin: return make(FLOAT_OP_SIN, (2.0f * unit(key) - 1.0f) * pi);
     case Measured::Cos: return make(FLOAT_OP_COS, (2.0f * unit(key) - 1.0f) * pi);
+    case Measured::Rng: return random_stream(key);
     default: break;
     }
     // Vectors: components in [-1, 1) times one common power of two, as directions and

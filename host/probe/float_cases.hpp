@@ -44,7 +44,9 @@ enum class Special : std::size_t {
 
 // The functions whose error is measured, each over kProbeSamples inputs.
 enum class Measured : std::size_t {
-    Div, Sqrt, InverseSqrt, Normalize, Length, UnitVector, Exp2, Log2, Sin, Cos, Count
+    Div, Sqrt, InverseSqrt, Normalize, Length, UnitVector, Exp2, Log2, Sin, Cos,
+    Rng,  // not an error: rng_next's values, compared bit for bit with the CPU's
+    Count
 };
 
 inline constexpr std::size_t kSpecialCount = static_cast<std::size_t>(Special::Count);

@@ -103,6 +103,7 @@ void note_differences(FloatProfile& profile, const std::vector<glm::vec4>& resul
     };
     profile.normalize_differing = differing(Measured::Normalize);
     profile.unit_vector_differing = differing(Measured::UnitVector);
+    profile.rng_differing = differing(Measured::Rng);
 }
 
 FloatProfile summarize(std::string name, const std::vector<glm::vec4>& results) {
@@ -145,6 +146,11 @@ FloatProfile summarize(std::string name, const std::vector<glm::vec4>& results) 
     p.ulp_log2 = largest_ulps(Measured::Log2, cases, results);
     p.abs_sin = largest_error(Measured::Sin, cases, results);
     p.abs_cos = largest_error(Measured::Cos, cases, results);
+    for (std::size_t i = first_case(Measured::Rng); i < first_case(Measured::Rng) + kProbeSamples; ++i) {
+        const float u = results[i].x;
+        p.rng_largest = std::max(p.rng_largest, u);
+        p.rng_outside += u >= 0.0f && u < 1.0f ? 0 : 1;  // a NaN is outside too
+    }
     return p;
 }
 

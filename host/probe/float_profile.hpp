@@ -54,6 +54,13 @@ struct FloatProfile {
     // from the CPU column's (note_differences): a worst case can match while the
     // values do not, and it is the values that must agree for bit-identical backends.
     std::size_t normalize_differing = 0, unit_vector_differing = 0;
+
+    // The kernel's random numbers (rng.glsl) over kProbeSamples streams: the largest
+    // value, how many are outside [0, 1) (NaN included), and (note_differences) how
+    // many differ from the CPU's in any bit: none, for the backends to sample alike.
+    float rng_largest = 0.0f;
+    std::size_t rng_outside = 0;
+    std::size_t rng_differing = 0;
 };
 
 // Reads a column's results: one vec4 per case of probe_cases(), in its order.

@@ -30,10 +30,17 @@ Rng rng_start(uint pixel_index, uint sample_index, uint seed) {
     return Rng(uvec4(pixel_index, sample_index, seed, 0u), 0u);
 }
 
-// A uniform float in [0, 1): the top 24 bits scaled by 2^-24, so 1.0 is never reached
-// (the largest value is 1 - 2^-24, exactly representable).
+// A hash's top 24 bits as a float in [0, 1), scaled by 2^-24: every one of them is
+// exactly a float, so the conversion does not round, and 1.0 is never reached (the
+// largest value is 1 - 2^-24). Converting all 32 bits would round the top 128 values
+// of 2^32 up to exactly 1.0, and a sampler given u = 1 picks past its last bin.
+float unit_float(uint bits) {
+    return float(bits >> 8u) * (1.0f / 16777216.0f);
+}
+
+// The next number of the stream, uniform in [0, 1).
 float rng_next(INOUT(Rng) rng) {
     uvec4 h = pcg4d(uvec4(rng.key.x, rng.key.y, rng.key.z, rng.dim));
     rng.dim += 1u;
-    return float(h.x >> 8u) * (1.0f / 16777216.0f);
+    return unit_float(h.x);
 }

@@ -20,3 +20,6 @@ const uint FLOAT_OP_COS = 14u;
 const uint FLOAT_OP_MIN = 15u;                 // min(x, y)
 const uint FLOAT_OP_MAX = 16u;                 // max(x, y)
 const uint FLOAT_OP_CLASSIFY = 17u;            // (isnan(x), isinf(x)) as 1 or 0
+const uint FLOAT_OP_RNG = 18u;                 // rng_next (rng.glsl) of the stream
+                                               // (pixel, sample, seed) = op.yzw at
+                                               // dimension x

@@ -12,9 +12,16 @@ float product_sum_precise(float x, float y, float z) {
     return r;
 }
 
-vec4 float_op(uint op, vec4 a) {
+// The kernel's random number of stream `key` at dimension `dim`.
+float random_number(uvec4 key, uint dim) {
+    Rng rng = Rng(uvec4(key.y, key.z, key.w, 0u), dim);
+    return rng_next(rng);
+}
+
+// op.x is the FLOAT_OP_ number; op.yzw carry integer arguments (FLOAT_OP_RNG).
+vec4 float_op(uvec4 op, vec4 a) {
     vec3 v = vec3(a.x, a.y, a.z);
-    switch (op) {
+    switch (op.x) {
     case FLOAT_OP_PRODUCT_SUM: return vec4(a.x * a.y + a.z, 0.0f, 0.0f, 0.0f);
     case FLOAT_OP_PRODUCT_SUM_PRECISE: return vec4(product_sum_precise(a.x, a.y, a.z), 0.0f, 0.0f, 0.0f);
     case FLOAT_OP_MUL: return vec4(a.x * a.y, 0.0f, 0.0f, 0.0f);
@@ -32,6 +39,7 @@ vec4 float_op(uint op, vec4 a) {
     case FLOAT_OP_COS: return vec4(cos(a.x), 0.0f, 0.0f, 0.0f);
     case FLOAT_OP_MIN: return vec4(min(a.x, a.y), 0.0f, 0.0f, 0.0f);
     case FLOAT_OP_MAX: return vec4(max(a.x, a.y), 0.0f, 0.0f, 0.0f);
+    case FLOAT_OP_RNG: return vec4(random_number(op, uint(a.x)), 0.0f, 0.0f, 0.0f);
     case FLOAT_OP_CLASSIFY: return vec4(isnan(a.x) ? 1.0f : 0.0f, isinf(a.x) ? 1.0f : 0.0f, 0.0f, 0.0f);
     default: return vec4(0.0f);
     }
