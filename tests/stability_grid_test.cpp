@@ -263,10 +263,15 @@ TEST(SignedZero, RaysWalkTheSameCells) {
                     ++walks_compared;
                     const Cells other = walk(grid, ray, t_max);
                     const Answer other_answer = trace(grid, ray, t_max);
-                    if (other != cells || !(other_answer == answer) || !(trace(brute, ray, t_max) == want)) {
+                    // +0 and -0 make the same ray, so the same answer. A tiny component
+                    // makes another ray, which may leave a primitive's exact edge that
+                    // the zero one touches: its answer must be brute force's own.
+                    const bool exact_zeros = glm::all(glm::equal(ray.dir, first.dir));
+                    const Answer other_want = exact_zeros ? answer : trace(brute, ray, t_max);
+                    if (other != cells || !(other_answer == other_want)) {
                         ADD_FAILURE() << describe(ray) << " walks " << other.size() << " cells (t " << other_answer.t
-                                      << "), " << describe(first) << " walks " << cells.size() << " (t "
-                                      << answer.t << ")";
+                                      << ", want " << other_want.t << "), " << describe(first) << " walks "
+                                      << cells.size() << " (t " << answer.t << ")";
                         ++failures;
                     }
                 }
