@@ -38,6 +38,7 @@
 #include <cstdio>
 #include <fstream>
 #include <functional>
+#include <ostream>
 #include <random>
 #include <string>
 #include <vector>
@@ -385,6 +386,10 @@ struct BoundaryCase {
     std::string name;
     Place place;
 };
+
+// gtest prints a parameter in the test's description (and ctest's test names): its
+// name, not its bytes.
+void PrintTo(const BoundaryCase& c, std::ostream* os) { *os << c.name; }
 
 class EyeOnGridBoundary : public ::testing::TestWithParam<BoundaryCase> {};
 
