@@ -20,6 +20,9 @@ namespace vkrt {
 struct GridStats {
     bool used = false;
     std::string reason;                              // why it was, or was not, used
+    // What the builder reduced and the limit that forced it (build_grid's note), empty
+    // when it built what was asked: also in `reason`, and printed as a warning.
+    std::string warning;
     std::array<std::uint32_t, 3> resolution{0, 0, 0};
     std::uint64_t cells = 0;
     std::uint64_t references = 0;                    // primitive references over all cells

@@ -196,6 +196,9 @@ int run_render(const RenderArgs& args) {
         fmt::print(stderr, "warning: {} samples were NaN or infinite and were left out of the average\n",
                    s.nonfinite_samples);
     }
+    // A grid coarser than the scene or --grid asked for renders the same image, only
+    // slower: said on stderr, since the summary may be --quiet.
+    if (!s.grid.warning.empty()) fmt::print(stderr, "warning: {}\n", s.grid.warning);
     if (s.clamped_samples > 0) {
         fmt::print(stderr, "warning: {} samples had a radiance above {:.3g} and were clamped to it\n",
                    s.clamped_samples, double(kernel::SUM_SAMPLE_MAX));

@@ -174,6 +174,7 @@ void add_grid(const Scene& scene, const AccelPolicy& policy, SceneGpu& g) {
     g.grid.references = grid.refs.size();
     g.grid.bytes = grid.bytes();
     if (!note.empty()) g.grid.reason += "; " + note;
+    g.grid.warning = note;
     g.grid_cell_starts = std::move(grid.cell_starts);
     g.grid_refs = std::move(grid.refs);
     g.grid.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
