@@ -254,9 +254,13 @@ TEST(WatertightMesh, RaysLyingInTheTrianglesPlane) {
     Kernel k;
     std::size_t flat_hits = 0, tilted_hits = 0, bad = 0;
     std::uint32_t state = 12345u;
-    auto dyadic = [&state](int range) {  // a multiple of 1/16 in [-range, range)
+    // A multiple of 2^-20 in [-range, range): 22 to 23 significant bits, so that
+    // coordinates, sums of two and differences stay exact and products round.
+    auto dyadic = [&state](int range) {
         state = state * 1664525u + 1013904223u;
-        return float(int(state >> 8) % (32 * range) - 16 * range) / 16.0f;
+        const std::uint32_t high = state >> 9;  // 23 random bits
+        return float(std::int64_t(high % std::uint32_t(range << 21)) - (std::int64_t(range) << 20)) /
+               1048576.0f;
     };
     const int rays = 20000;
     for (int i = 0; i < rays; ++i) {

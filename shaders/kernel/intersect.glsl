@@ -48,27 +48,30 @@ vec3 permute_axes(vec3 v, int kx, int ky, int kz) {
 // Woop, Benthin & Wald, "Watertight Ray/Triangle Intersection" (JCGT 2013). The
 // vertices are moved to the ray's origin and sheared so that the ray runs along +-z
 // (its dominant axis kz); the 2D edge functions U, V, W of the sheared triangle at
-// (0, 0) then decide the hit. A vertex's sheared coordinates depend on the vertex and
-// the ray only, never on the triangle, so two triangles sharing an edge compute that
-// edge's function from the same numbers. Each edge function is a difference of two
-// rounded products, and rounding is monotonic, so its computed sign is the exact sign
-// for the sheared float vertices, or zero (never the opposite sign; with or without
-// denormals flushed). The paper recomputes exact zeros in double; double is optional
-// in GLSL, so here a zero counts as inside: the triangles accepted are then a superset
-// of the exactly hit ones, and a ray through a shared edge or vertex hits at least one
-// (perhaps several) of the triangles around it. What that costs: a ray passing within
-// one rounding of an edge may hit the triangle on the far side of it too (at the same
-// point, so the closest hit does not change). Every expression is precise: a fused
-// multiply-add on one backend only would break both the sign argument and the
-// identity of the two backends.
+// (0, 0) then decide the hit. The paper precomputes the shear once per ray; this
+// function gets the ray per test, so it scales the shear by d.z instead of dividing by
+// it (no division before a hit is known).
+// A vertex's sheared coordinates depend on the vertex and the ray only, never on the
+// triangle, so two triangles sharing an edge compute that edge's function from the
+// same numbers. Each edge function is a difference of two rounded products, and
+// rounding is monotonic, so its computed sign is the exact sign for the sheared float
+// vertices, or zero, never the opposite sign (with or without denormals flushed). The
+// paper recomputes exact zeros in double; double is optional in GLSL, so here a zero
+// counts as inside: the triangles accepted are a superset of the exactly hit ones, and
+// a ray through a shared edge or vertex hits at least one of the triangles around it.
+// The price: a ray within one rounding of an edge may hit the triangle beyond it too
+// (at nearly the same t), or a silhouette triangle a rounding outside its edge. Every
+// expression is precise: a fused multiply-add on one backend only would break both the
+// sign argument and the identity of the two backends.
 // Both faces are hit. A ray lying in the triangle's plane meets no inside: where the
-// shear is exact (a plane x, y or z = c) the sheared vertices lie on one line through
-// the ray, all three functions are zero, det is 0 and the ray misses; in a tilted plane
-// the shear's rounding can open a sliver around that line, and a hit there is finite
-// with barycentrics in [0, 1]. A triangle of zero area in float (its edge vectors'
-// cross product exactly zero) is never hit: it has no normal to shade with, and its
-// sheared image, rounded, could still be a sliver. Returns t and the barycentric
-// weights u of p1 and v of p2, as Möller-Trumbore's test, which this one replaced, did.
+// shear is exact (a plane x, y or z = c, or products that do not round) the sheared
+// vertices lie on one line through the ray, all three functions are zero, det is 0
+// and the ray misses; where the shear's products round they can open a sliver around
+// that line, and a hit there is finite with barycentrics in [0, 1]. A triangle of zero
+// area in float (its edge vectors' cross product exactly zero) is never hit: it has no
+// normal to shade with, and its sheared image, rounded, could still be a sliver.
+// Returns t and the barycentric weights u of p1 and v of p2, as Moller-Trumbore's
+// test, which this one replaced, did.
 TriangleHit intersect_triangle(Ray ray, vec3 p0, vec3 p1, vec3 p2, float t_min, float t_max) {
     TriangleHit miss = TriangleHit(INFINITY_T, 0.0f, 0.0f);
     vec3 ad = abs(ray.dir);
@@ -76,18 +79,17 @@ TriangleHit intersect_triangle(Ray ray, vec3 p0, vec3 p1, vec3 p2, float t_min, 
     int kx = kz == 2 ? 0 : kz + 1;
     int ky = kx == 2 ? 0 : kx + 1;
     vec3 d = permute_axes(ray.dir, kx, ky, kz);
-    precise float sx = d.x / d.z;
-    precise float sy = d.y / d.z;
-    precise float sz = 1.0f / d.z;
     precise vec3 a = permute_axes(p0 - ray.origin, kx, ky, kz);
     precise vec3 b = permute_axes(p1 - ray.origin, kx, ky, kz);
     precise vec3 c = permute_axes(p2 - ray.origin, kx, ky, kz);
-    precise float ax = a.x - sx * a.z;
-    precise float ay = a.y - sy * a.z;
-    precise float bx = b.x - sx * b.z;
-    precise float by = b.y - sy * b.z;
-    precise float cx = c.x - sx * c.z;
-    precise float cy = c.y - sy * c.z;
+    // The paper's shear x - (d.x / d.z) z, scaled by d.z so that no division is needed:
+    // the edge functions scale by d.z^2 > 0, which changes no sign and no ratio.
+    precise float ax = a.x * d.z - d.x * a.z;
+    precise float ay = a.y * d.z - d.y * a.z;
+    precise float bx = b.x * d.z - d.x * b.z;
+    precise float by = b.y * d.z - d.y * b.z;
+    precise float cx = c.x * d.z - d.x * c.z;
+    precise float cy = c.y * d.z - d.y * c.z;
     precise float eu = cx * by - cy * bx;  // weight of p0
     precise float ev = ax * cy - ay * cx;  // weight of p1
     precise float ew = bx * ay - by * ax;  // weight of p2
@@ -98,8 +100,8 @@ TriangleHit intersect_triangle(Ray ray, vec3 p0, vec3 p1, vec3 p2, float t_min, 
     if (det == 0.0f) {
         return miss;
     }
-    precise float t_scaled = eu * (sz * a.z) + ev * (sz * b.z) + ew * (sz * c.z);
-    precise float t = t_scaled / det;
+    precise float t_scaled = eu * a.z + ev * b.z + ew * c.z;
+    precise float t = t_scaled / (det * d.z);
     if (!(t > t_min && t < t_max)) {
         return miss;
     }
