@@ -584,30 +584,51 @@ INSTANTIATE_TEST_SUITE_P(
 // the tests below break) and room for degenerate triangles.
 Scene base_scene() { return stability_scene("case5_normals_fallback.json"); }
 
-// Degenerate triangles placed where eye and shadow rays pass (across the sphere, on
-// the floor, between light and floor) change nothing: the image is the same, bit for
-// bit, on each backend.
+// Degenerate triangles placed where eye and shadow rays pass change nothing: the
+// image is the same, bit for bit, on each backend. Two scenes: the lit one above,
+// with degenerate triangles across the sphere, on the floor and between light and
+// floor; and a head-on view whose middle row and column of eye rays run exactly
+// through lines and points of degenerate triangles on the axes (their direction has
+// a zero component there), in front of a wall.
 TEST(DegenerateTriangles, ChangeNothingInAScene) {
-    const Scene plain = base_scene();
-    Scene with = plain;
-    const glm::dvec3 a(-0.6, 0.5, 0.2), b(0.0, 0.75, 0.3), c(0.6, 1.0, 0.4);  // b = (a + c) / 2
-    const std::array<std::array<glm::dvec3, 3>, 6> degenerate = {{{a, b, c},
-                                                                  {a, a, c},
-                                                                  {c, c, c},
-                                                                  {glm::dvec3(-1, 0, 0), glm::dvec3(0, 0, 0),
-                                                                   glm::dvec3(1, 0, 0)},
-                                                                  {glm::dvec3(0.5, 0, 0.5), glm::dvec3(0.5, 0, 0.5),
-                                                                   glm::dvec3(0.5, 0, 0.5)},
-                                                                  {glm::dvec3(0, 1, 0), glm::dvec3(1, 2, 1),
-                                                                   glm::dvec3(2, 3, 2)}}};
-    for (const auto& v : degenerate) with.triangles.push_back(Triangle{v, std::nullopt, 0});
-    for (bool vulkan : {false, true}) {
-        SCOPED_TRACE(vulkan ? "vulkan" : "cpu");
-        const RenderOutcome before = vulkan ? test::render_vulkan(plain) : test::render_cpu(plain);
-        const RenderOutcome after = vulkan ? test::render_vulkan(with) : test::render_cpu(with);
-        expect_sane(after);
-        EXPECT_EQ(after.stats.eye_hits, before.stats.eye_hits);
-        EXPECT_EQ(largest_difference(after.image, before.image), 0.0f);
+    const Scene lit = stability_scene("case5_normals_fallback.json");
+    Scene straight = lit;
+    straight.camera.eye = glm::dvec3(0.0, 0.0, 5.0);
+    straight.camera.look_at = glm::dvec3(0.0, 0.0, 0.0);
+    straight.camera.width = 63;
+    straight.camera.height = 47;
+    {
+        const SceneGpu gpu = build_scene_gpu(straight);
+        Kernel k = make_kernel(gpu);
+        std::size_t on_axes = 0;
+        for (std::uint32_t y = 0; y < 47; ++y) {
+            for (std::uint32_t x = 0; x < 63; ++x) {
+                const Kernel::Ray r = k.camera_ray(float(x) + 0.5f, float(y) + 0.5f);
+                on_axes += (r.dir.x == 0.0f || r.dir.y == 0.0f) ? 1 : 0;
+            }
+        }
+        EXPECT_GT(on_axes, 0u) << "no eye ray runs through the axes: the second scene tests nothing";
+    }
+    using glm::dvec3;
+    const dvec3 a(-0.6, 0.5, 0.2), b(0.0, 0.75, 0.3), c(0.6, 1.0, 0.4);  // b = (a + c) / 2
+    const std::vector<std::array<dvec3, 3>> degenerate = {
+        {a, b, c}, {a, a, c}, {c, c, c}, {dvec3(-1, 0, 0), dvec3(0, 0, 0), dvec3(1, 0, 0)},
+        {dvec3(0.5, 0, 0.5), dvec3(0.5, 0, 0.5), dvec3(0.5, 0, 0.5)}, {dvec3(0, 1, 0), dvec3(1, 2, 1), dvec3(2, 3, 2)},
+        {dvec3(-2, 0, 1), dvec3(0.5, 0, 1), dvec3(2, 0, 1)}, {dvec3(0, -2, 1.5), dvec3(0, 0.25, 1.5), dvec3(0, 2, 1.5)},
+        {dvec3(-1, 0, 2), dvec3(-1, 0, 2), dvec3(1, 0, 2)}, {dvec3(0, 0, 0.5), dvec3(0, 0, 0.5), dvec3(0, 0, 0.5)},
+        {dvec3(0, 0, -0.5), dvec3(0, 0, 0.5), dvec3(0, 0, 1)}};
+    for (const Scene* plain : {static_cast<const Scene*>(&lit), static_cast<const Scene*>(&straight)}) {
+        Scene with = *plain;
+        for (const auto& v : degenerate) with.triangles.push_back(Triangle{v, std::nullopt, 0});
+        for (bool vulkan : {false, true}) {
+            SCOPED_TRACE(fmt::format("{}, {}", plain == &straight ? "head-on view" : "lit scene",
+                                     vulkan ? "vulkan" : "cpu"));
+            const RenderOutcome before = vulkan ? test::render_vulkan(*plain) : test::render_cpu(*plain);
+            const RenderOutcome after = vulkan ? test::render_vulkan(with) : test::render_cpu(with);
+            expect_sane(after);
+            EXPECT_EQ(after.stats.eye_hits, before.stats.eye_hits);
+            EXPECT_EQ(largest_difference(after.image, before.image), 0.0f);
+        }
     }
 }
 
