@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -522,6 +523,9 @@ struct MaskScene {
     std::string file;
     Expect (*expect)(glm::dvec3 origin, glm::dvec3 dir);
 };
+
+// gtest prints a parameter in the test's description; the file name, not its bytes.
+void PrintTo(const MaskScene& scene, std::ostream* os) { *os << scene.file; }
 
 class StabilityScene : public ::testing::TestWithParam<MaskScene> {};
 
