@@ -40,32 +40,81 @@ struct TriangleHit {
     float v;
 };
 
-// Möller & Trumbore, "Fast, Minimum Storage Ray/Triangle Intersection" (1997).
-// Both faces are hit; a ray parallel to the plane (det exactly 0) misses.
+// v's coordinates in the order (kx, ky, kz).
+vec3 permute_axes(vec3 v, int kx, int ky, int kz) {
+    return vec3(v[kx], v[ky], v[kz]);
+}
+
+// Woop, Benthin & Wald, "Watertight Ray/Triangle Intersection" (JCGT 2013). The
+// vertices are moved to the ray's origin and sheared so that the ray runs along +-z
+// (its dominant axis kz); the 2D edge functions U, V, W of the sheared triangle at
+// (0, 0) then decide the hit. The paper precomputes the shear once per ray; this
+// function gets the ray per test, so it scales the shear by d.z instead of dividing by
+// it (no division before a hit is known).
+// A vertex's sheared coordinates depend on the vertex and the ray only, never on the
+// triangle, so two triangles sharing an edge compute that edge's function from the
+// same numbers. Each edge function is a difference of two rounded products, and
+// rounding is monotonic, so its computed sign is the exact sign for the sheared float
+// vertices, or zero, never the opposite sign (with or without denormals flushed). The
+// paper recomputes exact zeros in double; double is optional in GLSL, so here a zero
+// counts as inside: the triangles accepted are a superset of the exactly hit ones, and
+// a ray through a shared edge or vertex hits at least one of the triangles around it.
+// The price: a ray within one rounding of an edge may hit the triangle beyond it too
+// (at nearly the same t), or a silhouette triangle a rounding outside its edge. Every
+// expression is precise: a fused multiply-add on one backend only would break both the
+// sign argument and the identity of the two backends.
+// Both faces are hit. A ray lying in the triangle's plane meets no inside: where the
+// shear is exact (a plane x, y or z = c, or products that do not round) the sheared
+// vertices lie on one line through the ray, all three functions are zero, det is 0
+// and the ray misses; where the shear's products round they can open a sliver around
+// that line, and a hit there is finite with barycentrics in [0, 1]. A triangle of zero
+// area in float (its edge vectors' cross product exactly zero) is never hit: it has no
+// normal to shade with, and its sheared image, rounded, could still be a sliver.
+// Returns t and the barycentric weights u of p1 and v of p2, as Moller-Trumbore's
+// test, which this one replaced, did.
 TriangleHit intersect_triangle(Ray ray, vec3 p0, vec3 p1, vec3 p2, float t_min, float t_max) {
     TriangleHit miss = TriangleHit(INFINITY_T, 0.0f, 0.0f);
-    vec3 e1 = p1 - p0;
-    vec3 e2 = p2 - p0;
-    vec3 pv = cross(ray.dir, e2);
-    float det = dot(e1, pv);
+    vec3 ad = abs(ray.dir);
+    int kz = ad.x >= ad.y ? (ad.x >= ad.z ? 0 : 2) : (ad.y >= ad.z ? 1 : 2);
+    int kx = kz == 2 ? 0 : kz + 1;
+    int ky = kx == 2 ? 0 : kx + 1;
+    vec3 d = permute_axes(ray.dir, kx, ky, kz);
+    precise vec3 a = permute_axes(p0 - ray.origin, kx, ky, kz);
+    precise vec3 b = permute_axes(p1 - ray.origin, kx, ky, kz);
+    precise vec3 c = permute_axes(p2 - ray.origin, kx, ky, kz);
+    // The paper's shear x - (d.x / d.z) z, scaled by d.z so that no division is needed:
+    // the edge functions scale by d.z^2 > 0, which changes no sign and no ratio.
+    precise float ax = a.x * d.z - d.x * a.z;
+    precise float ay = a.y * d.z - d.y * a.z;
+    precise float bx = b.x * d.z - d.x * b.z;
+    precise float by = b.y * d.z - d.y * b.z;
+    precise float cx = c.x * d.z - d.x * c.z;
+    precise float cy = c.y * d.z - d.y * c.z;
+    precise float eu = cx * by - cy * bx;  // weight of p0
+    precise float ev = ax * cy - ay * cx;  // weight of p1
+    precise float ew = bx * ay - by * ax;  // weight of p2
+    if ((eu < 0.0f || ev < 0.0f || ew < 0.0f) && (eu > 0.0f || ev > 0.0f || ew > 0.0f)) {
+        return miss;
+    }
+    precise float det = eu + ev + ew;
     if (det == 0.0f) {
         return miss;
     }
-    float inv_det = 1.0f / det;
-    vec3 tv = ray.origin - p0;
-    float u = dot(tv, pv) * inv_det;
-    if (!(u >= 0.0f && u <= 1.0f)) {
-        return miss;
-    }
-    vec3 qv = cross(tv, e1);
-    float v = dot(ray.dir, qv) * inv_det;
-    if (!(v >= 0.0f && u + v <= 1.0f)) {
-        return miss;
-    }
-    float t = dot(e2, qv) * inv_det;
+    precise float t_scaled = eu * a.z + ev * b.z + ew * c.z;
+    precise float t = t_scaled / (det * d.z);
     if (!(t > t_min && t < t_max)) {
         return miss;
     }
+    precise vec3 e1 = p1 - p0;
+    precise vec3 e2 = p2 - p0;
+    precise float nx = e1.y * e2.z - e1.z * e2.y;
+    precise float ny = e1.z * e2.x - e1.x * e2.z;
+    precise float nz = e1.x * e2.y - e1.y * e2.x;
+    if (nx == 0.0f && ny == 0.0f && nz == 0.0f) {
+        return miss;
+    }
+    precise float u = ev / det;
+    precise float v = ew / det;
     return TriangleHit(t, u, v);
 }
 
