@@ -22,10 +22,9 @@ struct Refraction {
 // away from ior 1.5 and, on the denser side, needs the transmitted angle anyway.
 // At and beyond the critical angle all energy is reflected.
 // eta == 1 (an interface between equal indices, such as nested glass of one ior) is
-// no interface at all: the ray goes on unchanged and nothing reflects. The general
-// formula would not say so: 1 - cos_i^2 rounds to 1 for cos_i below 2^-12.5, so a
-// grazing ray would be totally reflected, and elsewhere cos_t misses cos_i by an
-// ULP, leaving a small R and a turned ray at every crossing.
+// no interface at all: the ray goes on bit for bit and nothing reflects. Through the
+// general formula cos_t = sqrt(cos_i^2) can miss cos_i by an ULP, leaving a tiny R
+// and a turned ray at every crossing (and cos_i^2 underflows below 1e-19).
 Refraction refract_fresnel(vec3 d, vec3 n, float eta) {
     if (eta == 1.0f) {
         return Refraction(d, 0.0f, false);
@@ -34,8 +33,9 @@ Refraction refract_fresnel(vec3 d, vec3 n, float eta) {
     // cos^2(theta_t) = 1 - eta^2 (1 - cos_i^2), computed as (1 - eta)(1 + eta) +
     // (eta cos_i)^2: 1 - eta is exact for eta in [1/2, 2] (Sterbenz), so for an ior
     // near 1 and at grazing incidence no digit is lost to 1 - cos_i^2 rounding away
-    // cos_i (the textbook form was 5e-6 off in R at ior 1.0001); and for eta < 1 both
-    // terms are positive, so a ray entering a denser medium is never totally reflected.
+    // cos_i (the textbook form totally reflected grazing rays at eta 1 and was up to
+    // 0.06 off in R near the critical angle); and for eta < 1 both terms are
+    // positive, so a ray entering a denser medium is never totally reflected.
     precise float eta_cos_i = eta * cos_i;
     precise float cos2_t = (1.0f - eta) * (1.0f + eta) + eta_cos_i * eta_cos_i;
     if (!(cos2_t > 0.0f)) {
