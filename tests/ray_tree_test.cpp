@@ -143,7 +143,7 @@ TEST(RayTree, AGlassSlabShiftsARayWithoutTurningIt) {
 
     const double theta = glm::radians(40.0);
     const dvec3 dir(std::sin(theta), -std::cos(theta), 0.0);
-    const Kernel::PendingRay eye{Kernel::Ray(vec3(0.0f, 1.0f, 0.0f), vec3(dir)), vec3(1.0f), 0u};
+    const Kernel::PendingRay eye{Kernel::Ray(vec3(0.0f, 1.0f, 0.0f), vec3(dir)), vec3(1.0f), 0u, glm::vec4(0.0f)};
     const Kernel::Hit top = k.closest_hit(eye.ray, kernel::INFINITY_T);
     ASSERT_TRUE(top.front_face);
     const Spawned in = spawn(k, eye, top);
@@ -183,7 +183,7 @@ TEST(RayTree, TotalInternalReflectionSpawnsOnlyTheReflection) {
     const SceneGpu gpu = build_scene_gpu(scene);
     Kernel k = make_kernel(gpu);
     // From inside, meeting the surface at sin(theta) = 0.9 > 1 / 1.5.
-    const Kernel::PendingRay ray{Kernel::Ray(vec3(0.0f, 0.9f, 0.0f), vec3(1, 0, 0)), vec3(1.0f), 0u};
+    const Kernel::PendingRay ray{Kernel::Ray(vec3(0.0f, 0.9f, 0.0f), vec3(1, 0, 0)), vec3(1.0f), 0u, glm::vec4(0.0f)};
     const Kernel::Hit hit = k.closest_hit(ray.ray, kernel::INFINITY_T);
     ASSERT_FALSE(hit.front_face);
     const Spawned s = spawn(k, ray, hit);
@@ -215,7 +215,7 @@ TEST(RayTree, APerfectMirrorShowsTheLitPlaneExactly) {
     // mirror adds nothing and weighs it by exactly 1.
     const Kernel::Ray eye = k.camera_ray(0.5f, 0.5f);
     const Kernel::Hit mirror = k.closest_hit(eye, kernel::INFINITY_T);
-    const Spawned child = spawn(k, Kernel::PendingRay{eye, vec3(1.0f), 0u}, mirror);
+    const Spawned child = spawn(k, Kernel::PendingRay{eye, vec3(1.0f), 0u, glm::vec4(0.0f)}, mirror);
     ASSERT_TRUE(child.q.has_next);
     EXPECT_EQ(child.q.next.weight, vec3(1.0f));
     std::uint32_t shadow_rays = 0;
@@ -350,7 +350,7 @@ TEST(DecisionHash, DifferentDecisionsHashDifferently) {
     // Total internal reflection against refraction, from inside the glass sphere.
     auto spawn_from = [&](vec3 origin, vec3 dir) {
         return [&k, origin, dir] {
-            const Kernel::PendingRay ray{Kernel::Ray(origin, dir), vec3(1.0f), 0u};
+            const Kernel::PendingRay ray{Kernel::Ray(origin, dir), vec3(1.0f), 0u, glm::vec4(0.0f)};
             spawn(k, ray, k.closest_hit(ray.ray, kernel::INFINITY_T));
         };
     };

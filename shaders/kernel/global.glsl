@@ -104,7 +104,9 @@ vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smoo
 // reflectance's probability (which cancels it from the weight) and refracted
 // otherwise; with "fresnel": false always refracted (total internal reflection
 // reflects). `pick` (uniform in [0, total)) chose the group, u decides within glass.
-Ray scatter_delta(Ray ray, Hit hit, vec3 p, Lobes lobes, float total, float pick, float u, INOUT(vec3) beta) {
+// A refraction updates the media the path is in (specular.glsl).
+Ray scatter_delta(Ray ray, Hit hit, vec3 p, Lobes lobes, float total, float pick, float u, INOUT(vec3) beta,
+                  INOUT(vec4) media) {
     Ray mirrored = Ray(offset_ray_origin(p, hit.geo_normal), mirror_direction(ray.dir, hit.normal));
     // Guarded so that a pick rounded up to `total` never lands on a group of weight 0.
     bool mirror = lobes.w_glass == 0.0f ||
@@ -115,11 +117,15 @@ Ray scatter_delta(Ray ray, Hit hit, vec3 p, Lobes lobes, float total, float pick
         return mirrored;
     }
     beta *= lobes.glass * (total / lobes.w_glass);
-    Refraction r = refract_fresnel(ray.dir, hit.normal, hit.front_face ? 1.0f / lobes.ior : lobes.ior);
+    Refraction r = refract_fresnel(ray.dir, hit.normal, interface_eta(media, lobes.ior, hit.front_face));
     float p_reflect = r.total ? 1.0f : (lobes.fresnel ? r.reflectance : 0.0f);
     bool reflects = u < p_reflect;
     note_decision(reflects ? 14u : 15u);
-    return reflects ? mirrored : Ray(offset_ray_origin(p, -hit.geo_normal), r.dir);
+    if (reflects) {
+        return mirrored;
+    }
+    media = media_after_refraction(media, lobes.ior, hit.front_face);
+    return Ray(offset_ray_origin(p, -hit.geo_normal), r.dir);
 }
 
 // Unbiased path tracing with a throughput loop: emission counted where a path meets
@@ -134,6 +140,7 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
     // 0 after the eye or a delta lobe, whose hits on an emitter count in full.
     float pdf_prev = 0.0f;
     uint hemisphere = params.global.y;
+    vec4 media = vec4(0.0f);  // in air
     loop_enter();
     for (uint bounce = 0u; loop_tick(); bounce += 1u) {
         Hit hit;
@@ -181,7 +188,7 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
             pdf_prev = pdf;
             ray = Ray(offset_ray_origin(p, hit.geo_normal), wi);
         } else {
-            ray = scatter_delta(ray, hit, p, lobes, total, pick, u1, beta);
+            ray = scatter_delta(ray, hit, p, lobes, total, pick, u1, beta, media);
             pdf_prev = 0.0f;
         }
         if (bounce + 1u >= ROULETTE_START) {
@@ -243,6 +250,7 @@ vec3 paper_gl(Ray start, uint bounces, INOUT(Rng) rng, INOUT(SampleResult) s) {
 void paper_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
     Ray ray = eye;
     vec3 beta = vec3(1.0f);
+    vec4 media = vec4(0.0f);  // in air
     loop_enter();
     for (uint bounce = 0u; loop_tick(); bounce += 1u) {
         Hit hit;
@@ -284,7 +292,7 @@ void paper_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
             s.radiance += beta * (total / w_smooth) * local * g;
             return;
         }
-        ray = scatter_delta(ray, hit, p, lobes, total, pick, u1, beta);
+        ray = scatter_delta(ray, hit, p, lobes, total, pick, u1, beta, media);
         s.bounce_rays += 1u;
     }
 }

@@ -2,11 +2,13 @@
 // single entry point that both the compute shader and the reference renderer call.
 
 // A ray waiting to be traced, with the factor its radiance is weighed by in the
-// pixel and its generation (0 for the eye ray).
+// pixel, its generation (0 for the eye ray) and the glass it is inside
+// (specular.glsl's media; 0 for air).
 struct PendingRay {
     Ray ray;
     vec3 weight;
     uint depth;
+    vec4 media;
 };
 
 // The rays of the reflection/refraction tree still to trace. GLSL has no recursion,
@@ -63,10 +65,10 @@ void spawn_children(PendingRay cur, Hit hit, INOUT(RayQueue) q, INOUT(SampleResu
     precise vec3 p = cur.ray.origin + hit.t * cur.ray.dir;
     uint depth = cur.depth + 1u;
     if (transmits) {
-        // Entering through the front face goes from outside (index 1) into the
+        // Entering through the front face goes from the ray's medium into the
         // material; leaving through the back face goes the other way.
         float ior = m.transmit_ior.w;
-        Refraction r = refract_fresnel(cur.ray.dir, hit.normal, hit.front_face ? 1.0f / ior : ior);
+        Refraction r = refract_fresnel(cur.ray.dir, hit.normal, interface_eta(cur.media, ior, hit.front_face));
         note_decision(r.total ? 7u : 6u);
         bool fresnel = m.emission_fresnel.w != 0.0f;
         float share = r.total ? 1.0f : (fresnel ? r.reflectance : 0.0f);
@@ -74,13 +76,14 @@ void spawn_children(PendingRay cur, Hit hit, INOUT(RayQueue) q, INOUT(SampleResu
         if (!r.total) {
             Ray refracted = Ray(offset_ray_origin(p, -hit.geo_normal), r.dir);
             vec3 w = cur.weight * transmit * (fresnel ? 1.0f - r.reflectance : 1.0f);
-            if (queue_ray(PendingRay(refracted, w, depth), q, s)) {
+            vec4 media = media_after_refraction(cur.media, ior, hit.front_face);
+            if (queue_ray(PendingRay(refracted, w, depth, media), q, s)) {
                 s.refraction_rays += 1u;
             }
         }
     }
     Ray mirrored = Ray(offset_ray_origin(p, hit.geo_normal), mirror_direction(cur.ray.dir, hit.normal));
-    if (queue_ray(PendingRay(mirrored, cur.weight * reflect_weight, depth), q, s)) {
+    if (queue_ray(PendingRay(mirrored, cur.weight * reflect_weight, depth, cur.media), q, s)) {
         s.reflection_rays += 1u;
     }
 }
@@ -128,7 +131,7 @@ SampleResult render_sample(uint px, uint py, uint sample_index) {
     SampleResult s = SampleResult(vec3(0.0f), 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, false, false);
     Rng rng = rng_start(py * params.image.x + px, sample_index, params.image.w);
     vec2 sub = subpixel_position(sample_index, rng);
-    PendingRay eye = PendingRay(camera_ray(float(px) + sub.x, float(py) + sub.y), vec3(1.0f), 0u);
+    PendingRay eye = PendingRay(camera_ray(float(px) + sub.x, float(py) + sub.y), vec3(1.0f), 0u, vec4(0.0f));
     // A scene without mirrors or glass skips the tree's loop and its stack.
     if (HAS_GLOBAL) {
         global_sample(eye.ray, rng, s);

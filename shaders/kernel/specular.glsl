@@ -21,17 +21,63 @@ struct Refraction {
 // handful of flops on a hit that already pays for a ray, and Schlick's error grows
 // away from ior 1.5 and, on the denser side, needs the transmitted angle anyway.
 // At and beyond the critical angle all energy is reflected.
+// eta == 1 (an interface between equal indices, such as nested glass of one ior) is
+// no interface at all: the ray goes on bit for bit and nothing reflects. Through the
+// general formula cos_t = sqrt(cos_i^2) can miss cos_i by an ULP, leaving a tiny R
+// and a turned ray at every crossing (and cos_i^2 underflows below 1e-19).
 Refraction refract_fresnel(vec3 d, vec3 n, float eta) {
+    if (eta == 1.0f) {
+        return Refraction(d, 0.0f, false);
+    }
     precise float cos_i = clamp(-dot(d, n), 0.0f, 1.0f);
-    precise float sin2_t = eta * eta * (1.0f - cos_i * cos_i);
-    if (!(sin2_t < 1.0f)) {
+    // cos^2(theta_t) = 1 - eta^2 (1 - cos_i^2), computed as (1 - eta)(1 + eta) +
+    // (eta cos_i)^2: 1 - eta is exact for eta in [1/2, 2] (Sterbenz), so for an ior
+    // near 1 and at grazing incidence no digit is lost to 1 - cos_i^2 rounding away
+    // cos_i (the textbook form totally reflected grazing rays at eta 1 and was up to
+    // 0.06 off in R near the critical angle); and for eta < 1 both terms are
+    // positive, so a ray entering a denser medium is never totally reflected.
+    precise float eta_cos_i = eta * cos_i;
+    precise float cos2_t = (1.0f - eta) * (1.0f + eta) + eta_cos_i * eta_cos_i;
+    if (!(cos2_t > 0.0f)) {
         return Refraction(vec3(0.0f), 1.0f, true);
     }
-    precise float cos_t = sqrt(1.0f - sin2_t);
+    precise float cos_t = sqrt(cos2_t);
     // Dividing the textbook forms by n_transmitted leaves only eta.
-    precise float r_s = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    precise float r_s = (eta_cos_i - cos_t) / (eta_cos_i + cos_t);
     precise float r_p = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    precise vec3 t = eta * d + (eta * cos_i - cos_t) * n;
+    precise vec3 t = eta * d + (eta_cos_i - cos_t) * n;
     precise float reflectance = 0.5f * (r_s * r_s + r_p * r_p);
     return Refraction(unit_vector(t), reflectance, false);
+}
+
+// The media a ray travels in, innermost first: the indices of refraction of the glass
+// bodies it has entered through a front face and not yet left, four deep; 0 is an
+// empty level, air (index 1), so that a zero vec4 is a ray in air. Refraction through
+// a front face pushes the body's index, through a back face pops it, and the interface
+// then separates the index the ray is in from the one it goes to: nested glass of
+// equal ior is an interface of eta 1, invisible, as it is in nature. A fifth nested
+// body is remembered as air once the ray has left the four inside it.
+float medium_ior(float level) {
+    return level > 0.0f ? level : 1.0f;
+}
+
+vec4 media_enter(vec4 media, float ior) {
+    return vec4(ior, media.x, media.y, media.z);
+}
+
+vec4 media_leave(vec4 media) {
+    return vec4(media.y, media.z, media.w, 0.0f);
+}
+
+// n_incident / n_transmitted at a hit on glass of index `ior`: through the front face
+// from the ray's medium into the glass, through the back face from the glass into the
+// medium outside it. A ray that never entered the body it leaves (an eye inside the
+// glass) has air outside: 1 / ior and ior, as for a lone body in air.
+float interface_eta(vec4 media, float ior, bool front_face) {
+    return front_face ? medium_ior(media.x) / ior : ior / medium_ior(media.y);
+}
+
+// The media of the ray refracted at that hit.
+vec4 media_after_refraction(vec4 media, float ior, bool front_face) {
+    return front_face ? media_enter(media, ior) : media_leave(media);
 }
