@@ -100,17 +100,28 @@ TriangleHit intersect_triangle(Ray ray, vec3 p0, vec3 p1, vec3 p2, float t_min, 
     if (det == 0.0f) {
         return miss;
     }
-    precise float t_scaled = eu * a.z + ev * b.z + ew * c.z;
-    precise float t = t_scaled / (det * d.z);
-    if (!(t > t_min && t < t_max)) {
-        return miss;
-    }
     precise vec3 e1 = p1 - p0;
     precise vec3 e2 = p2 - p0;
     precise float nx = e1.y * e2.z - e1.z * e2.y;
     precise float ny = e1.z * e2.x - e1.x * e2.z;
     precise float nz = e1.x * e2.y - e1.y * e2.x;
     if (nx == 0.0f && ny == 0.0f && nz == 0.0f) {
+        return miss;
+    }
+    // The distance from the plane through p0, not from the paper's barycentric sum
+    // eu a.z + ev b.z + ew c.z: that sum cancels terms as large as the vertices'
+    // distances along the dominant axis, and for a large triangle met far from its
+    // corners (a 2e4-wide glass slab, a ray nearly along it) it put the hit point 1e-3
+    // off the plane, beyond the offset that keeps the next ray on the right side. The
+    // plane form errs by rounding of the normal's projection only (exactly nothing
+    // for an axis-aligned plane). The edge functions above still decide the hit.
+    precise float n_dot_d = nx * ray.dir.x + ny * ray.dir.y + nz * ray.dir.z;
+    if (n_dot_d == 0.0f) {
+        return miss;
+    }
+    precise vec3 to_p0 = p0 - ray.origin;
+    precise float t = (nx * to_p0.x + ny * to_p0.y + nz * to_p0.z) / n_dot_d;
+    if (!(t > t_min && t < t_max)) {
         return miss;
     }
     precise float u = ev / det;
