@@ -24,7 +24,7 @@ vec4 to_vec4(const dvec3& v, double w = 0.0) {
 
 // The camera frame is built in double and rounded once, so the kernel's rays do not
 // inherit the error of a float cross product and tan().
-void set_camera(const Camera& cam, bool corners, kernel::Params& p) {
+void set_camera(const Camera& cam, bool corners, const dvec3& origin, kernel::Params& p) {
     const dvec3 forward = robust_normalize(cam.look_at - cam.eye);
     const dvec3 right = glm::normalize(glm::cross(forward, robust_normalize(cam.up)));
     const dvec3 up = glm::cross(right, forward);
@@ -35,7 +35,7 @@ void set_camera(const Camera& cam, bool corners, kernel::Params& p) {
     // Ray (x, y) of the corner grid goes through corner (x - 0.5, y - 0.5) + the
     // sample's offset of 0.5: the image's pixel corner (x, y).
     if (corners) corner -= (step_right + step_down) * 0.5;
-    p.cam_eye = to_vec4(cam.eye);
+    p.cam_eye = to_vec4(cam.eye - origin);
     p.cam_corner = to_vec4(corner);
     p.cam_right = to_vec4(step_right);
     p.cam_down = to_vec4(step_down);
@@ -47,11 +47,11 @@ kernel::Material flatten(const Material& m) {
                             to_vec4(m.emission, m.fresnel ? 1.0 : 0.0));
 }
 
-kernel::Triangle flatten(const Triangle& t) {
+kernel::Triangle flatten(const Triangle& t, const dvec3& origin) {
     kernel::Triangle out{};
-    out.p0 = to_vec4(t.vertices[0]);
-    out.p1 = to_vec4(t.vertices[1]);
-    out.p2 = to_vec4(t.vertices[2]);
+    out.p0 = to_vec4(t.vertices[0] - origin);
+    out.p1 = to_vec4(t.vertices[1] - origin);
+    out.p2 = to_vec4(t.vertices[2] - origin);
     if (t.normals) {
         out.n0 = to_vec4((*t.normals)[0]);
         out.n1 = to_vec4((*t.normals)[1]);
@@ -159,7 +159,7 @@ void add_grid(const Scene& scene, const AccelPolicy& policy, SceneGpu& g) {
     GridRequest request;
     request.resolution = scene.render.grid.resolution;
     request.max_entries = policy.max_buffer_entries;
-    request.eye = scene.camera.eye;
+    request.eye = scene.camera.eye - g.origin;
     std::string note;
     Grid grid = build_grid({g.spheres, g.triangles, g.rings, g.cylinders}, request, note);
     kernel::Params& p = g.params;
@@ -206,7 +206,17 @@ SceneGpu build_scene_gpu(const Scene& scene, const AccelPolicy& policy) {
     g.corners = r.corners;
 
     kernel::Params& p = g.params;
-    set_camera(scene.camera, r.corners, p);
+    // The kernel works in coordinates centred on the camera's eye: every position it
+    // gets is the scene's minus the eye, subtracted in double and only then rounded to
+    // float. A float coordinate is only known to 2^-24 of its magnitude, so what
+    // decides precision is then the distance from the camera, not from the scene's
+    // origin: a scene at 1e6, where float's step is 0.0625, renders as it does at the
+    // origin, and a translated scene gives the kernel the same numbers. The eye ray's
+    // hit points, o + t d with o = 0, are then exact to a few ULPs of their own
+    // coordinates, which is the error the self-intersection offset (ray.glsl) covers.
+    g.origin = scene.camera.eye;
+    const dvec3& o = g.origin;
+    set_camera(scene.camera, r.corners, o, p);
     p.ambient = to_vec4(r.ambient);
     p.background = to_vec4(r.background);
     p.image = r.corners ? uvec4(scene.camera.width + 1, scene.camera.height + 1, 1u, r.seed)
@@ -226,27 +236,27 @@ SceneGpu build_scene_gpu(const Scene& scene, const AccelPolicy& policy) {
     }
     if (g.features.has(Feature::HAS_SPHERES)) {
         for (const Sphere& s : scene.spheres) {
-            g.spheres.push_back(kernel::Sphere(to_vec4(s.center, s.radius), uvec4(s.material, 0u, 0u, 0u)));
+            g.spheres.push_back(kernel::Sphere(to_vec4(s.center - o, s.radius), uvec4(s.material, 0u, 0u, 0u)));
         }
     }
     if (g.features.has(Feature::HAS_TRIANGLES)) {
-        for (const Triangle& t : scene.triangles) g.triangles.push_back(flatten(t));
+        for (const Triangle& t : scene.triangles) g.triangles.push_back(flatten(t, o));
     }
     if (g.features.has(Feature::HAS_RINGS)) {
         for (const Ring& ring : scene.rings) {
-            g.rings.push_back(kernel::Ring(to_vec4(ring.center, ring.inner), to_vec4(ring.normal, ring.outer),
+            g.rings.push_back(kernel::Ring(to_vec4(ring.center - o, ring.inner), to_vec4(ring.normal, ring.outer),
                                            uvec4(ring.material, 0u, 0u, 0u)));
         }
     }
     if (g.features.has(Feature::HAS_CYLINDERS)) {
         for (const Cylinder& c : scene.cylinders) {
-            g.cylinders.push_back(kernel::Cylinder(to_vec4(c.base, c.radius), to_vec4(c.top, c.capped ? 1.0 : 0.0),
+            g.cylinders.push_back(kernel::Cylinder(to_vec4(c.base - o, c.radius), to_vec4(c.top - o, c.capped ? 1.0 : 0.0),
                                                    uvec4(c.material, 0u, 0u, 0u)));
         }
     }
     if (g.features.has(Feature::HAS_POINT_LIGHTS)) {
         for (const PointLight& l : scene.lights) {
-            g.lights.push_back(kernel::PointLight(to_vec4(l.position), to_vec4(l.color * l.intensity)));
+            g.lights.push_back(kernel::PointLight(to_vec4(l.position - o), to_vec4(l.color * l.intensity)));
         }
     }
     p.counts = uvec4(g.spheres.size(), g.triangles.size(), g.lights.size(), g.materials.size());
