@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/gtc/constants.hpp>
 #include <glm/trigonometric.hpp>
@@ -20,6 +21,31 @@ using kernel::vec4;
 vec4 to_vec4(const dvec3& v, double w = 0.0) {
     return vec4(static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z),
                 static_cast<float>(w));
+}
+
+// Where the kernel's coordinates start, in the scene's: the camera's eye rounded to a
+// multiple of 64 on each axis. Every position the kernel gets is the scene's minus
+// this, subtracted in double and only then rounded to float. A float coordinate is
+// only known to 2^-24 of its magnitude, so what decides precision is then the
+// distance from the camera, not from the scene's origin: a scene at 1e6, where
+// float's step is 0.0625, renders as it does near the origin.
+//
+// Why not the eye itself. Rounded to 64, the eye lies within 32 of the kernel's origin
+// on each axis, so an eye ray's hit point eye + t dir near a kernel coordinate of 0
+// errs by a few ULPs of 32, 2^-18, inside the 2^-16 by which ray.glsl moves such
+// points off their surface; elsewhere the point is exact to ULPs of its own
+// coordinates, which its 256-ULP offset covers. And every scene whose eye lies within
+// 32 of its origin (each one under scenes/, each test's) keeps its coordinates bit for
+// bit.
+// With the eye itself, the shipped scenes' coordinates grow to the camera's distance
+// (about 5), their offsets with them, and in scenes/gallery/c_light_in_cylinder.json
+// the 256-ULP offset (1.2e-4) then exceeded the 1e-4 of a 0.6-long shadow ray that
+// visibility.glsl leaves short of an area light's point: the ray reached the lamp's own
+// surface and the lit tube went dark on 9% of pixels. A translation by a multiple of
+// 64 gives the kernel the same numbers.
+dvec3 kernel_origin(const dvec3& eye) {
+    constexpr double kStep = 64.0;  // a power of two: eye / kStep and back are exact
+    return glm::round(eye / kStep) * kStep;
 }
 
 // The camera frame is built in double and rounded once, so the kernel's rays do not
@@ -206,15 +232,7 @@ SceneGpu build_scene_gpu(const Scene& scene, const AccelPolicy& policy) {
     g.corners = r.corners;
 
     kernel::Params& p = g.params;
-    // The kernel works in coordinates centred on the camera's eye: every position it
-    // gets is the scene's minus the eye, subtracted in double and only then rounded to
-    // float. A float coordinate is only known to 2^-24 of its magnitude, so what
-    // decides precision is then the distance from the camera, not from the scene's
-    // origin: a scene at 1e6, where float's step is 0.0625, renders as it does at the
-    // origin, and a translated scene gives the kernel the same numbers. The eye ray's
-    // hit points, o + t d with o = 0, are then exact to a few ULPs of their own
-    // coordinates, which is the error the self-intersection offset (ray.glsl) covers.
-    g.origin = scene.camera.eye;
+    g.origin = kernel_origin(scene.camera.eye);
     const dvec3& o = g.origin;
     set_camera(scene.camera, r.corners, o, p);
     p.ambient = to_vec4(r.ambient);
