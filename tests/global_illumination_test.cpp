@@ -184,8 +184,9 @@ TEST(GlobalPointLight, LambertianPlaneShowsRhoOverPiTimesIrradiance) {
     const RenderOutcome vulkan = test::render_vulkan(scene);
     for (auto [x, y] : {std::pair{3u, 20u}, {16u, 12u}, {28u, 6u}, {0u, 23u}, {20u, 14u}}) {
         // Where the pixel's centre ray meets the plane, in double.
+        // The kernel's coordinates are centred on the eye (SceneGpu::origin).
         const kernel::Kernel::Ray ray = k.camera_ray(float(x) + 0.5f, float(y) + 0.5f);
-        const glm::dvec3 origin(ray.origin), dir(ray.dir);
+        const glm::dvec3 origin = glm::dvec3(ray.origin) + gpu.origin, dir(ray.dir);
         ASSERT_LT(dir.y, 0.0) << "the pixel sees the plane";
         const glm::dvec3 p = origin + (-origin.y / dir.y) * dir;
         const glm::dvec3 to_light = light - p;

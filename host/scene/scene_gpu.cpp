@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/gtc/constants.hpp>
 #include <glm/trigonometric.hpp>
@@ -22,9 +23,34 @@ vec4 to_vec4(const dvec3& v, double w = 0.0) {
                 static_cast<float>(w));
 }
 
+// Where the kernel's coordinates start, in the scene's: the camera's eye rounded to a
+// multiple of 64 on each axis. Every position the kernel gets is the scene's minus
+// this, subtracted in double and only then rounded to float. A float coordinate is
+// only known to 2^-24 of its magnitude, so what decides precision is then the
+// distance from the camera, not from the scene's origin: a scene at 1e6, where
+// float's step is 0.0625, renders as it does near the origin.
+//
+// Why not the eye itself. Rounded to 64, the eye lies within 32 of the kernel's origin
+// on each axis, so an eye ray's hit point eye + t dir near a kernel coordinate of 0
+// errs by a few ULPs of 32, 2^-18, inside the 2^-16 by which ray.glsl moves such
+// points off their surface; elsewhere the point is exact to ULPs of its own
+// coordinates, which its 256-ULP offset covers. And every scene whose eye lies within
+// 32 of its origin (each one under scenes/, each test's) keeps its coordinates bit for
+// bit.
+// With the eye itself, the shipped scenes' coordinates grow to the camera's distance
+// (about 5), their offsets with them, and in scenes/gallery/c_light_in_cylinder.json
+// the 256-ULP offset (1.2e-4) then exceeded the 1e-4 of a 0.6-long shadow ray that
+// visibility.glsl leaves short of an area light's point: the ray reached the lamp's own
+// surface and the lit tube went dark on 9% of pixels. A translation by a multiple of
+// 64 gives the kernel the same numbers.
+dvec3 kernel_origin(const dvec3& eye) {
+    constexpr double kStep = 64.0;  // a power of two: eye / kStep and back are exact
+    return glm::round(eye / kStep) * kStep;
+}
+
 // The camera frame is built in double and rounded once, so the kernel's rays do not
 // inherit the error of a float cross product and tan().
-void set_camera(const Camera& cam, bool corners, kernel::Params& p) {
+void set_camera(const Camera& cam, bool corners, const dvec3& origin, kernel::Params& p) {
     const dvec3 forward = robust_normalize(cam.look_at - cam.eye);
     const dvec3 right = glm::normalize(glm::cross(forward, robust_normalize(cam.up)));
     const dvec3 up = glm::cross(right, forward);
@@ -35,7 +61,7 @@ void set_camera(const Camera& cam, bool corners, kernel::Params& p) {
     // Ray (x, y) of the corner grid goes through corner (x - 0.5, y - 0.5) + the
     // sample's offset of 0.5: the image's pixel corner (x, y).
     if (corners) corner -= (step_right + step_down) * 0.5;
-    p.cam_eye = to_vec4(cam.eye);
+    p.cam_eye = to_vec4(cam.eye - origin);
     p.cam_corner = to_vec4(corner);
     p.cam_right = to_vec4(step_right);
     p.cam_down = to_vec4(step_down);
@@ -47,11 +73,11 @@ kernel::Material flatten(const Material& m) {
                             to_vec4(m.emission, m.fresnel ? 1.0 : 0.0));
 }
 
-kernel::Triangle flatten(const Triangle& t) {
+kernel::Triangle flatten(const Triangle& t, const dvec3& origin) {
     kernel::Triangle out{};
-    out.p0 = to_vec4(t.vertices[0]);
-    out.p1 = to_vec4(t.vertices[1]);
-    out.p2 = to_vec4(t.vertices[2]);
+    out.p0 = to_vec4(t.vertices[0] - origin);
+    out.p1 = to_vec4(t.vertices[1] - origin);
+    out.p2 = to_vec4(t.vertices[2] - origin);
     if (t.normals) {
         out.n0 = to_vec4((*t.normals)[0]);
         out.n1 = to_vec4((*t.normals)[1]);
@@ -159,7 +185,7 @@ void add_grid(const Scene& scene, const AccelPolicy& policy, SceneGpu& g) {
     GridRequest request;
     request.resolution = scene.render.grid.resolution;
     request.max_entries = policy.max_buffer_entries;
-    request.eye = scene.camera.eye;
+    request.eye = scene.camera.eye - g.origin;
     std::string note;
     Grid grid = build_grid({g.spheres, g.triangles, g.rings, g.cylinders}, request, note);
     kernel::Params& p = g.params;
@@ -207,7 +233,9 @@ SceneGpu build_scene_gpu(const Scene& scene, const AccelPolicy& policy) {
     g.corners = r.corners;
 
     kernel::Params& p = g.params;
-    set_camera(scene.camera, r.corners, p);
+    g.origin = kernel_origin(scene.camera.eye);
+    const dvec3& o = g.origin;
+    set_camera(scene.camera, r.corners, o, p);
     p.ambient = to_vec4(r.ambient);
     p.background = to_vec4(r.background);
     p.image = r.corners ? uvec4(scene.camera.width + 1, scene.camera.height + 1, 1u, r.seed)
@@ -227,27 +255,27 @@ SceneGpu build_scene_gpu(const Scene& scene, const AccelPolicy& policy) {
     }
     if (g.features.has(Feature::HAS_SPHERES)) {
         for (const Sphere& s : scene.spheres) {
-            g.spheres.push_back(kernel::Sphere(to_vec4(s.center, s.radius), uvec4(s.material, 0u, 0u, 0u)));
+            g.spheres.push_back(kernel::Sphere(to_vec4(s.center - o, s.radius), uvec4(s.material, 0u, 0u, 0u)));
         }
     }
     if (g.features.has(Feature::HAS_TRIANGLES)) {
-        for (const Triangle& t : scene.triangles) g.triangles.push_back(flatten(t));
+        for (const Triangle& t : scene.triangles) g.triangles.push_back(flatten(t, o));
     }
     if (g.features.has(Feature::HAS_RINGS)) {
         for (const Ring& ring : scene.rings) {
-            g.rings.push_back(kernel::Ring(to_vec4(ring.center, ring.inner), to_vec4(ring.normal, ring.outer),
+            g.rings.push_back(kernel::Ring(to_vec4(ring.center - o, ring.inner), to_vec4(ring.normal, ring.outer),
                                            uvec4(ring.material, 0u, 0u, 0u)));
         }
     }
     if (g.features.has(Feature::HAS_CYLINDERS)) {
         for (const Cylinder& c : scene.cylinders) {
-            g.cylinders.push_back(kernel::Cylinder(to_vec4(c.base, c.radius), to_vec4(c.top, c.capped ? 1.0 : 0.0),
+            g.cylinders.push_back(kernel::Cylinder(to_vec4(c.base - o, c.radius), to_vec4(c.top - o, c.capped ? 1.0 : 0.0),
                                                    uvec4(c.material, 0u, 0u, 0u)));
         }
     }
     if (g.features.has(Feature::HAS_POINT_LIGHTS)) {
         for (const PointLight& l : scene.lights) {
-            g.lights.push_back(kernel::PointLight(to_vec4(l.position), to_vec4(l.color * l.intensity)));
+            g.lights.push_back(kernel::PointLight(to_vec4(l.position - o), to_vec4(l.color * l.intensity)));
         }
     }
     p.counts = uvec4(g.spheres.size(), g.triangles.size(), g.lights.size(), g.materials.size());

@@ -22,6 +22,10 @@ struct BufferSize {
 
 struct SceneGpu {
     kernel::Params params{};
+    // Where the kernel's coordinates start, in the scene's (build_scene_gpu): every
+    // position in params and the buffers is the scene's minus this, so a point the
+    // kernel computes is at origin + that point in the scene.
+    dvec3 origin{0.0};
     FeatureSet features;
     std::vector<kernel::Material> materials;
     std::vector<kernel::Sphere> spheres;

@@ -1,22 +1,94 @@
 // Ray-primitive intersection: pure functions of their arguments (no buffers), so the
 // unit tests call them directly through the reference backend.
 
+// a * b as hi + lo exactly: hi the rounded product, lo its rounding error (Dekker's
+// product, splitting each factor into two 12-bit halves as Veltkamp does, so that the
+// four partial products are exact without a fused multiply-add). `precise` keeps a
+// compiler from simplifying (c - (c - a)) to a. 4097 * a must not overflow (|a| < 8e34).
+vec2 exact_product(float a, float b) {
+    const float SPLIT = 4097.0f;  // 2^12 + 1
+    precise float ca = SPLIT * a;
+    precise float a_hi = ca - (ca - a);
+    precise float a_lo = a - a_hi;
+    precise float cb = SPLIT * b;
+    precise float b_hi = cb - (cb - b);
+    precise float b_lo = b - b_hi;
+    precise float hi = a * b;
+    precise float lo = ((a_hi * b_hi - hi) + a_hi * b_lo + a_lo * b_hi) + a_lo * b_lo;
+    return vec2(hi, lo);
+}
+
+// a + b as hi + lo exactly (Knuth's two-sum).
+vec2 exact_sum(float a, float b) {
+    precise float s = a + b;
+    precise float b_virtual = s - a;
+    precise float lo = (a - (s - b_virtual)) + (b - b_virtual);
+    return vec2(s, lo);
+}
+
+// |origin - center|^2 - r^2 with every difference, product and sum error-free and
+// their errors added at the end (a compensated sum, Ogita, Rump & Oishi's Sum2): about
+// as exact as if it were computed in double and rounded once, however much the terms
+// cancel. The difference origin - center is kept as hi + lo too: a shadow ray leaving
+// a sphere of radius 1e5 starts 3e-5 above it, less than the ULP (0.0078) of the
+// rounded difference.
+float sphere_c_exact(vec3 origin, vec3 center, float r) {
+    vec2 dx = exact_sum(origin.x, -center.x);
+    vec2 dy = exact_sum(origin.y, -center.y);
+    vec2 dz = exact_sum(origin.z, -center.z);
+    vec2 x = exact_product(dx.x, dx.x);
+    vec2 y = exact_product(dy.x, dy.x);
+    vec2 z = exact_product(dz.x, dz.x);
+    vec2 rr = exact_product(r, r);
+    vec2 s = exact_sum(x.x, y.x);
+    precise float err = (x.y + y.y) + s.y;
+    s = exact_sum(s.x, z.x);
+    err = err + (z.y + s.y);
+    s = exact_sum(s.x, -rr.x);
+    err = err + (s.y - rr.y);
+    // (hi + lo)^2 = hi^2 + 2 hi lo + lo^2: the terms of the differences' low parts.
+    precise float low = 2.0f * ((dx.x * dx.y + dy.x * dy.y) + dz.x * dz.y) +
+                        ((dx.y * dx.y + dy.y * dy.y) + dz.y * dz.y);
+    precise float result = s.x + (err + low);
+    return result;
+}
+
 // Nearest t in (t_min, t_max) where the ray meets the sphere, or INFINITY_T.
 // Uses the form of the quadratic that does not cancel catastrophically (Haines et
 // al., "Precision Improvements for Ray/Sphere Intersection", Ray Tracing Gems ch. 7):
 // the discriminant comes from the distance between the centre and the ray's closest
 // point rather than from b^2 - c, and the second root from c / q.
 // `dir` must be unit length.
+//
+// c = |oc|^2 - r^2 still cancels where the origin lies near the surface compared with
+// the radius: 1.5 above a sphere of radius 1e5 it is 3e5 out of 1e10, where a float's
+// ULP is 1024, so the near root c / q was 0.3% off, eye rays' hit points landed inside
+// the ground, and shadow rays leaving it found themselves inside it: the ground
+// shadowed itself (tests/stability_scale_test.cpp). Where |c| is under half of
+// |oc|^2, c is therefore computed error-free (sphere_c_exact); elsewhere it loses
+// under a bit, and the cheap form stays (the overflow guard comes free: an infinite
+// |oc|^2 fails the test). There the discriminant is b^2 - c from the exact c and an
+// exact b^2, whose error, 2 b times b's rounding, is at most that of r^2 - |f|^2 (2 r
+// times f's) and far below it for rays near the horizon (b << r), where r^2 - |f|^2
+// lost the root and put hit points up to 1e-2 under the ground.
 float intersect_sphere(Ray ray, vec3 center, float radius, float t_min, float t_max) {
     vec3 oc = ray.origin - center;
     float b = dot(oc, ray.dir);
-    precise vec3 f = oc - b * ray.dir;
     float r2 = radius * radius;
-    precise float disc = r2 - dot(f, f);
+    precise float oo = dot(oc, oc);
+    precise float c = oo - r2;
+    precise float disc;
+    if (abs(c) < 0.5f * oo) {
+        c = sphere_c_exact(ray.origin, center, radius);
+        vec2 bb = exact_product(b, b);
+        disc = (bb.x - c) + bb.y;
+    } else {
+        precise vec3 f = oc - b * ray.dir;
+        disc = r2 - dot(f, f);
+    }
     if (!(disc >= 0.0f)) {
         return INFINITY_T;
     }
-    precise float c = dot(oc, oc) - r2;
     float root = sqrt(disc);
     precise float q = b >= 0.0f ? -(b + root) : root - b;
     float t_a = q;
