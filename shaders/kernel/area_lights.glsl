@@ -47,7 +47,7 @@ vec3 shade_area_lights(Ray ray, Hit hit, Material m, INOUT(Rng) rng, INOUT(uint)
         vec3 l = to_light / sqrt(r2);
         // The emitter's front must face the point (visibility.glsl tests the rest).
         float cos_emitter = -dot(y.normal, l);
-        if (light_reaches(hit, shadow_origin, l, sqrt(r2), cos_emitter > 0.0f, shadow_rays)) {
+        if (light_reaches(hit, shadow_origin, l, y.position, cos_emitter > 0.0f, shadow_rays)) {
             sum += y.emission * phong_term(m, diffuse, hit.normal, l, dot(hit.normal, l), to_eye) *
                    (cos_emitter / r2);
         }

@@ -78,7 +78,7 @@ vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smoo
             vec3 to_light = vec3(light.position) - p;
             float r2 = dot(to_light, to_light);
             vec3 l = to_light / sqrt(r2);
-            if (light_reaches(hit, shadow_origin, l, sqrt(r2), true, s.shadow_rays)) {
+            if (light_reaches(hit, shadow_origin, l, vec3(light.position), true, s.shadow_rays)) {
                 sum += eval_smooth(lobes, hit.normal, wo, l) * vec3(light.radiance) * (dot(hit.normal, l) / r2);
             }
         }
@@ -89,7 +89,7 @@ vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smoo
         float r2 = dot(to_light, to_light);
         vec3 l = to_light / sqrt(r2);
         float cos_emitter = -dot(y.normal, l);
-        if (light_reaches(hit, shadow_origin, l, sqrt(r2), cos_emitter > 0.0f, s.shadow_rays)) {
+        if (light_reaches(hit, shadow_origin, l, y.position, cos_emitter > 0.0f, s.shadow_rays)) {
             float pdf_light = light_pdf(r2, cos_emitter);
             float pdf_bsdf = p_smooth * pdf_smooth(lobes, frame, wo, l, params.global.y);
             sum += eval_smooth(lobes, hit.normal, wo, l) * y.emission *

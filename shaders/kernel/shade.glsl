@@ -28,7 +28,7 @@ vec3 shade_local(Ray ray, Hit hit, INOUT(Rng) rng, INOUT(uint) shadow_rays) {
             vec3 to_light = vec3(light.position) - p;
             float dist = length(to_light);
             vec3 l = to_light / dist;
-            if (light_reaches(hit, shadow_origin, l, dist, true, shadow_rays)) {
+            if (light_reaches(hit, shadow_origin, l, vec3(light.position), true, shadow_rays)) {
                 color += vec3(light.radiance) * phong_term(m, diffuse, hit.normal, l, dot(hit.normal, l), to_eye);
             }
         }

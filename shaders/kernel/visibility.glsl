@@ -2,8 +2,7 @@
 // lights and area lights share, in local mode (shade.glsl, area_lights.glsl) and in
 // global mode's next-event estimation (global.glsl).
 
-// l is the unit direction from the hit toward the light point, dist the distance to
-// it; source_faces says whether the light sends light that way (an emitter's front
+// l is the unit direction from the hit toward the light point `light`; source_faces says whether the light sends light that way (an emitter's front
 // faces the hit; always true for a point light). The light counts only where both
 // of the surface's normals face it (a shading normal alone would let light through
 // a coarse mesh's silhouette), and, with shadows, where nothing lies in between:
@@ -11,7 +10,12 @@
 // exactly at the hit point (dist 0, l NaN) fails them. A flat emitter cannot light
 // itself: l lies in its plane, so one of the cosines is at most a rounding error
 // above 0.
-bool light_reaches(Hit hit, vec3 shadow_origin, vec3 l, float dist, bool source_faces, INOUT(uint) shadow_rays) {
+// The shadow ray runs from shadow_origin, the hit moved off its surface, to `light`
+// itself, not along l for the hit's distance: the move is a number of ULPs of the
+// hit's coordinates, which far from the origin exceeds the margin SHADOW_RAY_END
+// leaves before the light, and a ray of the hit's length from the moved origin then
+// reached the emitter's own surface (found by issue 6's scale cases).
+bool light_reaches(Hit hit, vec3 shadow_origin, vec3 l, vec3 light, bool source_faces, INOUT(uint) shadow_rays) {
     bool faces = source_faces && dot(hit.normal, l) > 0.0f && dot(hit.geo_normal, l) > 0.0f;
     note_decision(faces ? 3u : 2u);
     if (!faces) {
@@ -21,7 +25,9 @@ bool light_reaches(Hit hit, vec3 shadow_origin, vec3 l, float dist, bool source_
         shadow_rays += 1u;
         // Shadow rays stop short of the light (SHADOW_RAY_END), so that neither a
         // lamp on a ceiling nor an emitter's own surface hides it.
-        return !occluded(Ray(shadow_origin, l), dist * SHADOW_RAY_END);
+        vec3 to_light = light - shadow_origin;
+        float dist = sqrt(dot(to_light, to_light));
+        return !occluded(Ray(shadow_origin, to_light / dist), dist * SHADOW_RAY_END);
     }
     return true;
 }
