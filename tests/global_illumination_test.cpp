@@ -22,12 +22,6 @@
 namespace vkrt {
 namespace {
 
-Scene scene_from_text(const std::string& name, const std::string& text) {
-    const std::filesystem::path file = test::temp_dir("global_illumination") / (name + ".json");
-    std::ofstream(file) << text;
-    return load_scene(file);
-}
-
 // ------------------------------------------------------------ the white furnace
 
 constexpr double kAlbedo = 0.5;
@@ -47,7 +41,7 @@ Scene furnace(const std::string& render, std::uint32_t width = 16, std::uint32_t
       { "type": "quad", "corner": [-1.01, -1.01, 1], "edge1": [0, 2.02, 0], "edge2": [2.02, 0, 0], "material": "wall" },
       { "type": "quad", "corner": [-1, -1.01, -1.01], "edge1": [0, 2.02, 0], "edge2": [0, 0, 2.02], "material": "wall" },
       { "type": "quad", "corner": [1, -1.01, -1.01], "edge1": [0, 0, 2.02], "edge2": [0, 2.02, 0], "material": "wall" })";
-    return scene_from_text("furnace", fmt::format(R"({{
+    return test::scene_from_text("furnace", fmt::format(R"({{
       "camera": {{ "eye": [0.1, 0.2, 0.3], "look_at": [0.5, 0, -1], "fov": 90, "width": {}, "height": {} }},
       "render": {},
       "materials": {{ "wall": {{ "diffuse": [{}, {}, {}], "emission": [{}, {}, {}] }},
@@ -170,7 +164,7 @@ TEST(FurnacePixel, EachPixelWithinFourStandardErrorsOfItsOwnSamples) {
 TEST(GlobalPointLight, LambertianPlaneShowsRhoOverPiTimesIrradiance) {
     constexpr double kRho = 0.6, kIntensity = 3.0;
     const glm::dvec3 light(0.3, 2.0, -0.2);
-    const Scene scene = scene_from_text("plane", R"({
+    const Scene scene = test::scene_from_text("plane", R"({
       "camera": { "eye": [0, 3, 4], "look_at": [0, 0, 0], "fov": 50, "width": 32, "height": 24 },
       "render": { "mode": "global", "spp": 1, "jitter": false, "max_bounces": 2 },
       "materials": { "matte": { "diffuse": [0.6, 0.6, 0.6] } },
@@ -333,18 +327,12 @@ TEST(GlobalBackends, SameSeedSameImageUpToRareDivergentPaths) {
 
 // ----------------------------------------------------------------- edge settings
 
-std::size_t nonfinite(const Image& image) {
-    std::size_t n = 0;
-    for (float v : image.rgb) n += std::isfinite(v) ? 0 : 1;
-    return n;
-}
-
 TEST(GlobalEdges, NoBounceShowsOnlyWhatEmits) {
     for (const Settings& settings : {kPathNee, kPaper}) {
         SCOPED_TRACE(settings.estimator == Estimator::Paper ? "paper" : "path");
         const Scene scene = room(settings, 4, 0);
         for (const RenderOutcome& out : {test::render_cpu(scene), test::render_vulkan(scene)}) {
-            EXPECT_EQ(nonfinite(out.image), 0u);
+            EXPECT_EQ(test::nonfinite_values(out.image), 0u);
             EXPECT_EQ(out.stats.nonfinite_samples, 0u);
             EXPECT_EQ(out.stats.bounce_rays, 0u);
             EXPECT_EQ(out.stats.shadow_rays, 0u);
@@ -376,7 +364,7 @@ TEST(GlobalEdges, AThousandBouncesAndOneSampleStayFinite) {
         SCOPED_TRACE(settings.estimator == Estimator::Paper ? "paper" : settings.nee ? "path+nee" : "path, uniform");
         const Scene scene = room(settings, 1, 1000);
         for (const RenderOutcome& out : {test::render_cpu(scene), test::render_vulkan(scene)}) {
-            EXPECT_EQ(nonfinite(out.image), 0u);
+            EXPECT_EQ(test::nonfinite_values(out.image), 0u);
             EXPECT_EQ(out.stats.nonfinite_samples, 0u);
             EXPECT_EQ(out.stats.truncated_samples, 0u);
             EXPECT_GT(out.stats.bounce_rays, 0u);

@@ -61,33 +61,6 @@ using kernel::vec3;
 
 const std::filesystem::path kCases = std::filesystem::path(VKRT_SOURCE_DIR) / "tests/scenes/stability";
 
-Scene scene_from_text(const std::string& name, const std::string& text) {
-    const std::filesystem::path file = test::temp_dir("stability_grid") / (name + ".json");
-    std::ofstream(file) << text;
-    return load_scene(file);
-}
-
-std::size_t nonfinite(const Image& image) {
-    std::size_t n = 0;
-    for (float v : image.rgb) n += std::isfinite(v) ? 0 : 1;
-    return n;
-}
-
-void expect_sane(const RenderOutcome& out) {
-    EXPECT_EQ(nonfinite(out.image), 0u);
-    EXPECT_EQ(out.stats.nonfinite_samples, 0u);
-    EXPECT_EQ(out.stats.truncated_samples, 0u);
-}
-
-float max_abs_difference(const Image& a, const Image& b) {
-    EXPECT_EQ(a.rgb.size(), b.rgb.size());
-    float worst = 0.0f;
-    for (std::size_t i = 0; i < std::min(a.rgb.size(), b.rgb.size()); ++i) {
-        worst = std::max(worst, std::abs(a.rgb[i] - b.rgb[i]));
-    }
-    return worst;
-}
-
 Scene with_grid_off(Scene s) {
     s.render.grid.mode = GridMode::Off;
     return s;
@@ -99,11 +72,11 @@ RenderOutcome expect_grid_equals_brute_force(const Scene& scene, bool vulkan, fl
     const auto render = vulkan ? test::render_vulkan : test::render_cpu;
     const RenderOutcome grid = render(scene);
     const RenderOutcome brute = render(with_grid_off(scene));
-    expect_sane(grid);
-    expect_sane(brute);
+    test::expect_sane(grid);
+    test::expect_sane(brute);
     EXPECT_TRUE(grid.stats.grid.used) << grid.stats.grid.reason;
     EXPECT_FALSE(brute.stats.grid.used);
-    const float worst = max_abs_difference(grid.image, brute.image);
+    const float worst = test::max_abs_difference(grid.image, brute.image);
     EXPECT_EQ(worst, 0.0f) << (vulkan ? "Vulkan" : "reference") << " backend";
     EXPECT_EQ(grid.stats.eye_hits, brute.stats.eye_hits);
     EXPECT_EQ(grid.stats.shadow_rays, brute.stats.shadow_rays);
@@ -318,7 +291,7 @@ TEST(SignedZero, LightGivesTheSameImageAndCells) {
         SCOPED_TRACE(vulkan ? "Vulkan" : "reference");
         const auto render = vulkan ? test::render_vulkan : test::render_cpu;
         const RenderOutcome a = render(plus);
-        expect_sane(a);
+        test::expect_sane(a);
         std::printf("%s: %llu cells visited, %llu tests, %llu shadow rays with the +0 light\n",
                     vulkan ? "Vulkan" : "reference", static_cast<unsigned long long>(a.stats.cells_visited),
                     static_cast<unsigned long long>(a.stats.intersection_tests),
@@ -326,11 +299,11 @@ TEST(SignedZero, LightGivesTheSameImageAndCells) {
         for (const std::string& twin : twins) {
             SCOPED_TRACE(twin);
             const RenderOutcome b = render(load_scene(kCases / ("case6_signed_zero_light_" + twin + ".json")));
-            expect_sane(b);
+            test::expect_sane(b);
             EXPECT_EQ(a.stats.cells_visited, b.stats.cells_visited);
             EXPECT_EQ(a.stats.intersection_tests, b.stats.intersection_tests);
             EXPECT_EQ(a.stats.shadow_rays, b.stats.shadow_rays);
-            EXPECT_EQ(max_abs_difference(a.image, b.image), 0.0f);
+            EXPECT_EQ(test::max_abs_difference(a.image, b.image), 0.0f);
         }
     }
 }
@@ -340,7 +313,7 @@ TEST(SignedZero, LightGivesTheSameImageAndCells) {
 // Eight spheres at the corners of a cube, a triangle, a ring and a cylinder, on a
 // forced 4x4x4 grid (cell planes near -2, -1, 0, 1, 2), with the eye at `eye`.
 Scene boundary_scene(glm::dvec3 eye) {
-    return scene_from_text("boundary", fmt::format(R"({{
+    return test::scene_from_text("boundary", fmt::format(R"({{
       "camera": {{ "eye": [{}, {}, {}], "look_at": [0.1, 0.2, 0.05], "fov": 70, "width": 32, "height": 24 }},
       "render": {{ "grid": {{ "resolution": [4, 4, 4] }}, "ambient": [0.1, 0.1, 0.1] }},
       "materials": {{ "m": {{ "diffuse": [0.8, 0.6, 0.4], "specular": [1, 1, 1], "ks": 0.3 }} }},
@@ -456,7 +429,7 @@ TEST(TeapotInStadium, DoesNotDegenerate) {
                 static_cast<unsigned long long>(s.grid.references), cluster_cells.size(),
                 s.per_ray(s.intersection_tests), brute.stats.per_ray(brute.stats.intersection_tests),
                 s.per_ray(s.cells_visited));
-    expect_sane(cpu);
+    test::expect_sane(cpu);
     EXPECT_LE(cluster_cells.size(), 2u) << "the scene no longer puts the cluster in one cell";
     EXPECT_LE(s.grid.cells, 4u * primitives + 64u);
     EXPECT_LE(s.grid.references, 4u * s.grid.cells + primitives);
@@ -468,7 +441,7 @@ TEST(TeapotInStadium, DoesNotDegenerate) {
 
 TEST(ResolutionBeyondTheLimit, AboveTheLoadersRangeIsRefusedNamingTheField) {
     try {
-        scene_from_text("too_fine", R"({
+        test::scene_from_text("too_fine", R"({
           "camera": { "eye": [0, 0, 5], "look_at": [0, 0, 0], "width": 8, "height": 8 },
           "render": { "grid": { "resolution": [100000, 100000, 100000] } },
           "materials": { "m": {} },

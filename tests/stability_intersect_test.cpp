@@ -453,24 +453,6 @@ TEST(GrazingCylinder, RaysAlongAndNearlyAlongTheAxis) {
 
 // ======================================================= scenes on both backends
 
-std::size_t nonfinite(const Image& image) {
-    std::size_t n = 0;
-    for (float v : image.rgb) n += std::isfinite(v) ? 0 : 1;
-    return n;
-}
-
-void expect_sane(const RenderOutcome& out) {
-    EXPECT_EQ(nonfinite(out.image), 0u);
-    EXPECT_EQ(out.stats.nonfinite_samples, 0u);
-    EXPECT_EQ(out.stats.truncated_samples, 0u);
-}
-
-float largest_difference(const Image& a, const Image& b) {
-    float worst = 0.0f;
-    for (std::size_t i = 0; i < a.rgb.size(); ++i) worst = std::max(worst, std::abs(a.rgb[i] - b.rgb[i]));
-    return worst;
-}
-
 Scene stability_scene(const std::string& name) {
     return load_scene(std::filesystem::path(VKRT_SOURCE_DIR) / "tests/scenes/stability" / name);
 }
@@ -536,10 +518,10 @@ TEST_P(StabilityScene, FiniteAgreeingAndMatchingTheAnalyticMask) {
     const Scene scene = stability_scene(c.file);
     const RenderOutcome cpu = test::render_cpu(scene);
     const RenderOutcome vulkan = test::render_vulkan(scene);
-    expect_sane(cpu);
-    expect_sane(vulkan);
+    test::expect_sane(cpu);
+    test::expect_sane(vulkan);
     EXPECT_EQ(cpu.stats.eye_hits, vulkan.stats.eye_hits);
-    EXPECT_LE(largest_difference(cpu.image, vulkan.image), 1e-5f);
+    EXPECT_LE(test::max_abs_difference(cpu.image, vulkan.image), 1e-5f);
     const SceneGpu gpu = build_scene_gpu(scene);
     Kernel k = make_kernel(gpu);
     std::size_t hits = 0, band = 0, wrong = 0, backends_differ = 0;
@@ -629,9 +611,9 @@ TEST(DegenerateTriangles, ChangeNothingInAScene) {
                                      vulkan ? "vulkan" : "cpu"));
             const RenderOutcome before = vulkan ? test::render_vulkan(*plain) : test::render_cpu(*plain);
             const RenderOutcome after = vulkan ? test::render_vulkan(with) : test::render_cpu(with);
-            expect_sane(after);
+            test::expect_sane(after);
             EXPECT_EQ(after.stats.eye_hits, before.stats.eye_hits);
-            EXPECT_EQ(largest_difference(after.image, before.image), 0.0f);
+            EXPECT_EQ(test::max_abs_difference(after.image, before.image), 0.0f);
         }
     }
 }
@@ -659,11 +641,11 @@ TEST(BrokenVertexNormals, FallBackToTheFaceNormal) {
             SCOPED_TRACE(fmt::format("{} normals, {}", name, vulkan ? "vulkan" : "cpu"));
             const RenderOutcome want = vulkan ? test::render_vulkan(flat) : test::render_cpu(flat);
             const RenderOutcome got = vulkan ? test::render_vulkan(smooth) : test::render_cpu(smooth);
-            expect_sane(got);
+            test::expect_sane(got);
             EXPECT_EQ(got.stats.eye_hits, want.stats.eye_hits);
             // The opposing blend, (1 - 2u) n, made unit, is the face normal within an
             // ULP or two, which the highlight's exponent (40) multiplies.
-            EXPECT_LE(largest_difference(got.image, want.image), 1e-4f);
+            EXPECT_LE(test::max_abs_difference(got.image, want.image), 1e-4f);
         }
     }
 }

@@ -28,24 +28,6 @@ Scene stability_scene(const std::string& name) {
     return load_scene(test::source_dir() / "tests" / "scenes" / "stability" / name);
 }
 
-std::size_t nonfinite(const Image& image) {
-    std::size_t n = 0;
-    for (float v : image.rgb) n += std::isfinite(v) ? 0 : 1;
-    return n;
-}
-
-void expect_sane(const RenderOutcome& out) {
-    EXPECT_EQ(nonfinite(out.image), 0u);
-    EXPECT_EQ(out.stats.nonfinite_samples, 0u);
-    EXPECT_EQ(out.stats.truncated_samples, 0u);
-}
-
-float largest_difference(const Image& a, const Image& b) {
-    float worst = 0.0f;
-    for (std::size_t i = 0; i < a.rgb.size(); ++i) worst = std::max(worst, std::abs(a.rgb[i] - b.rgb[i]));
-    return worst;
-}
-
 // The fraction of pixels whose channels all agree within `tolerance`.
 double agreeing(const Image& a, const Image& b, float tolerance) {
     std::size_t same = 0;
@@ -222,11 +204,11 @@ NestedImages compare_nested(const std::string& file, bool fresnel, RenderOutcome
     const RenderOutcome a = render(nested);
     const RenderOutcome b = render(single);
     const RenderOutcome c = render(lens);
-    expect_sane(a);
-    expect_sane(b);
-    expect_sane(c);
-    return {largest_difference(a.image, b.image), agreeing(a.image, b.image, 1e-4f),
-            largest_difference(c.image, b.image)};
+    test::expect_sane(a);
+    test::expect_sane(b);
+    test::expect_sane(c);
+    return {test::max_abs_difference(a.image, b.image), agreeing(a.image, b.image, 1e-4f),
+            test::max_abs_difference(c.image, b.image)};
 }
 
 class NestedGlass : public ::testing::TestWithParam<std::string> {};
@@ -256,7 +238,7 @@ TEST(NestedGlass, WithFresnelDiffersOnlyByTheGenerationsItUses) {
     deep.spheres.erase(deep.spheres.begin() + 1);
     Scene shallow = deep;
     shallow.render.max_depth = deep.render.max_depth - 4;
-    const float cut = largest_difference(test::render_cpu(deep).image, test::render_cpu(shallow).image);
+    const float cut = test::max_abs_difference(test::render_cpu(deep).image, test::render_cpu(shallow).image);
     std::printf("[ measured ] fresnel on: nested vs single: largest difference %.3g, %.4f of pixels within 1e-4; "
                 "the single body cut 4 generations earlier: %.3g\n", m.largest, m.agreeing, cut);
     EXPECT_LE(m.largest, cut);
@@ -288,7 +270,7 @@ TEST(TrappedRays, TheRayTreeEndsAtMaxDepth) {
     const RenderOutcome cpu = test::render_cpu(scene);
     const RenderOutcome vulkan = test::render_vulkan(scene);
     for (const RenderOutcome* out : {&cpu, &vulkan}) {
-        expect_sane(*out);
+        test::expect_sane(*out);
         // Total internal reflection spawns no refracted ray; each eye ray has exactly
         // 64 reflected descendants, one a generation, and then the tree ends.
         EXPECT_EQ(out->stats.refraction_rays, 0u);
@@ -297,7 +279,7 @@ TEST(TrappedRays, TheRayTreeEndsAtMaxDepth) {
         EXPECT_EQ(out->stats.dropped_stack_full, 0u);
     }
     expect_same_counts(cpu.stats, vulkan.stats);
-    EXPECT_EQ(largest_difference(cpu.image, vulkan.image), 0.0f);
+    EXPECT_EQ(test::max_abs_difference(cpu.image, vulkan.image), 0.0f);
     std::printf("[ measured ] slab, local: %llu eye rays, %llu reflection rays, 0 refracted\n",
                 static_cast<unsigned long long>(cpu.stats.eye_rays),
                 static_cast<unsigned long long>(cpu.stats.reflection_rays));
@@ -311,11 +293,11 @@ TEST(TrappedRays, PathsEndByRouletteOrMaxBounces) {
     const RenderOutcome cpu = test::render_cpu(path);
     const RenderOutcome vulkan = test::render_vulkan(path);
     for (const RenderOutcome* out : {&cpu, &vulkan}) {
-        expect_sane(*out);
+        test::expect_sane(*out);
         EXPECT_EQ(out->stats.roulette_ended, out->stats.eye_rays);
         EXPECT_LT(out->stats.bounce_rays, 100u * out->stats.eye_rays);
         // No trapped ray ever sees the sky.
-        EXPECT_EQ(largest_difference(out->image, Image(out->image.width, out->image.height)), 0.0f);
+        EXPECT_EQ(test::max_abs_difference(out->image, Image(out->image.width, out->image.height)), 0.0f);
     }
     expect_same_counts(cpu.stats, vulkan.stats);
     std::printf("[ measured ] slab, path: %llu paths, %llu bounces (%.1f a path), all ended by roulette\n",
@@ -328,7 +310,7 @@ TEST(TrappedRays, PathsEndByRouletteOrMaxBounces) {
     const RenderOutcome cpu_paper = test::render_cpu(paper);
     const RenderOutcome vulkan_paper = test::render_vulkan(paper);
     for (const RenderOutcome* out : {&cpu_paper, &vulkan_paper}) {
-        EXPECT_EQ(nonfinite(out->image), 0u);
+        EXPECT_EQ(test::nonfinite_values(out->image), 0u);
         EXPECT_EQ(out->stats.truncated_samples, 0u);
         EXPECT_EQ(out->stats.paper_dropped, out->stats.eye_rays);
         EXPECT_EQ(out->stats.bounce_rays, 1000u * out->stats.eye_rays);
@@ -390,11 +372,11 @@ TEST(HemisphereBasis, AxisAndSignedZeroNormalsSampleAboveTheSurfaceOnBothBackend
         const Scene scene = disc_facing(c.normal, c.from_front);
         const RenderOutcome cpu = test::render_cpu(scene);
         const RenderOutcome vulkan = test::render_vulkan(scene);
-        expect_sane(cpu);
-        expect_sane(vulkan);
+        test::expect_sane(cpu);
+        test::expect_sane(vulkan);
         expect_disc_image(cpu.image);
         expect_disc_image(vulkan.image);
-        EXPECT_LE(largest_difference(cpu.image, vulkan.image), 1e-5f);
+        EXPECT_LE(test::max_abs_difference(cpu.image, vulkan.image), 1e-5f);
     }
 }
 
@@ -407,7 +389,7 @@ TEST(HemisphereBasis, TheSceneFilesHoldTheirNormals) {
     for (const char* file : {"case10_basis_minus_z_signed_zeros.json", "case10_basis_near_minus_z.json"}) {
         SCOPED_TRACE(file);
         const RenderOutcome cpu = test::render_cpu(stability_scene(file));
-        expect_sane(cpu);
+        test::expect_sane(cpu);
         expect_disc_image(cpu.image);
     }
 }

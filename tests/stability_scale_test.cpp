@@ -238,14 +238,6 @@ bool looks_shadowed(const Scene& s, const Image& image, std::uint32_t px, std::u
     return value(image, px, py, c) < e.base + 0.5 * e.lit_part;
 }
 
-void expect_sane(const RenderOutcome& out) {
-    std::size_t nonfinite = 0;
-    for (float v : out.image.rgb) nonfinite += std::isfinite(v) ? 0 : 1;
-    EXPECT_EQ(nonfinite, 0u);
-    EXPECT_EQ(out.stats.nonfinite_samples, 0u);
-    EXPECT_EQ(out.stats.truncated_samples, 0u);
-}
-
 struct ShadowCounts {
     std::size_t lit = 0;              // confident lit pixels of `surface`
     std::size_t falsely_shadowed = 0;
@@ -330,7 +322,7 @@ TEST_P(AcneAtScale, NoFalseShadowsAndTheThinSheetStillCastsOne) {
             SCOPED_TRACE(fmt::format("{}, {} mode, {}", GetParam(), global ? "global" : "local",
                                      vulkan ? "vulkan" : "cpu"));
             const RenderOutcome out = vulkan ? test::render_vulkan(s) : test::render_cpu(s);
-            expect_sane(out);
+            test::expect_sane(out);
             // Shadowed pixels are black in global mode, so only local mode's ambient
             // shows which material a shadowed pixel is.
             const ShadowCounts n = count_shadows(s, out.image, plane, sheet, !global);
@@ -400,7 +392,7 @@ TEST(TinyAndHugeSpheres, TinyFarSphereMatchesTheDoubleMask) {
     const Scene s = stability_scene("case2_tiny_far.json");
     for (bool vulkan : {false, true}) {
         const RenderOutcome out = vulkan ? test::render_vulkan(s) : test::render_cpu(s);
-        expect_sane(out);
+        test::expect_sane(out);
         const MaskCounts n = compare_mask(s, out.image, material_index(s, "ball"));
         fmt::print("case2_tiny_far {}: sphere pixels {}, band {}, mismatches {}\n", vulkan ? "vulkan" : "cpu",
                    n.of_material, n.band, n.mismatches);
@@ -419,7 +411,7 @@ TEST(TinyAndHugeSpheres, HugeNearSphereMatchesTheDoubleMaskWithoutAcne) {
     const int ground = material_index(s, "ground");
     for (bool vulkan : {false, true}) {
         const RenderOutcome out = vulkan ? test::render_vulkan(s) : test::render_cpu(s);
-        expect_sane(out);
+        test::expect_sane(out);
         const MaskCounts mask = compare_mask(s, out.image, ground);
         const ShadowCounts n = count_shadows(s, out.image, ground, material_index(s, "ball"), true);
         fmt::print("case2_huge_near {}: ground pixels {}, band {}, mask mismatches {}; lit ground pixels {}, "
@@ -471,8 +463,8 @@ TEST(FarFromOrigin, TranslatedSceneRendersTheSame8BitImage) {
                                          vulkan ? "vulkan" : "cpu"));
                 const RenderOutcome a = vulkan ? test::render_vulkan(near_scene) : test::render_cpu(near_scene);
                 const RenderOutcome b = vulkan ? test::render_vulkan(far_scene) : test::render_cpu(far_scene);
-                expect_sane(a);
-                expect_sane(b);
+                test::expect_sane(a);
+                test::expect_sane(b);
                 EXPECT_EQ(a.stats.grid.used, b.stats.grid.used);
                 const double same = same_8bit(a.image, b.image);
                 fmt::print("{} grid {} {}: same 8-bit pixels {:.4f}%\n", far, grid == GridMode::On ? "on" : "auto",

@@ -31,11 +31,6 @@ std::vector<fs::path> stability_scenes() {
     return files;
 }
 
-std::size_t nonfinite_pixels(const Image& image) {
-    return static_cast<std::size_t>(
-        std::count_if(image.rgb.begin(), image.rgb.end(), [](float v) { return !std::isfinite(v); }));
-}
-
 TEST(StabilityScenes, CoverTheCasesOfTheIssue) {
     // At least one scene per case that has scenes (cases 1-10; case 11 is the random
     // numbers, probed directly in float_profile_test).
@@ -60,7 +55,7 @@ TEST_P(StabilityScene, FiniteOnBothBackends) {
     const RenderOutcome vulkan = test::render_vulkan(scene);
     for (const RenderOutcome* out : {&cpu, &vulkan}) {
         const char* name = out == &cpu ? "cpu" : "vulkan";
-        EXPECT_EQ(nonfinite_pixels(out->image), 0u) << name;
+        EXPECT_EQ(test::nonfinite_values(out->image), 0u) << name;
         EXPECT_EQ(out->stats.nonfinite_samples, 0u) << name << ": samples discarded as NaN/Inf";
         EXPECT_EQ(out->stats.truncated_samples, 0u) << name << ": samples stopped by the loop budget";
     }

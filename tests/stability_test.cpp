@@ -20,24 +20,6 @@
 namespace vkrt {
 namespace {
 
-Scene scene_from_text(const std::string& name, const std::string& text) {
-    const std::filesystem::path file = test::temp_dir("stability") / (name + ".json");
-    std::ofstream(file) << text;
-    return load_scene(file);
-}
-
-std::size_t nonfinite(const Image& image) {
-    std::size_t n = 0;
-    for (float v : image.rgb) n += std::isfinite(v) ? 0 : 1;
-    return n;
-}
-
-void expect_sane(const RenderOutcome& out) {
-    EXPECT_EQ(nonfinite(out.image), 0u);
-    EXPECT_EQ(out.stats.nonfinite_samples, 0u);
-    EXPECT_EQ(out.stats.truncated_samples, 0u);
-}
-
 // The fraction of pixels whose channels all agree within 1e-3.
 double agreeing(const Image& a, const Image& b) {
     std::size_t same = 0;
@@ -53,7 +35,7 @@ double agreeing(const Image& a, const Image& b) {
 // ---------------------------------------------------- case 9: cameras and images
 
 Scene lit_sphere(double fov, std::uint32_t width, std::uint32_t height) {
-    return scene_from_text("camera", fmt::format(R"({{
+    return test::scene_from_text("camera", fmt::format(R"({{
       "camera": {{ "eye": [0, 1, 5], "look_at": [0, 0.5, 0], "fov": {}, "width": {}, "height": {} }},
       "materials": {{ "m": {{ "diffuse": [0.8, 0.5, 0.3], "specular": [1, 1, 1], "ks": 0.5 }} }},
       "lights": [ {{ "type": "point", "position": [3, 4, 3] }} ],
@@ -76,8 +58,8 @@ TEST_P(ExtremeCamera, FinitePixelsAndBothBackendsAgree) {
     const Scene scene = lit_sphere(c.fov, c.width, c.height);
     const RenderOutcome cpu = test::render_cpu(scene);
     const RenderOutcome vulkan = test::render_vulkan(scene);
-    expect_sane(cpu);
-    expect_sane(vulkan);
+    test::expect_sane(cpu);
+    test::expect_sane(vulkan);
     EXPECT_EQ(cpu.image.width, c.width);
     EXPECT_EQ(cpu.image.height, c.height);
     EXPECT_GE(agreeing(cpu.image, vulkan.image), 0.999);
@@ -112,7 +94,7 @@ TEST(ExtremeCamera, NarrowViewIsAlmostUniform) {
 // n = 0: 0 / 0; 1: 1.2e-7 / 3.7e-9; 1e4: 2.7e-6 / 3.4e-6; 1e6: 0 / 0 (the highlight
 // is narrower than a pixel).
 Scene shiny_sphere(double shininess, bool global) {
-    return scene_from_text("shiny", fmt::format(R"({{
+    return test::scene_from_text("shiny", fmt::format(R"({{
       "camera": {{ "eye": [0, 0, 4], "look_at": [0, 0, 0], "fov": 30, "width": 32, "height": 24 }},
       "render": {},
       "materials": {{ "m": {{ "diffuse": [0.3, 0.3, 0.3], "specular": [1, 1, 1], "ks": 0.7,
@@ -122,12 +104,6 @@ Scene shiny_sphere(double shininess, bool global) {
     }})", global ? R"({ "mode": "global", "spp": 4, "max_bounces": 2 })" : R"({ "aa": 2 })", shininess));
 }
 
-float largest_difference(const Image& a, const Image& b) {
-    float worst = 0.0f;
-    for (std::size_t i = 0; i < a.rgb.size(); ++i) worst = std::max(worst, std::abs(a.rgb[i] - b.rgb[i]));
-    return worst;
-}
-
 TEST(PhongExponents, FiniteAndAgreeingForShininess0To1e6) {
     for (bool global : {false, true}) {
         for (double n : {0.0, 1.0, 1e4, 1e6}) {
@@ -135,9 +111,9 @@ TEST(PhongExponents, FiniteAndAgreeingForShininess0To1e6) {
             const Scene scene = shiny_sphere(n, global);
             const RenderOutcome cpu = test::render_cpu(scene);
             const RenderOutcome vulkan = test::render_vulkan(scene);
-            expect_sane(cpu);
-            expect_sane(vulkan);
-            const float worst = largest_difference(cpu.image, vulkan.image);
+            test::expect_sane(cpu);
+            test::expect_sane(vulkan);
+            const float worst = test::max_abs_difference(cpu.image, vulkan.image);
             EXPECT_LE(worst, 1e-5f * std::max(1.0f, float(n) / 1000.0f));
         }
     }
@@ -147,7 +123,7 @@ TEST(PhongExponents, FiniteAndAgreeingForShininess0To1e6) {
 
 // A grey floor lit by one emitting sphere above it, out of the camera's view.
 Scene floor_under_emitter(double radius, double emission) {
-    return scene_from_text("emitter", fmt::format(R"({{
+    return test::scene_from_text("emitter", fmt::format(R"({{
       "camera": {{ "eye": [0, 0.5, 3], "look_at": [0, 0, 0], "fov": 40, "width": 12, "height": 9 }},
       "render": {{ "mode": "global", "spp": 1024, "max_bounces": 1, "seed": 3 }},
       "materials": {{ "floor": {{ "diffuse": [0.5, 0.5, 0.5] }},
@@ -192,7 +168,7 @@ TEST(StiffEmitters, TinyEmitterOfHugeRadianceLightsLikeItsLargeTwin) {
     EXPECT_GT(large.mean, 0.0);
     EXPECT_NEAR(tiny.mean, large.mean, 3.0 * std::hypot(tiny.standard_error, large.standard_error))
         << "standard errors " << tiny.standard_error << ", " << large.standard_error;
-    expect_sane(test::render_vulkan(floor_under_emitter(1e-4, 1e7)));
+    test::expect_sane(test::render_vulkan(floor_under_emitter(1e-4, 1e7)));
 }
 
 // The loader refuses magnitudes above 1e12 (docs/scene-format.md); a scene built in
@@ -208,7 +184,7 @@ TEST(StiffEmitters, RadianceOf1e38GivesFinitePixels) {
     scene.camera.look_at = dvec3(0.0, 1.0, 0.0);
     scene.render.spp = 16;
     for (const RenderOutcome& out : {test::render_cpu(scene), test::render_vulkan(scene)}) {
-        EXPECT_EQ(nonfinite(out.image), 0u);
+        EXPECT_EQ(test::nonfinite_values(out.image), 0u);
         EXPECT_EQ(out.stats.truncated_samples, 0u);
         EXPECT_GT(out.stats.clamped_samples + out.stats.nonfinite_samples, 0u);
     }

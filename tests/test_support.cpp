@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cctype>
 #include <cstdlib>
 #include <fstream>
@@ -114,6 +115,32 @@ RenderOutcome render_vulkan(const Scene& scene) {
     // message it prints fails the test that rendered.
     EXPECT_EQ(out.stats.validation_messages, 0u) << "the validation layer reported problems (see stderr)";
     return out;
+}
+
+Scene scene_from_text(const std::string& name, const std::string& text) {
+    const std::filesystem::path file = temp_dir("scene_text") / (name + ".json");
+    std::ofstream(file) << text;
+    return load_scene(file);
+}
+
+std::size_t nonfinite_values(const Image& image) {
+    return static_cast<std::size_t>(
+        std::count_if(image.rgb.begin(), image.rgb.end(), [](float v) { return !std::isfinite(v); }));
+}
+
+void expect_sane(const RenderOutcome& out) {
+    EXPECT_EQ(nonfinite_values(out.image), 0u) << "NaN or infinite pixels";
+    EXPECT_EQ(out.stats.nonfinite_samples, 0u) << "samples discarded as NaN or infinite";
+    EXPECT_EQ(out.stats.truncated_samples, 0u) << "samples stopped by the loop budget";
+}
+
+float max_abs_difference(const Image& a, const Image& b) {
+    EXPECT_EQ(a.rgb.size(), b.rgb.size());
+    float worst = 0.0f;
+    for (std::size_t i = 0; i < std::min(a.rgb.size(), b.rgb.size()); ++i) {
+        worst = std::max(worst, std::abs(a.rgb[i] - b.rgb[i]));
+    }
+    return worst;
 }
 
 }  // namespace vkrt::test

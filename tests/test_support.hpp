@@ -53,6 +53,20 @@ ProgramRun run_vkrt(const std::string& args, const std::filesystem::path& dir);
 // returns that line (empty after a failure).
 std::string expect_one_error(const ProgramRun& run, const std::vector<std::string>& pieces);
 
+// A scene from JSON text, written to a temporary file `name`.json first (the loader
+// reads files, and relative paths in the text are then relative to that directory).
+Scene scene_from_text(const std::string& name, const std::string& text);
+
+// How many channel values of the image are NaN or infinite.
+std::size_t nonfinite_values(const Image& image);
+
+// What every render of the stability suite must be (issue 6): no NaN or infinite
+// pixel, no sample discarded as non-finite, none truncated by the loop budget.
+void expect_sane(const RenderOutcome& out);
+
+// The largest absolute difference between two images' channels (same size expected).
+float max_abs_difference(const Image& a, const Image& b);
+
 RenderOutcome render_cpu(const Scene& scene);
 // Runs with the Khronos validation layer on; any validation message fails the test.
 RenderOutcome render_vulkan(const Scene& scene);
