@@ -110,16 +110,21 @@ protected:
     }
     void TearDown() override { fs::remove_all(dir_); }
 
-    // The loader's verdict on `text`: empty when it loads.
-    std::string load_error(const std::string& text) {
-        const fs::path file = dir_ / "scene.json";
-        std::ofstream(file, std::ios::trunc) << text;
+    // The loader's verdict on `file`: empty when it loads.
+    static std::string load_error_of(const fs::path& file) {
         try {
             load_scene(file);
         } catch (const SceneError& e) {
             return e.what();
         }
         return {};
+    }
+
+    // The loader's verdict on `text` as the file `name` (its extension picks the format).
+    std::string load_error(const std::string& text, const std::string& name = "scene.json") {
+        const fs::path file = dir_ / name;
+        std::ofstream(file, std::ios::trunc) << text;
+        return load_error_of(file);
     }
 
     // Every number of `scene` replaced by each literal in turn: refused, naming it.
@@ -201,16 +206,7 @@ void for_each_number_word(const std::string& text, const std::string& word, F&& 
 }
 
 TEST_F(InputSweep, EveryNumberOfAnNffFileRefusesNonFiniteWords) {
-    const fs::path file = dir_ / "scene.nff";
-    const auto error_of = [&](const std::string& text) -> std::string {
-        std::ofstream(file, std::ios::trunc) << text;
-        try {
-            load_scene(file);
-        } catch (const SceneError& e) {
-            return e.what();
-        }
-        return {};
-    };
+    const auto error_of = [&](const std::string& text) { return load_error(text, "scene.nff"); };
     ASSERT_EQ(error_of(kNff), "") << "the sweep's base file must load";
     std::size_t checked = 0;
     for (const std::string& word : kBadWords) {
@@ -235,12 +231,7 @@ TEST_F(InputSweep, EveryNumberOfAnObjFileRefusesNonFiniteWords) {
         for_each_number_word(obj, word, [&](const std::string& text, std::size_t line, const std::string& was) {
             if (was[0] == 'f') return;  // face indices: not numbers the kernel sees
             std::ofstream(dir_ / "tetra.obj", std::ios::trunc) << text;
-            std::string error;
-            try {
-                load_scene(scene);
-            } catch (const SceneError& e) {
-                error = e.what();
-            }
+            const std::string error = load_error_of(scene);
             EXPECT_NE(error.find(fmt::format("tetra.obj:{}:", line)), std::string::npos)
                 << "line " << line << " '" << was << "' with a word made " << word << ": " << error;
             ++checked;
