@@ -155,6 +155,7 @@ TEST(FloatProfile, CommandPrintsTheTableAndWritesJson) {
     const std::string out = read_file(dir / "stdout.txt");
     for (const char* piece : {"property", "cpu", "llvmpipe", "Vulkan spec", "a*b+c, precise", "2^-126 * 0.5",
                               "pow(0, 0)", "1 / -0.0", "sqrt(-0.0)", "x / y, max ULP", "unit_vector (ray.glsl)", "unit_vector, cases differing from cpu",
+                              "rng_next (rng.glsl), largest value", "rng_next, cases differing from cpu",
                               "cos on [-pi, pi], max abs error"}) {
         EXPECT_NE(out.find(piece), std::string::npos) << piece << "\n" << out;
     }
@@ -166,6 +167,11 @@ TEST(FloatProfile, CommandPrintsTheTableAndWritesJson) {
     EXPECT_EQ(cpu.at("one_over_neg_zero"), "-inf");
     EXPECT_EQ(cpu.at("mul_denormal_input"), "1e-40");
     EXPECT_EQ(cpu.at("product_sum_fused"), false);
+    // The random numbers (case 11): the device column names how many differ from the CPU's.
+    EXPECT_EQ(cpu.at("rng_next").at("outside_unit_interval"), 0);
+    EXPECT_LT(std::stof(cpu.at("rng_next").at("largest").get<std::string>()), 1.0f);
+    EXPECT_EQ(json["columns"][1].at("differing_from_cpu").at("rng_next"), 0);
+    EXPECT_EQ(json["columns"][1].at("differing_from_cpu").at("unit_vector"), 0);
     EXPECT_NE(json["columns"][1].at("name").get<std::string>().find("llvmpipe"), std::string::npos);
 }
 
