@@ -14,12 +14,24 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "kernel/sums.glsl"
 
 // Binding numbers are mirrored in host/gpu/vulkan_pipeline.hpp (enum Binding).
-layout(std140, binding = 0) uniform ParamsBlock { Params params; };
-// Scene arrays and per-pixel sums are texel buffers (one uvec4/vec4 texel per struct
-// member), not SSBOs: lavapipe (Mesa 22.3) turns every SSBO load or store into a
-// scalar loop over the 8 SIMD lanes with a bounds check and a stack round-trip per
-// component, which made the primitive loops ~10x slower than the C++ reference.
-// Texel fetches and image loads/stores are vector gathers/scatters.
+// Every binding is a texel buffer (one uvec4/vec4 texel per struct member):
+// - Not SSBOs for the scene arrays and sums: lavapipe (Mesa 22.3) turns every SSBO
+//   load or store into a scalar loop over the 8 SIMD lanes with a bounds check and a
+//   stack round-trip per component, which made the primitive loops ~10x slower than
+//   the C++ reference. Texel fetches and image loads/stores are vector gathers and
+//   scatters.
+// - Not a uniform buffer for the params either: lavapipe inlines uniform-buffer values
+//   that decide a branch or a loop into the shader and compiles that variant when a
+//   dispatch is recorded after the pipeline or descriptors were bound, every time (no
+//   cache of variants in 22.3). That put an LLVM compile, or a load from Mesa's disk
+//   cache, into every submission: image H rendered in 2.1 s instead of 0.43 s with the
+//   disk cache off, 0.21 s instead of 0.14 s with it on (docs/grid.md). Read from a
+//   texel buffer once per invocation, the params are values the compiler cannot see
+//   and the pipeline is compiled once, when it is created. The push constants (sample
+//   and band) are uniform-buffer values to lavapipe too, so they must not decide a
+//   branch by themselves. vulkan_backend_test checks that no uniform buffer is declared.
+layout(binding = 0) uniform usamplerBuffer params_texels;      // 19 texels: one Params
+Params params;   // set by main() before anything reads it
 layout(binding = 1) uniform usamplerBuffer material_texels;    // 5 texels per Material
 layout(binding = 2) uniform usamplerBuffer sphere_texels;      // 2 texels per Sphere
 layout(binding = 3) uniform usamplerBuffer triangle_texels;    // 7 texels per Triangle
@@ -67,12 +79,35 @@ Cylinder load_cylinder(uint i) {
 Emitter load_emitter(uint i) {
     return Emitter(texelFetch(emitter_texels, int(2u * i)), fetch_vec4(emitter_texels, 2u * i + 1u));
 }
+// The Params struct, member by member (layout.glsl).
+Params load_params() {
+    return Params(fetch_vec4(params_texels, 0u),
+                  fetch_vec4(params_texels, 1u),
+                  fetch_vec4(params_texels, 2u),
+                  fetch_vec4(params_texels, 3u),
+                  fetch_vec4(params_texels, 4u),
+                  fetch_vec4(params_texels, 5u),
+                  texelFetch(params_texels, 6),
+                  texelFetch(params_texels, 7),
+                  texelFetch(params_texels, 8),
+                  fetch_vec4(params_texels, 9u),
+                  fetch_vec4(params_texels, 10u),
+                  fetch_vec4(params_texels, 11u),
+                  fetch_vec4(params_texels, 12u),
+                  texelFetch(params_texels, 13),
+                  texelFetch(params_texels, 14),
+                  fetch_vec4(params_texels, 15u),
+                  texelFetch(params_texels, 16),
+                  fetch_vec4(params_texels, 17u),
+                  texelFetch(params_texels, 18));
+}
 uint load_cell_start(uint i) { return texelFetch(grid_cell_starts, int(i)).x; }
 uint load_ref(uint i) { return texelFetch(grid_refs, int(i)).x; }
 
 #include "kernel/all.glsl"
 
 void main() {
+    params = load_params();
     uint px = gl_GlobalInvocationID.x;
     uint py = gl_GlobalInvocationID.y + pass.y;
     if (px >= params.image.x || py >= params.image.y) {

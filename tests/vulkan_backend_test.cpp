@@ -3,13 +3,17 @@
 // and silence from the validation layer throughout.
 #include <algorithm>
 #include <cstdlib>
+#include <iterator>
+#include <span>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "gpu/vulkan_backend.hpp"
+#include "gpu/vulkan_pipeline.hpp"
 #include "render/pixel_sums.hpp"
+#include "render_comp_spv.h"
 
 namespace vkrt {
 namespace {
@@ -240,6 +244,33 @@ TEST(VulkanBackend, StagingPathMatchesMappedPath) {
     EXPECT_EQ(staged.sums, mapped.sums);
     EXPECT_EQ(staged.counters, mapped.counters);
     EXPECT_EQ(backend->validation_messages(), 0u);
+}
+
+// The renderer reads its params from a texel buffer, not a uniform buffer: lavapipe
+// compiles a new shader variant for uniform-buffer values that decide branches, on
+// every submission (render.comp says more). Checked on the SPIR-V itself, so a
+// uniform block that creeps back fails here and not only as a slower benchmark.
+TEST(VulkanBackend, ShaderDeclaresNoUniformBuffer) {
+    constexpr std::uint32_t kOpVariable = 59;
+    constexpr std::uint32_t kStorageUniform = 2;
+    constexpr std::uint32_t kStorageUniformConstant = 0;  // texel buffers, sampled and storage
+    const std::span<const std::uint32_t> words(render_comp_spv, std::size(render_comp_spv));
+    ASSERT_GT(words.size(), 5u);
+    ASSERT_EQ(words[0], 0x07230203u);  // the SPIR-V magic number
+    int variables = 0;
+    int texel_buffers = 0;
+    for (std::size_t i = 5; i < words.size();) {
+        const std::uint32_t count = words[i] >> 16;
+        ASSERT_GT(count, 0u) << "malformed instruction at word " << i;
+        if ((words[i] & 0xFFFFu) == kOpVariable) {
+            ++variables;
+            EXPECT_NE(words[i + 3], kStorageUniform) << "a uniform or storage block, result id " << words[i + 2];
+            texel_buffers += words[i + 3] == kStorageUniformConstant ? 1 : 0;
+        }
+        i += count;
+    }
+    EXPECT_GT(variables, 0);
+    EXPECT_EQ(texel_buffers, int(gpu::kBindingCount));  // every binding, the params among them
 }
 
 }  // namespace

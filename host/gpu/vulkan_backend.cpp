@@ -124,7 +124,7 @@ public:
           groups_y_((height_ + kLocalSize - 1) / kLocalSize),
           setup_start_(Clock::now()),
           pipeline_(make_pipeline(context, scene.features)),
-          params_(context, "params", sizeof(kernel::Params), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT),
+          params_(context, "params", sizeof(kernel::Params), kSceneUsage),
           // Stands in for every array the scene leaves out: the shader still declares
           // the binding, but with the feature off nothing reads it.
           dummy_(context, "unused", 16, kSceneUsage),

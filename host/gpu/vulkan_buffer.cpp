@@ -24,8 +24,8 @@ std::uint32_t find_memory_type(const VkPhysicalDeviceMemoryProperties& memory,
     return UINT32_MAX;
 }
 
-// Buffers are bound only as a uniform buffer (the params) or as texel buffers (every
-// array, see render.comp), so those are the limits to check.
+// Buffers are bound only as texel buffers (render.comp says why), so that is the limit
+// to check.
 void check_range(const VulkanContext& context, const std::string& name, VkDeviceSize size,
                  VkBufferUsageFlags usage) {
     const VkPhysicalDeviceLimits& limits = context.properties().limits;
@@ -33,9 +33,6 @@ void check_range(const VulkanContext& context, const std::string& name, VkDevice
         throw GpuError("buffer '" + name + "' needs " + std::to_string(size) +
                        " bytes, more than this device's " + limit);
     };
-    if ((usage & VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT) && size > limits.maxUniformBufferRange) {
-        fail("maxUniformBufferRange of " + std::to_string(limits.maxUniformBufferRange) + " bytes");
-    }
     // Texel buffers are viewed as 16-byte texels (render.comp).
     if ((usage & (VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT)) &&
         size / 16 > limits.maxTexelBufferElements) {

@@ -13,7 +13,6 @@ namespace {
 // The descriptor types and texel formats that kSceneUsage and kSumsUsage are for.
 VkDescriptorType descriptor_type(std::uint32_t binding) {
     switch (binding) {
-    case kParams: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     case kSums:
     case kCounters: return VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
     default: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
@@ -128,7 +127,6 @@ Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features)
 std::vector<BufferView> write_descriptors(VkDevice device, VkDescriptorSet set,
                                           const std::array<const VulkanBuffer*, kBindingCount>& buffers) {
     std::vector<BufferView> views;
-    std::array<VkDescriptorBufferInfo, kBindingCount> infos{};
     std::array<VkBufferView, kBindingCount> raw_views{};
     std::array<VkWriteDescriptorSet, kBindingCount> writes{};
     for (std::uint32_t i = 0; i < kBindingCount; ++i) {
@@ -137,11 +135,6 @@ std::vector<BufferView> write_descriptors(VkDevice device, VkDescriptorSet set,
         writes[i].dstBinding = i;
         writes[i].descriptorCount = 1;
         writes[i].descriptorType = descriptor_type(i);
-        if (i == kParams) {
-            infos[i] = {buffers[i]->get(), 0, VK_WHOLE_SIZE};
-            writes[i].pBufferInfo = &infos[i];
-            continue;
-        }
         VkBufferViewCreateInfo view_info{};
         view_info.sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO;
         view_info.buffer = buffers[i]->get();
