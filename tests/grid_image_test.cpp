@@ -10,10 +10,15 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
 
 #include "image/compare.hpp"
 #include "kernel_types.hpp"
 #include "scene/load_scene.hpp"
+#include "scene/scene_gpu.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -86,6 +91,56 @@ TEST_P(GridImage, GridAndBruteForceGiveTheSameImage) {
         const ImageDiff cross = compare_images(gpu_grid.image, cpu_brute.image, 1e-3);
         std::printf(", vulkan grid vs cpu brute force: %zu pixels over 1e-3\n", cross.pixels_over);
         EXPECT_LE(cross.fraction_over(), 0.001);
+    }
+}
+
+// A kind with fewer primitives than the threshold is left out of the grid and tested
+// once per ray (scene_gpu.cpp, choose_grid_kinds): here a floor quad 200 wide, a ring
+// and a cylinder beside 48 spheres in a 4-unit cluster. The grid's box is then the
+// cluster's, not the floor's, and the image is brute force's on both backends.
+TEST(GridKinds, FewOfAKindAreTestedOutsideTheGrid) {
+    std::string spheres;
+    for (int i = 0; i < 48; ++i) {
+        spheres += fmt::format(R"({{"type": "sphere", "center": [{}, {}, {}], "radius": 0.3, "material": "m"}},)",
+                               -1.5 + (i % 4), 0.4 + (i / 16), -1.5 + (i / 4 % 4));
+    }
+    const Scene scene = test::scene_from_text("grid_kinds", R"({
+      "camera": {"eye": [0, 6, 9], "look_at": [0, 1, 0], "fov": 45, "width": 64, "height": 48},
+      "render": {"shadows": true},
+      "materials": {"m": {"diffuse": [0.8, 0.6, 0.4], "kd": 1, "ks": 0.3, "shininess": 20}},
+      "lights": [{"type": "point", "position": [4, 10, 6], "intensity": 1}],
+      "objects": [)" + spheres + R"(
+        {"type": "triangle", "vertices": [[-100, 0, -100], [100, 0, -100], [100, 0, 100]], "material": "m"},
+        {"type": "triangle", "vertices": [[-100, 0, -100], [100, 0, 100], [-100, 0, 100]], "material": "m"},
+        {"type": "ring", "center": [3, 0.01, 2], "normal": [0, 1, 0], "inner": 0.2, "outer": 0.8, "material": "m"},
+        {"type": "cylinder", "base": [-3, 0, 2], "top": [-3, 1.5, 2], "radius": 0.4, "capped": true, "material": "m"}
+      ]})");
+    const SceneGpu gpu = build_scene_gpu(scene, AccelPolicy{32, 0xFFFFFFFFu});
+    ASSERT_TRUE(gpu.grid.used);
+    EXPECT_TRUE(gpu.features.has(Feature::GRID_SPHERES));
+    EXPECT_FALSE(gpu.features.has(Feature::GRID_TRIANGLES));
+    EXPECT_FALSE(gpu.features.has(Feature::GRID_RINGS));
+    EXPECT_FALSE(gpu.features.has(Feature::GRID_CYLINDERS));
+    EXPECT_EQ(gpu.grid.outside, (std::vector<std::string>{"triangles: 2", "rings: 1", "cylinders: 1"}));
+    EXPECT_NE(gpu.grid.reason.find("tested per ray, outside the grid"), std::string::npos) << gpu.grid.reason;
+    ASSERT_GE(gpu.grid_refs.size(), 48u);
+    for (const std::uint32_t ref : gpu.grid_refs) {
+        EXPECT_EQ(ref >> kernel::REF_KIND_SHIFT, kernel::REF_SPHERE) << "only spheres are listed";
+    }
+    // The box holds the cluster (x from -1.8 to 1.8), not the floor (x from -100 to 100).
+    EXPECT_GT(gpu.params.grid_min.x + gpu.origin.x, -2.0f);
+    EXPECT_LT(gpu.params.grid_max.x + gpu.origin.x, 2.0f);
+
+    Scene brute = with_grid(scene, GridMode::Off);
+    for (const bool vulkan : {false, true}) {
+        const RenderOutcome grid = vulkan ? test::render_vulkan(scene) : test::render_cpu(scene);
+        const RenderOutcome none = vulkan ? test::render_vulkan(brute) : test::render_cpu(brute);
+        test::expect_sane(grid);
+        test::expect_sane(none);
+        EXPECT_TRUE(grid.stats.grid.used);
+        EXPECT_EQ(grid.stats.grid.outside.size(), 3u);
+        EXPECT_LE(compare_images(grid.image, none.image, 1e-5).max_abs, 1e-5) << (vulkan ? "vulkan" : "cpu");
+        EXPECT_LT(grid.stats.intersection_tests, none.stats.intersection_tests / 2);
     }
 }
 

@@ -20,6 +20,8 @@ namespace vkrt {
 struct GridStats {
     bool used = false;
     std::string reason;                              // why it was, or was not, used
+    // Kinds left out of the grid and tested once per ray instead, as "triangles: 2".
+    std::vector<std::string> outside;
     // What the builder reduced and the limit that forced it (build_grid's note), empty
     // when it built what was asked: also in `reason`, and printed as a warning.
     std::string warning;

@@ -2,10 +2,14 @@
 
 #include "scene/vec_math.hpp"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <span>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -180,14 +184,55 @@ bool want_grid(const Scene& scene, std::size_t primitives, const AccelPolicy& po
     return true;
 }
 
+// Which primitive kinds the grid lists (the GRID_ features). A kind with fewer
+// primitives than the backend's threshold, the count below which brute force beats
+// the grid on a whole scene, is tested once per ray instead (kernel/scene.glsl,
+// trace). A floor of two triangles under thousands of spheres would otherwise be
+// listed in every cell it spans, stretch the grid's box to its own size, and cost
+// every cell visited a pass through the triangle loop, which SIMD hardware runs even
+// when no lane has a triangle (docs/grid.md). Every kind is listed when no kind
+// reaches the threshold (a grid forced on a small scene), and when the scene gives
+// the resolution: that asks for one particular grid, over the whole scene (the
+// README compares SPD balls with published figures for such grids).
+void choose_grid_kinds(const AccelPolicy& policy, bool resolution_given, SceneGpu& g) {
+    const std::array<std::pair<Feature, std::size_t>, 4> kinds{{{Feature::GRID_SPHERES, g.spheres.size()},
+                                                                {Feature::GRID_TRIANGLES, g.triangles.size()},
+                                                                {Feature::GRID_RINGS, g.rings.size()},
+                                                                {Feature::GRID_CYLINDERS, g.cylinders.size()}}};
+    const bool any_large = std::any_of(kinds.begin(), kinds.end(), [&](const auto& k) {
+        return k.second >= policy.brute_force_below;
+    });
+    std::vector<std::string> outside;
+    for (const auto& [feature, count] : kinds) {
+        const bool listed = count != 0 && (resolution_given || !any_large || count >= policy.brute_force_below);
+        g.features.set(feature, listed);
+        if (count != 0 && !listed) {
+            outside.push_back(fmt::format("{}: {}", feature_name(std::uint32_t(feature)).substr(5), count));
+        }
+    }
+    if (!outside.empty()) {
+        g.grid.outside = outside;
+        g.grid.reason += fmt::format("; tested per ray, outside the grid (fewer than {} of their kind): {}",
+                                     policy.brute_force_below, fmt::join(outside, ", "));
+    }
+}
+
+template <class T>
+std::span<const T> if_listed(const SceneGpu& g, Feature f, const std::vector<T>& items) {
+    return g.features.has(f) ? std::span<const T>(items) : std::span<const T>();
+}
+
 void add_grid(const Scene& scene, const AccelPolicy& policy, SceneGpu& g) {
     const auto start = std::chrono::steady_clock::now();
     GridRequest request;
     request.resolution = scene.render.grid.resolution;
+    choose_grid_kinds(policy, request.resolution != GridResolution{0, 0, 0}, g);
     request.max_entries = policy.max_buffer_entries;
     request.eye = scene.camera.eye - g.origin;
     std::string note;
-    Grid grid = build_grid({g.spheres, g.triangles, g.rings, g.cylinders}, request, note);
+    Grid grid = build_grid({if_listed(g, Feature::GRID_SPHERES, g.spheres), if_listed(g, Feature::GRID_TRIANGLES, g.triangles),
+                            if_listed(g, Feature::GRID_RINGS, g.rings), if_listed(g, Feature::GRID_CYLINDERS, g.cylinders)},
+                           request, note);
     kernel::Params& p = g.params;
     p.grid_min = to_vec4(grid.lo);
     p.grid_max = to_vec4(grid.hi);

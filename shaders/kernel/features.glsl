@@ -22,3 +22,9 @@ FEATURE(12, HAS_AREA_LIGHTS)
 FEATURE(13, HAS_REFLECTION)   // mirror rays (material reflect)
 FEATURE(14, HAS_REFRACTION)   // refraction rays, and the reflection rays of glass (material transmit)
 FEATURE(15, HAS_GLOBAL)       // global illumination (global.glsl) instead of the local ray tree
+// With HAS_GRID, the kinds the grid lists. A kind with few primitives is left out of
+// the grid and tested once per ray instead (host/scene/scene_gpu.cpp, docs/grid.md).
+FEATURE(16, GRID_SPHERES)
+FEATURE(17, GRID_TRIANGLES)
+FEATURE(18, GRID_RINGS)
+FEATURE(19, GRID_CYLINDERS)

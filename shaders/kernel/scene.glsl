@@ -74,7 +74,8 @@ uint next_ref(INOUT(uint) i, uint end) {
 }
 
 // Tests the primitives listed for one grid cell, references i to end - 1 (i < end):
-// its spheres, triangles, rings and cylinders, in that order, one loop per kind.
+// its spheres, triangles, rings and cylinders, in that order, one loop per kind the
+// grid lists (GRID_ features).
 // False means "stop the walk": the loop budget ran out, or `any_hit` is set and
 // something was hit.
 //
@@ -84,7 +85,7 @@ uint next_ref(INOUT(uint) i, uint end) {
 // primitive test per kind and cell.
 bool test_cell(Ray ray, uint i, uint end, bool any_hit, INOUT(Nearest) nearest) {
     uint ref = load_ref(i);
-    if (HAS_SPHERES && (ref >> REF_KIND_SHIFT) == REF_SPHERE) {
+    if (GRID_SPHERES && (ref >> REF_KIND_SHIFT) == REF_SPHERE) {
         loop_enter();
         do {
             if (!loop_tick()) {
@@ -97,7 +98,7 @@ bool test_cell(Ray ray, uint i, uint end, bool any_hit, INOUT(Nearest) nearest) 
             ref = next_ref(i, end);
         } while ((ref >> REF_KIND_SHIFT) == REF_SPHERE);
     }
-    if (HAS_TRIANGLES && (ref >> REF_KIND_SHIFT) == REF_TRIANGLE) {
+    if (GRID_TRIANGLES && (ref >> REF_KIND_SHIFT) == REF_TRIANGLE) {
         loop_enter();
         do {
             if (!loop_tick()) {
@@ -110,7 +111,7 @@ bool test_cell(Ray ray, uint i, uint end, bool any_hit, INOUT(Nearest) nearest) 
             ref = next_ref(i, end);
         } while ((ref >> REF_KIND_SHIFT) == REF_TRIANGLE);
     }
-    if (HAS_RINGS && (ref >> REF_KIND_SHIFT) == REF_RING) {
+    if (GRID_RINGS && (ref >> REF_KIND_SHIFT) == REF_RING) {
         loop_enter();
         do {
             if (!loop_tick()) {
@@ -123,7 +124,7 @@ bool test_cell(Ray ray, uint i, uint end, bool any_hit, INOUT(Nearest) nearest) 
             ref = next_ref(i, end);
         } while ((ref >> REF_KIND_SHIFT) == REF_RING);
     }
-    if (HAS_CYLINDERS && (ref >> REF_KIND_SHIFT) == REF_CYLINDER) {
+    if (GRID_CYLINDERS && (ref >> REF_KIND_SHIFT) == REF_CYLINDER) {
         loop_enter();
         do {
             if (!loop_tick()) {
@@ -191,9 +192,12 @@ void grid_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
     }
 }
 
-// Every primitive, for scenes too small to gain from the grid.
-void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
-    if (HAS_SPHERES) {
+// Every primitive of the kinds asked for: the whole scene when it is too small to
+// gain from the grid, else the kinds the grid leaves out. The kinds are constants at
+// each call, so the compilers drop the loops not asked for.
+void brute_force_trace(Ray ray, bool any_hit, bool with_spheres, bool with_triangles, bool with_rings,
+                       bool with_cylinders, INOUT(Nearest) nearest) {
+    if (HAS_SPHERES && with_spheres) {
         loop_enter();
         for (uint i = 0u; i < params.counts.x; ++i) {
             if (!loop_tick()) {
@@ -205,7 +209,7 @@ void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
             }
         }
     }
-    if (HAS_TRIANGLES) {
+    if (HAS_TRIANGLES && with_triangles) {
         loop_enter();
         for (uint i = 0u; i < params.counts.y; ++i) {
             if (!loop_tick()) {
@@ -217,7 +221,7 @@ void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
             }
         }
     }
-    if (HAS_RINGS) {
+    if (HAS_RINGS && with_rings) {
         loop_enter();
         for (uint i = 0u; i < params.more_counts.x; ++i) {
             if (!loop_tick()) {
@@ -229,7 +233,7 @@ void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
             }
         }
     }
-    if (HAS_CYLINDERS) {
+    if (HAS_CYLINDERS && with_cylinders) {
         loop_enter();
         for (uint i = 0u; i < params.more_counts.y; ++i) {
             if (!loop_tick()) {
@@ -243,12 +247,17 @@ void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
     }
 }
 
+// The kinds outside the grid come first: a hit among them bounds the walk (and ends a
+// shadow ray at once).
 Nearest trace(Ray ray, float t_max, bool any_hit) {
     Nearest nearest = Nearest(t_max, REF_NONE, TriangleHit(INFINITY_T, 0.0f, 0.0f), CYLINDER_SIDE);
     if (HAS_GRID) {
-        grid_trace(ray, any_hit, nearest);
+        brute_force_trace(ray, any_hit, !GRID_SPHERES, !GRID_TRIANGLES, !GRID_RINGS, !GRID_CYLINDERS, nearest);
+        if (!(any_hit && nearest.ref != REF_NONE)) {
+            grid_trace(ray, any_hit, nearest);
+        }
     } else {
-        brute_force_trace(ray, any_hit, nearest);
+        brute_force_trace(ray, any_hit, true, true, true, true, nearest);
     }
     return nearest;
 }
