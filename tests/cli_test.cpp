@@ -82,6 +82,25 @@ TEST(Cli, ThreadsDoNotChangeTheImage) {
         << ignored.stderr_text;
 }
 
+// An NFF scene samples pixel corners (render.corners), which replaces spp: --spp
+// says so instead of being dropped without a word, and the render still succeeds.
+TEST(Cli, SppOnACornerSampledSceneIsAWarning) {
+    const fs::path dir = test::temp_dir("cli_corners_spp");
+    {
+        std::ofstream nff(dir / "one.nff");
+        nff << "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 40\nhither 0.01\nresolution 8 8\n"
+               "b 0.1 0.1 0.1\nl 2 4 6\nf 0.8 0.5 0.3 1 0 0 0 0\ns 0 0 0 1\n";
+    }
+    const std::string base = "render " + test::shell_quote((dir / "one.nff").string()) + " --backend cpu -q -o " +
+                             test::shell_quote((dir / "one.png").string());
+    const test::ProgramRun with_spp = test::run_vkrt(base + " --spp 4", dir);
+    EXPECT_EQ(with_spp.code, 0) << with_spp.stderr_text;
+    EXPECT_NE(with_spp.stderr_text.find("warning: --spp is ignored"), std::string::npos) << with_spp.stderr_text;
+    const test::ProgramRun without = test::run_vkrt(base, dir);
+    EXPECT_EQ(without.code, 0) << without.stderr_text;
+    EXPECT_EQ(without.stderr_text.find("warning"), std::string::npos) << without.stderr_text;
+}
+
 // --grid reaches the stats: off, a resolution, and auto's reason.
 TEST(Cli, GridOptionChoosesTheAcceleration) {
     const fs::path dir = test::temp_dir("cli_grid");

@@ -39,6 +39,10 @@ void apply_overrides(const RenderArgs& args, Scene& scene) {
     if (args.width) scene.camera.width = *args.width;
     if (args.height) scene.camera.height = *args.height;
     if (args.spp) scene.render.spp = *args.spp;
+    if (args.spp && scene.render.corners) {
+        fmt::print(stderr, "warning: --spp is ignored: this scene traces one ray through every pixel corner "
+                           "(render.corners, on for NFF scenes), which replaces aa and spp\n");
+    }
     if (args.seed) scene.render.seed = *args.seed;
     if (!args.grid.empty()) {
         const GridSettings grid = parse_grid_option(args.grid).value();  // checked by the parser
