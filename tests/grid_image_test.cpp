@@ -17,6 +17,7 @@
 
 #include "image/compare.hpp"
 #include "kernel_types.hpp"
+#include "render/fingerprint.hpp"
 #include "scene/load_scene.hpp"
 #include "scene/scene_gpu.hpp"
 #include "test_support.hpp"
@@ -132,6 +133,8 @@ TEST(GridKinds, FewOfAKindAreTestedOutsideTheGrid) {
     EXPECT_LT(gpu.params.grid_max.x + gpu.origin.x, 2.0f);
 
     Scene brute = with_grid(scene, GridMode::Off);
+    // Partials rendered with and without the grid still merge (render/fingerprint.hpp).
+    EXPECT_EQ(scene_fingerprint(gpu), scene_fingerprint(build_scene_gpu(brute, AccelPolicy{32, 0xFFFFFFFFu})));
     for (const bool vulkan : {false, true}) {
         const RenderOutcome grid = vulkan ? test::render_vulkan(scene) : test::render_cpu(scene);
         const RenderOutcome none = vulkan ? test::render_vulkan(brute) : test::render_cpu(brute);

@@ -195,25 +195,27 @@ bool want_grid(const Scene& scene, std::size_t primitives, const AccelPolicy& po
 // the resolution: that asks for one particular grid, over the whole scene (the
 // README compares SPD balls with published figures for such grids).
 void choose_grid_kinds(const AccelPolicy& policy, bool resolution_given, SceneGpu& g) {
-    const std::array<std::pair<Feature, std::size_t>, 4> kinds{{{Feature::GRID_SPHERES, g.spheres.size()},
-                                                                {Feature::GRID_TRIANGLES, g.triangles.size()},
-                                                                {Feature::GRID_RINGS, g.rings.size()},
-                                                                {Feature::GRID_CYLINDERS, g.cylinders.size()}}};
-    const bool any_large = std::any_of(kinds.begin(), kinds.end(), [&](const auto& k) {
-        return k.second >= policy.brute_force_below;
-    });
+    struct Kind {
+        Feature feature;
+        const char* name;
+        std::size_t count;
+    };
+    const std::array<Kind, 4> kinds{{{Feature::GRID_SPHERES, "spheres", g.spheres.size()},
+                                     {Feature::GRID_TRIANGLES, "triangles", g.triangles.size()},
+                                     {Feature::GRID_RINGS, "rings", g.rings.size()},
+                                     {Feature::GRID_CYLINDERS, "cylinders", g.cylinders.size()}}};
+    const bool any_large = std::any_of(kinds.begin(), kinds.end(),
+                                       [&](const Kind& k) { return k.count >= policy.brute_force_below; });
     std::vector<std::string> outside;
-    for (const auto& [feature, count] : kinds) {
-        const bool listed = count != 0 && (resolution_given || !any_large || count >= policy.brute_force_below);
-        g.features.set(feature, listed);
-        if (count != 0 && !listed) {
-            outside.push_back(fmt::format("{}: {}", feature_name(std::uint32_t(feature)).substr(5), count));
-        }
+    for (const Kind& k : kinds) {
+        const bool listed = k.count != 0 && (resolution_given || !any_large || k.count >= policy.brute_force_below);
+        g.features.set(k.feature, listed);
+        if (k.count != 0 && !listed) outside.push_back(fmt::format("{}: {}", k.name, k.count));
     }
     if (!outside.empty()) {
-        g.grid.outside = outside;
         g.grid.reason += fmt::format("; tested per ray, outside the grid (fewer than {} of their kind): {}",
                                      policy.brute_force_below, fmt::join(outside, ", "));
+        g.grid.outside = std::move(outside);
     }
 }
 
@@ -230,9 +232,11 @@ void add_grid(const Scene& scene, const AccelPolicy& policy, SceneGpu& g) {
     request.max_entries = policy.max_buffer_entries;
     request.eye = scene.camera.eye - g.origin;
     std::string note;
-    Grid grid = build_grid({if_listed(g, Feature::GRID_SPHERES, g.spheres), if_listed(g, Feature::GRID_TRIANGLES, g.triangles),
-                            if_listed(g, Feature::GRID_RINGS, g.rings), if_listed(g, Feature::GRID_CYLINDERS, g.cylinders)},
-                           request, note);
+    const GridPrimitives listed{if_listed(g, Feature::GRID_SPHERES, g.spheres),
+                                if_listed(g, Feature::GRID_TRIANGLES, g.triangles),
+                                if_listed(g, Feature::GRID_RINGS, g.rings),
+                                if_listed(g, Feature::GRID_CYLINDERS, g.cylinders)};
+    Grid grid = build_grid(listed, request, note);
     kernel::Params& p = g.params;
     p.grid_min = to_vec4(grid.lo);
     p.grid_max = to_vec4(grid.hi);

@@ -79,7 +79,7 @@ uint next_ref(INOUT(uint) i, uint end) {
 // False means "stop the walk": the loop budget ran out, or `any_hit` is set and
 // something was hit.
 //
-// The loops test before they check: a loop whose condition comes first runs its
+// The loops check their condition at the bottom: a loop that checks first runs its
 // body once more on SIMD hardware, with every lane masked off, to find that all
 // lanes are done (lavapipe does, see budget.glsl); here that would be one wasted
 // primitive test per kind and cell.
@@ -140,6 +140,11 @@ bool test_cell(Ray ray, uint i, uint end, bool any_hit, INOUT(Nearest) nearest) 
     return true;
 }
 
+// True once the nearest hit so far lies within the current cell: the walk can stop.
+bool grid_cell_done(GridWalk w, Nearest nearest) {
+    return nearest.t <= min(w.t_next.x, min(w.t_next.y, w.t_next.z));
+}
+
 // Walks the grid along the ray. closest_hit (any_hit false) stops once the nearest
 // hit so far lies within the current cell: a primitive found in a cell may lie
 // beyond it (it spans several cells) while a nearer one waits in the next cell, so a
@@ -158,10 +163,6 @@ bool test_cell(Ray ray, uint i, uint end, bool any_hit, INOUT(Nearest) nearest) 
 // first. The cells visited, the tests made and the result are the same as walking one
 // cell at a time (image H on lavapipe: 1.3x faster with test_cell's bottom-tested
 // loops, docs/grid.md).
-bool grid_cell_done(GridWalk w, Nearest nearest) {
-    return nearest.t <= min(w.t_next.x, min(w.t_next.y, w.t_next.z));
-}
-
 void grid_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
     GridWalk w = grid_walk_start(ray, nearest.t);
     if (!w.inside) {
