@@ -2,8 +2,9 @@
 // lavapipe counts every evaluation of a loop's condition, so a loop that runs n times
 // costs n + 1 (measured: 22,000 lights with one-sphere shadow rays, three counts a
 // light, were cut silently). The kernel counts the same way: loop_enter() before
-// every loop, loop_tick() at the top of every iteration, stopping when it returns
-// false; the sample is then flagged as truncated instead of silently wrong.
+// every loop, loop_tick() once per iteration (at the top, or in the condition of a
+// loop that tests at the bottom), stopping when it returns false; the sample is then
+// flagged as truncated instead of silently wrong.
 
 uint g_loop_iterations = 0u;
 // Work done for the stats report (Counters.work); not a limit.
