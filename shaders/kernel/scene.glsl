@@ -86,9 +86,10 @@ bool trace_done(bool any_hit, Nearest nearest) {
 // Every loop of the traversal leaves at one place only: its condition, which ticks
 // the budget and asks whether a shadow ray found its blocker. Written with a break at
 // the top for the budget and a return after the test for the blocker, the same loops,
-// making the same tests, were slower on lavapipe: SPD balls' brute-force shadow rays
-// 1.25x, image H at 1024x1024 1.08x, the torus knot 1.16x (docs/grid.md, "One exit
-// per loop"); the reference's times did not change beyond their noise.
+// making the same tests, were slower on lavapipe: SPD balls by brute force 1.25x,
+// with the grid 1.17x, image H 1.08x (both at 1024x1024), the torus knot 1.16x
+// (docs/grid.md, "One exit per loop"); the reference's times did not change beyond
+// their noise.
 
 // Tests the primitives listed for one grid cell, references i to end - 1 (i < end):
 // its spheres, triangles, rings and cylinders, in that order, one loop per kind the
