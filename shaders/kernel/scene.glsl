@@ -86,7 +86,7 @@ bool trace_done(bool any_hit, Nearest nearest) {
 // Every loop of the traversal leaves at one place only: its condition, which ticks
 // the budget and asks whether a shadow ray found its blocker. Written with a break at
 // the top for the budget and a return after the test for the blocker, the same loops,
-// making the same tests, were slower on lavapipe: SPD balls by brute force 1.25x,
+// making the same tests, were slower on lavapipe: SPD balls by brute force 1.24x,
 // with the grid 1.17x, image H 1.08x (both at 1024x1024), the torus knot 1.16x
 // (docs/grid.md, "One exit per loop"); the reference's times did not change beyond
 // their noise.
