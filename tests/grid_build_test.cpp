@@ -110,12 +110,14 @@ TEST(GridResolution, OnePrimitiveAndEmptyAndCapped) {
 void expect_exact_binning(const Grid& g, const RandomScene& s) {
     const std::uint64_t n = g.cell_count();
     ASSERT_EQ(g.cell_starts.size(), n + 1);
-    EXPECT_EQ(g.cell_starts.front(), 0u);
+    EXPECT_EQ(g.cell_starts.front(), g.loose) << "the loose references come before cell 0's";
+    const std::vector<std::uint32_t> loose(g.refs.begin(), g.refs.begin() + g.loose);
     EXPECT_EQ(g.cell_starts.back(), g.refs.size());
     EXPECT_TRUE(std::is_sorted(g.cell_starts.begin(), g.cell_starts.end())) << "not a prefix sum";
 
     std::vector<std::vector<std::uint32_t>> want(n);
     auto bin = [&](const Aabb& box, std::uint32_t ref) {
+        if (std::find(loose.begin(), loose.end(), ref) != loose.end()) return;  // in no cell
         const auto [first, last] = g.cells_overlapping(box);
         for (std::uint32_t z = 0; z < g.resolution[2]; ++z) {
             for (std::uint32_t y = 0; y < g.resolution[1]; ++y) {
@@ -214,6 +216,75 @@ TEST(GridBuild, TooManyReferencesCoarsensTheGrid) {
     EXPECT_LT(g.cell_count(), 32000u);
     EXPECT_NE(note.find("references"), std::string::npos) << note;
     expect_exact_binning(g, s);
+}
+
+// A floor far wider than the rest (SPD tree: 100 units under a tree 3 across) is
+// left loose: tested per ray, listed in no cell, so that the grid's box and cells are
+// the cluster's.
+TEST(GridBuild, PrimitivesThatStretchTheBoxAreLeftLoose) {
+    RandomScene s = random_scene(29, 200, 100);   // within [-12, 12] on every axis
+    s.triangles.push_back(triangle({-500, -500, -11}, {500, -500, -11}, {500, 500, -11}));
+    s.triangles.push_back(triangle({-500, -500, -11}, {500, 500, -11}, {-500, 500, -11}));
+    const std::uint32_t floor0 = (kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | 100u;
+    std::string note;
+    GridRequest request;
+    request.max_loose = 32;
+    const Grid g = build_grid(s.primitives(), request, note);
+    ASSERT_EQ(g.loose, 2u);
+    EXPECT_EQ(g.refs[0], floor0);
+    EXPECT_EQ(g.refs[1], floor0 + 1u);
+    EXPECT_GT(g.loose_shrink, 1000.0);
+    for (int a = 0; a < 3; ++a) {
+        EXPECT_GT(g.lo[a], -13.0) << "axis " << a;
+        EXPECT_LT(g.hi[a], 13.0) << "axis " << a;
+    }
+    expect_exact_binning(g, s);
+    for (std::uint64_t i = g.loose; i < g.refs.size(); ++i) {
+        ASSERT_TRUE(g.refs[i] != floor0 && g.refs[i] != floor0 + 1u) << "a loose primitive is listed in a cell too";
+    }
+
+    // Without leave, or asked for a grid over everything: the floor sets the box.
+    request.max_loose = 0;
+    const Grid all = build_grid(s.primitives(), request, note);
+    EXPECT_EQ(all.loose, 0u);
+    EXPECT_LT(all.lo.x, -499.0);
+    expect_exact_binning(all, s);
+}
+
+TEST(GridBuild, NothingIsLeftLooseUnlessTheBoxShrinksMuch) {
+    GridRequest request;
+    request.max_loose = 32;
+    std::string note;
+    // Primitives of similar sizes: leaving any out barely moves the box.
+    const RandomScene similar = random_scene(31, 200, 100);
+    EXPECT_EQ(build_grid(similar.primitives(), request, note).loose, 0u);
+    // A big sphere in the middle of the cluster stretches nothing.
+    RandomScene centred = similar;
+    centred.spheres.push_back(sphere({0, 0, 0}, 11.0f));
+    EXPECT_EQ(build_grid(centred.primitives(), request, note).loose, 0u);
+    // More wide primitives than may be loose (a stadium, tests/scenes/stability case
+    // 6): leaving out 32 of these 40 still leaves their box.
+    RandomScene stadium = similar;
+    for (int i = 0; i < 40; ++i) {
+        const float z = -11.0f - 0.1f * float(i);
+        stadium.triangles.push_back(triangle({-500, -500, z}, {500, -500, z}, {0, 500, z}));
+    }
+    EXPECT_EQ(build_grid(stadium.primitives(), request, note).loose, 0u);
+    // Walls far larger than the floor's 32 triangles, which are far larger than the
+    // cluster (case 6): without the walls the floor would still set the box.
+    RandomScene room = similar;
+    for (int i = 0; i < 16; ++i) {
+        const float x = -400.0f + 200.0f * float(i % 4), y = -400.0f + 200.0f * float(i / 4);
+        room.triangles.push_back(triangle({x, y, -11}, {x + 200, y, -11}, {x, y + 200, -11}));
+        room.triangles.push_back(triangle({x + 200, y, -11}, {x + 200, y + 200, -11}, {x, y + 200, -11}));
+    }
+    for (int i = 0; i < 8; ++i) {
+        const float side = i % 2 == 0 ? -400.0f : 400.0f;
+        const glm::vec3 a = i < 4 ? glm::vec3(side, -400, -11) : glm::vec3(-400, side, -11);
+        const glm::vec3 b = i < 4 ? glm::vec3(side, 400, -11) : glm::vec3(400, side, -11);
+        room.triangles.push_back(triangle(a, b, (i / 2) % 2 == 0 ? b + glm::vec3(0, 0, 800) : a + glm::vec3(0, 0, 800)));
+    }
+    EXPECT_EQ(build_grid(room.primitives(), request, note).loose, 0u);
 }
 
 TEST(GridBuild, FlatSceneAndSinglePrimitive) {

@@ -147,6 +147,62 @@ TEST(GridKinds, FewOfAKindAreTestedOutsideTheGrid) {
     }
 }
 
+// A primitive whose box would stretch the grid's far beyond the rest is left loose
+// (host/accel/grid.cpp, choose_loose) even when its kind is listed: here a floor of
+// two triangles 200 wide under 48 small triangles and 48 spheres in a 4-unit
+// cluster. The grid's box is the cluster's, the floor is tested once per ray from
+// the references before cell 0's, and the image is brute force's on both backends.
+TEST(GridLoose, AFloorUnderAClusterIsTestedPerRay) {
+    std::string objects;
+    for (int i = 0; i < 48; ++i) {
+        const double x = -1.5 + (i % 4), y = 0.4 + (i / 16), z = -1.5 + (i / 4 % 4);
+        objects += fmt::format(R"({{"type": "triangle", "vertices": [[{}, {}, {}], [{}, {}, {}], [{}, {}, {}]],
+                                   "material": "m"}},)",
+                               x - 0.3, y, z, x + 0.3, y, z + 0.1, x, y + 0.4, z - 0.2);
+        objects += fmt::format(R"({{"type": "sphere", "center": [{}, {}, {}], "radius": 0.2, "material": "m"}},)",
+                               x + 0.4, y + 0.3, z + 0.4);
+    }
+    const Scene scene = test::scene_from_text("grid_loose", R"({
+      "camera": {"eye": [0, 6, 9], "look_at": [0, 1, 0], "fov": 45, "width": 64, "height": 48},
+      "render": {"shadows": true},
+      "materials": {"m": {"diffuse": [0.8, 0.6, 0.4], "kd": 1, "ks": 0.3, "shininess": 20}},
+      "lights": [{"type": "point", "position": [4, 10, 6], "intensity": 1}],
+      "objects": [)" + objects + R"(
+        {"type": "triangle", "vertices": [[-100, 0, -100], [100, 0, -100], [100, 0, 100]], "material": "m"},
+        {"type": "triangle", "vertices": [[-100, 0, -100], [100, 0, 100], [-100, 0, 100]], "material": "m"}
+      ]})");
+    const SceneGpu gpu = build_scene_gpu(scene, AccelPolicy{32, 0xFFFFFFFFu});
+    ASSERT_TRUE(gpu.grid.used);
+    EXPECT_TRUE(gpu.features.has(Feature::GRID_TRIANGLES));
+    EXPECT_TRUE(gpu.features.has(Feature::GRID_LOOSE));
+    EXPECT_EQ(gpu.grid.outside, (std::vector<std::string>{"triangles: 2 of 50"}));
+    ASSERT_EQ(gpu.grid_cell_starts.front(), 2u);
+    EXPECT_EQ(gpu.grid_refs[0], (kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | 48u);
+    EXPECT_EQ(gpu.grid_refs[1], (kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | 49u);
+    // The box holds the cluster (x from -1.8 to 2.1), not the floor (x from -100 to 100).
+    EXPECT_GT(gpu.params.grid_min.x + gpu.origin.x, -2.0f);
+    EXPECT_LT(gpu.params.grid_max.x + gpu.origin.x, 2.3f);
+
+    Scene brute = with_grid(scene, GridMode::Off);
+    EXPECT_EQ(scene_fingerprint(gpu), scene_fingerprint(build_scene_gpu(brute, AccelPolicy{32, 0xFFFFFFFFu})));
+    // A resolution from the scene asks for a grid over everything.
+    Scene given = scene;
+    given.render.grid.resolution = {8, 8, 8};
+    const SceneGpu everything = build_scene_gpu(given, AccelPolicy{32, 0xFFFFFFFFu});
+    EXPECT_FALSE(everything.features.has(Feature::GRID_LOOSE));
+    EXPECT_EQ(everything.grid_cell_starts.front(), 0u);
+
+    for (const bool vulkan : {false, true}) {
+        const RenderOutcome grid = vulkan ? test::render_vulkan(scene) : test::render_cpu(scene);
+        const RenderOutcome none = vulkan ? test::render_vulkan(brute) : test::render_cpu(brute);
+        test::expect_sane(grid);
+        test::expect_sane(none);
+        EXPECT_LE(compare_images(grid.image, none.image, 1e-5).max_abs, 1e-5) << (vulkan ? "vulkan" : "cpu");
+        // Fewer tests than brute force: the loose floor costs two a ray, not a walk.
+        EXPECT_LT(grid.stats.intersection_tests, none.stats.intersection_tests / 2);
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Scenes, GridImage, ::testing::ValuesIn(vkrt::test::repo_scenes()), test::scene_test_name);
 
 }  // namespace

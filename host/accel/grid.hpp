@@ -20,7 +20,8 @@ namespace vkrt {
 struct GridStats {
     bool used = false;
     std::string reason;                              // why it was, or was not, used
-    // Kinds left out of the grid and tested once per ray instead, as "triangles: 2".
+    // What is left out of the grid and tested once per ray instead: whole kinds, as
+    // "triangles: 2", and loose primitives (GridRequest::max_loose), as "triangles: 2 of 49294".
     std::vector<std::string> outside;
     // What the builder reduced and the limit that forced it (build_grid's note), empty
     // when it built what was asked: also in `reason`, and printed as a warning.
@@ -46,7 +47,12 @@ struct Grid {
     glm::dvec3 cell{1.0};
     GridResolution resolution{1, 1, 1};
     std::vector<std::uint32_t> cell_starts;  // cells + 1 entries: a prefix sum of the cell sizes
-    std::vector<std::uint32_t> refs;         // kind << REF_KIND_SHIFT | index, cell by cell
+    // kind << REF_KIND_SHIFT | index: first the loose primitives, refs [0, loose),
+    // listed in no cell and tested once per ray, then the cells' lists, cell by cell
+    // (cell_starts[0] == loose).
+    std::vector<std::uint32_t> refs;
+    std::uint32_t loose = 0;
+    double loose_shrink = 1.0;  // how many times larger the box would be with them
 
     std::uint64_t cell_count() const {
         return std::uint64_t(resolution[0]) * resolution[1] * resolution[2];
@@ -83,6 +89,10 @@ struct GridRequest {
     // only known to about its distance travelled times 2^-23, so the boxes are padded
     // by that much, lest the walk step past a primitive the ray really touches.
     std::optional<glm::dvec3> eye;
+    // At most this many primitives whose boxes would stretch the grid's far beyond the
+    // rest (a floor polygon under a tree) are left out of the cells and tested once per
+    // ray instead; 0: every primitive is listed (build_grid says when).
+    std::size_t max_loose = 0;
 };
 
 // What the grid is built over: one span per primitive kind, the kinds the kernel's
@@ -94,9 +104,10 @@ struct GridPrimitives {
     std::span<const kernel::Cylinder> cylinders;
 };
 
-// Builds the grid over every primitive. Within each cell the references are grouped
-// by kind, in the order spheres, triangles, rings, cylinders, each kind in index
-// order: the kernel walks a cell in one loop per kind (shaders/kernel/scene.glsl). A
+// Builds the grid over every primitive but the loose ones (GridRequest::max_loose).
+// Within each cell, and among the loose ones, the references are grouped by kind, in
+// the order spheres, triangles, rings, cylinders, each kind in index order: the
+// kernel walks a cell in one loop per kind (shaders/kernel/scene.glsl). A
 // resolution that would not fit the device is reduced until it does; `note` then
 // says so. More than 2^29 primitives of one kind (the reference's index bits) is an
 // error.

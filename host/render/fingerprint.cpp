@@ -36,7 +36,8 @@ bool is_grid_feature(std::uint32_t id) {
     case Feature::GRID_SPHERES:
     case Feature::GRID_TRIANGLES:
     case Feature::GRID_RINGS:
-    case Feature::GRID_CYLINDERS: return true;
+    case Feature::GRID_CYLINDERS:
+    case Feature::GRID_LOOSE: return true;
     default: return false;
     }
 }

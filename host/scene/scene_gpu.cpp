@@ -219,6 +219,22 @@ void choose_grid_kinds(const AccelPolicy& policy, bool resolution_given, SceneGp
     }
 }
 
+// The stats' account of the grid's loose primitives, by kind: "triangles: 2 of 49294".
+void note_loose(const Grid& grid, SceneGpu& g) {
+    const std::array<std::pair<const char*, std::size_t>, 4> kinds{
+        {{"spheres", g.spheres.size()}, {"triangles", g.triangles.size()}, {"rings", g.rings.size()},
+         {"cylinders", g.cylinders.size()}}};
+    std::array<std::size_t, 4> counts{};
+    for (std::uint32_t i = 0; i < grid.loose; ++i) ++counts[grid.refs[i] >> kernel::REF_KIND_SHIFT];
+    std::vector<std::string> loose;
+    for (std::size_t k = 0; k < kinds.size(); ++k) {
+        if (counts[k] != 0) loose.push_back(fmt::format("{}: {} of {}", kinds[k].first, counts[k], kinds[k].second));
+    }
+    g.grid.reason += fmt::format("; tested per ray, outside the grid (their boxes would make it {:.0f} times "
+                                 "larger): {}", grid.loose_shrink, fmt::join(loose, ", "));
+    g.grid.outside.insert(g.grid.outside.end(), loose.begin(), loose.end());
+}
+
 template <class T>
 std::span<const T> if_listed(const SceneGpu& g, Feature f, const std::vector<T>& items) {
     return g.features.has(f) ? std::span<const T>(items) : std::span<const T>();
@@ -231,6 +247,9 @@ void add_grid(const Scene& scene, const AccelPolicy& policy, SceneGpu& g) {
     choose_grid_kinds(policy, request.resolution != GridResolution{0, 0, 0}, g);
     request.max_entries = policy.max_buffer_entries;
     request.eye = scene.camera.eye - g.origin;
+    // As for whole kinds: a resolution from the scene asks for a grid over everything.
+    const bool resolution_given = request.resolution != GridResolution{0, 0, 0};
+    request.max_loose = resolution_given ? 0 : policy.brute_force_below;
     std::string note;
     const GridPrimitives listed{if_listed(g, Feature::GRID_SPHERES, g.spheres),
                                 if_listed(g, Feature::GRID_TRIANGLES, g.triangles),
@@ -243,6 +262,8 @@ void add_grid(const Scene& scene, const AccelPolicy& policy, SceneGpu& g) {
     p.grid_cell = to_vec4(grid.cell);
     p.grid_inv_cell = to_vec4(1.0 / grid.cell);
     p.grid_res = uvec4(grid.resolution[0], grid.resolution[1], grid.resolution[2], 0u);
+    g.features.set(Feature::GRID_LOOSE, grid.loose != 0);
+    if (grid.loose != 0) note_loose(grid, g);
     g.grid.used = true;
     g.grid.resolution = grid.resolution;
     g.grid.cells = grid.cell_count();

@@ -28,3 +28,7 @@ FEATURE(16, GRID_SPHERES)
 FEATURE(17, GRID_TRIANGLES)
 FEATURE(18, GRID_RINGS)
 FEATURE(19, GRID_CYLINDERS)
+// With HAS_GRID: some primitives of the listed kinds are loose, tested once per ray
+// instead of listed in cells, because their boxes would stretch the grid's
+// (host/accel/grid.cpp, choose_loose). Their references come before cell 0's.
+FEATURE(20, GRID_LOOSE)

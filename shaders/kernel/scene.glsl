@@ -244,12 +244,16 @@ void brute_force_trace(Ray ray, bool any_hit, bool with_spheres, bool with_trian
     }
 }
 
-// The kinds outside the grid come first: a hit among them bounds the walk (and ends a
-// shadow ray at once).
+// What lies outside the grid comes first, the kinds it leaves out and then its loose
+// primitives (references 0 to cell 0's start, in kind order like a cell's): a hit
+// among them bounds the walk (and ends a shadow ray at once).
 Nearest trace(Ray ray, float t_max, bool any_hit) {
     Nearest nearest = Nearest(t_max, REF_NONE, TriangleHit(INFINITY_T, 0.0f, 0.0f), CYLINDER_SIDE);
     if (HAS_GRID) {
         brute_force_trace(ray, any_hit, !GRID_SPHERES, !GRID_TRIANGLES, !GRID_RINGS, !GRID_CYLINDERS, nearest);
+        if (GRID_LOOSE && !blocker_found(any_hit, nearest)) {
+            test_cell(ray, 0u, load_cell_start(0u), any_hit, nearest);
+        }
         if (!blocker_found(any_hit, nearest)) {
             grid_trace(ray, any_hit, nearest);
         }
