@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "scene/load_scene.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -91,6 +92,25 @@ TEST(LoopBudget, ShadowRayLoopsCountToo) {
         EXPECT_NEAR(gpu.image.rgb[i], cpu.image.rgb[i], 1e-4) << "value " << i;
     }
     EXPECT_GT(cpu.image.pixel(2, 2)[0], 0.05f);  // lit, so a silent cut would show
+}
+
+// lavapipe counts loop iterations per 8-lane vector over the whole shader run, the
+// budget per invocation: SPD balls by brute force with its reflections, whose lanes
+// branch through the ray tree differently, passes lavapipe's cap in vectors where no
+// lane passes the budget. Those samples must be flagged, not added to the image with
+// loops cut short: every sample the reference truncates (its lanes are alone) is
+// truncated on Vulkan too, and more, since a vector's count is at least each of its
+// lanes'. Before driver_cut_loops() Vulkan flagged 6 samples here against the
+// reference's 190, and traced 1,410 reflection rays against 1,537.
+TEST(LoopBudget, LoopsTheDriverCutAreFlaggedToo) {
+    Scene scene = load_scene(test::source_dir() / ".." / "shared" / "spd" / "nff" / "balls.nff");
+    scene.render.grid.mode = GridMode::Off;
+    scene.camera.width = 48;
+    scene.camera.height = 48;
+    const RenderOutcome cpu = test::render_cpu(scene);
+    const RenderOutcome gpu = test::render_vulkan(scene);
+    ASSERT_GT(cpu.stats.truncated_samples, 0u) << "the scene no longer reaches the budget";
+    EXPECT_GE(gpu.stats.truncated_samples, cpu.stats.truncated_samples);
 }
 
 TEST(LoopBudget, CommandLineReportsTruncationAsAnError) {

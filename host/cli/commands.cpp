@@ -214,8 +214,8 @@ int run_render(const RenderArgs& args) {
     if (s.truncated_samples > 0) {
         throw std::runtime_error(fmt::format(
             "{} samples ran out of the per-invocation loop budget of {} iterations and were left out; "
-            "the image ({}) is incomplete (lavapipe stops loops silently at 65,535 iterations, so the kernel "
-            "stops first). {}",
+            "the image ({}) is incomplete (lavapipe stops loops silently at 65,535 iterations per 8-lane "
+            "vector, so the kernel stops first, or flags what lavapipe cut). {}",
             s.truncated_samples, s.loop_budget, output,
             s.grid.used ? "Grid cells along these rays hold too many primitives: try a finer render.grid resolution"
                         : "The scene has too many primitives for brute-force tracing: try --grid on"));

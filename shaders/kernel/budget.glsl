@@ -42,3 +42,22 @@ bool loop_tick() {
 bool budget_exhausted() {
     return g_loop_iterations > params.limits.x;
 }
+
+// True when the driver's own loop cap has cut this invocation's loops. lavapipe
+// keeps one counter for the whole shader run of an 8-lane vector and counts every
+// iteration in which any lane is active, while the budget above counts each
+// invocation's own iterations: where the lanes take different paths through nested
+// loops (a ray tree whose lanes reflect at different depths over a brute-force
+// loop), the vector's count passes 65,535 before any lane's passes the budget, and
+// lavapipe ends the loops without a word (docs/architecture.md). Once its counter is
+// spent, every loop stops after one iteration, so this loop, which must run twice,
+// runs once. Its trip count comes from the params, which the compilers cannot see,
+// so it is not unrolled away. Always false on the reference, which has no such cap.
+bool driver_cut_loops() {
+    uint want = min(params.limits.x, 2u);
+    uint runs = 0u;
+    do {
+        runs += 1u;
+    } while (runs < want);
+    return runs < want;
+}

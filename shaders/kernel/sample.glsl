@@ -143,7 +143,7 @@ SampleResult render_sample(uint px, uint py, uint sample_index) {
     s.decisions = g_decisions;
     s.cells_visited = g_cells_visited;
     s.intersection_tests = g_intersection_tests;
-    s.truncated = budget_exhausted();
+    s.truncated = budget_exhausted() || driver_cut_loops();
     return s;
 }
 
