@@ -95,8 +95,8 @@ TEST_P(GridImage, GridAndBruteForceGiveTheSameImage) {
     }
 }
 
-// A kind with fewer primitives than the threshold is left out of the grid and tested
-// once per ray (scene_gpu.cpp, choose_grid_kinds): here a floor quad 200 wide, a ring
+// A kind with fewer primitives than the threshold is left out of the grid's cells and
+// tested once per ray among its loose primitives (scene_gpu.cpp, loose_kinds): here a floor quad 200 wide, a ring
 // and a cylinder beside 48 spheres in a 4-unit cluster. The grid's box is then the
 // cluster's, not the floor's, and the image is brute force's on both backends.
 TEST(GridKinds, FewOfAKindAreTestedOutsideTheGrid) {
@@ -122,11 +122,22 @@ TEST(GridKinds, FewOfAKindAreTestedOutsideTheGrid) {
     EXPECT_FALSE(gpu.features.has(Feature::GRID_TRIANGLES));
     EXPECT_FALSE(gpu.features.has(Feature::GRID_RINGS));
     EXPECT_FALSE(gpu.features.has(Feature::GRID_CYLINDERS));
+    EXPECT_TRUE(gpu.features.has(Feature::LOOSE_TRIANGLES));
+    EXPECT_TRUE(gpu.features.has(Feature::LOOSE_RINGS));
+    EXPECT_TRUE(gpu.features.has(Feature::LOOSE_CYLINDERS));
+    EXPECT_FALSE(gpu.features.has(Feature::LOOSE_SPHERES));
     EXPECT_EQ(gpu.grid.outside, (std::vector<std::string>{"triangles: 2", "rings: 1", "cylinders: 1"}));
     EXPECT_NE(gpu.grid.reason.find("tested per ray, outside the grid"), std::string::npos) << gpu.grid.reason;
-    ASSERT_GE(gpu.grid_refs.size(), 48u);
-    for (const std::uint32_t ref : gpu.grid_refs) {
-        EXPECT_EQ(ref >> kernel::REF_KIND_SHIFT, kernel::REF_SPHERE) << "only spheres are listed";
+    // The loose references first, grouped by kind; the cells list spheres only.
+    ASSERT_EQ(gpu.grid_cell_starts.front(), 4u);
+    EXPECT_EQ(std::vector<std::uint32_t>(gpu.grid_refs.begin(), gpu.grid_refs.begin() + 4),
+              (std::vector<std::uint32_t>{kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT,
+                                          (kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | 1u,
+                                          kernel::REF_RING << kernel::REF_KIND_SHIFT,
+                                          kernel::REF_CYLINDER << kernel::REF_KIND_SHIFT}));
+    ASSERT_GE(gpu.grid_refs.size(), 4u + 48u);
+    for (std::size_t i = 4; i < gpu.grid_refs.size(); ++i) {
+        EXPECT_EQ(gpu.grid_refs[i] >> kernel::REF_KIND_SHIFT, kernel::REF_SPHERE) << "only spheres are listed";
     }
     // The box holds the cluster (x from -1.8 to 1.8), not the floor (x from -100 to 100).
     EXPECT_GT(gpu.params.grid_min.x + gpu.origin.x, -2.0f);
@@ -148,7 +159,7 @@ TEST(GridKinds, FewOfAKindAreTestedOutsideTheGrid) {
 }
 
 // A primitive whose box would stretch the grid's far beyond the rest is left loose
-// (host/accel/grid.cpp, choose_loose) even when its kind is listed: here a floor of
+// (host/accel/grid.cpp, choose_stretching) even when its kind is listed: here a floor of
 // two triangles 200 wide under 48 small triangles and 48 spheres in a 4-unit
 // cluster. The grid's box is the cluster's, the floor is tested once per ray from
 // the references before cell 0's, and the image is brute force's on both backends.
@@ -174,7 +185,8 @@ TEST(GridLoose, AFloorUnderAClusterIsTestedPerRay) {
     const SceneGpu gpu = build_scene_gpu(scene, AccelPolicy{32, 0xFFFFFFFFu});
     ASSERT_TRUE(gpu.grid.used);
     EXPECT_TRUE(gpu.features.has(Feature::GRID_TRIANGLES));
-    EXPECT_TRUE(gpu.features.has(Feature::GRID_LOOSE));
+    EXPECT_TRUE(gpu.features.has(Feature::LOOSE_TRIANGLES));
+    EXPECT_FALSE(gpu.features.has(Feature::LOOSE_SPHERES));
     EXPECT_EQ(gpu.grid.outside, (std::vector<std::string>{"triangles: 2 of 50"}));
     ASSERT_EQ(gpu.grid_cell_starts.front(), 2u);
     EXPECT_EQ(gpu.grid_refs[0], (kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | 48u);
@@ -189,7 +201,7 @@ TEST(GridLoose, AFloorUnderAClusterIsTestedPerRay) {
     Scene given = scene;
     given.render.grid.resolution = {8, 8, 8};
     const SceneGpu everything = build_scene_gpu(given, AccelPolicy{32, 0xFFFFFFFFu});
-    EXPECT_FALSE(everything.features.has(Feature::GRID_LOOSE));
+    EXPECT_FALSE(everything.features.has(Feature::LOOSE_TRIANGLES));
     EXPECT_EQ(everything.grid_cell_starts.front(), 0u);
 
     for (const bool vulkan : {false, true}) {

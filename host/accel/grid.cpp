@@ -87,7 +87,7 @@ constexpr double kLooseShrink = 8.0;
 // the grid keeps: where the next ones are nearly as large, the box is still theirs.
 constexpr double kLooseGap = 8.0;
 
-// The loose primitives: at most `max_loose` of the largest boxes, the fewest whose
+// The primitives loose for their size: at most `max_loose` of the largest boxes, the fewest whose
 // absence shrinks the grid's box to within twice the smallest box that leaving out
 // up to `max_loose` of them reaches, and only if that shrinks it kLooseShrink times
 // and they are kLooseGap times larger than the rest. A floor 100 units wide under a
@@ -98,9 +98,10 @@ constexpr double kLooseGap = 8.0;
 // one whose cells are no smaller around the cluster (tests/scenes/stability case 6:
 // 870 tests per ray against 404). Returns one flag per box; `shrink` gets the volume
 // ratio.
-std::vector<bool> choose_loose(const std::vector<Aabb>& boxes, std::size_t max_loose, double& shrink) {
+std::vector<bool> choose_stretching(const std::vector<Aabb>& boxes, std::size_t max_loose, double& shrink) {
     std::vector<bool> loose(boxes.size(), false);
     shrink = 1.0;
+    if (boxes.empty()) return loose;
     const std::size_t k = std::min(max_loose, boxes.size() - 1);  // at least one is listed
     if (k == 0) return loose;
     auto largest_extent = [&](std::size_t i) {
@@ -285,10 +286,27 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
         return g;
     }
     // The loose primitives' references go first, in kind order like a cell's; the
-    // rest are binned.
-    const std::vector<bool> loose = choose_loose(boxes, request.max_loose, g.loose_shrink);
+    // rest are binned. Kinds that are loose as a whole take no part in choosing the
+    // others.
     std::vector<std::uint32_t> loose_refs;
     {
+        std::vector<bool> loose(boxes.size());
+        std::vector<std::size_t> kept;   // the others' indices
+        std::vector<Aabb> kept_boxes;
+        for (std::size_t i = 0; i < boxes.size(); ++i) {
+            loose[i] = request.loose_kinds[ids[i] >> kernel::REF_KIND_SHIFT];
+            if (!loose[i]) {
+                kept.push_back(i);
+                kept_boxes.push_back(boxes[i]);
+            }
+        }
+        const std::vector<bool> stretching = choose_stretching(kept_boxes, request.max_loose, g.loose_shrink);
+        for (std::size_t k = 0; k < kept.size(); ++k) {
+            if (stretching[k]) {
+                loose[kept[k]] = true;
+                ++g.stretching;
+            }
+        }
         std::vector<Aabb> listed_boxes;
         std::vector<std::uint32_t> listed_ids;
         for (std::size_t i = 0; i < boxes.size(); ++i) {
@@ -303,6 +321,11 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
         ids = std::move(listed_ids);
     }
     g.loose = std::uint32_t(loose_refs.size());
+    if (boxes.empty()) {   // everything is loose: one cell, empty
+        g.cell_starts = {g.loose, g.loose};
+        g.refs = std::move(loose_refs);
+        return g;
+    }
     const Aabb box = grid_box(boxes);
     const std::uint64_t max_refs = std::min(request.max_entries, kMaxGridRefs);
     // The cell starts hold one entry more than there are cells.

@@ -52,7 +52,8 @@ struct Grid {
     // (cell_starts[0] == loose).
     std::vector<std::uint32_t> refs;
     std::uint32_t loose = 0;
-    double loose_shrink = 1.0;  // how many times larger the box would be with them
+    std::uint32_t stretching = 0;  // of those, the ones left out for their boxes
+    double loose_shrink = 1.0;     // how many times larger the box would be with those
 
     std::uint64_t cell_count() const {
         return std::uint64_t(resolution[0]) * resolution[1] * resolution[2];
@@ -89,9 +90,11 @@ struct GridRequest {
     // only known to about its distance travelled times 2^-23, so the boxes are padded
     // by that much, lest the walk step past a primitive the ray really touches.
     std::optional<glm::dvec3> eye;
-    // At most this many primitives whose boxes would stretch the grid's far beyond the
-    // rest (a floor polygon under a tree) are left out of the cells and tested once per
-    // ray instead; 0: every primitive is listed (build_grid says when).
+    // Loose primitives are listed in no cell and tested once per ray instead: every
+    // primitive of a kind flagged here (indexed by REF_SPHERE...), and at most
+    // `max_loose` more whose boxes would stretch the grid's far beyond the rest (a
+    // floor polygon under a tree; build_grid says when).
+    std::array<bool, 4> loose_kinds{};
     std::size_t max_loose = 0;
 };
 

@@ -37,7 +37,10 @@ bool is_grid_feature(std::uint32_t id) {
     case Feature::GRID_TRIANGLES:
     case Feature::GRID_RINGS:
     case Feature::GRID_CYLINDERS:
-    case Feature::GRID_LOOSE: return true;
+    case Feature::LOOSE_SPHERES:
+    case Feature::LOOSE_TRIANGLES:
+    case Feature::LOOSE_RINGS:
+    case Feature::LOOSE_CYLINDERS: return true;
     default: return false;
     }
 }

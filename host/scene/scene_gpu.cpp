@@ -184,86 +184,84 @@ bool want_grid(const Scene& scene, std::size_t primitives, const AccelPolicy& po
     return true;
 }
 
-// Which primitive kinds the grid lists (the GRID_ features). A kind with fewer
+// The kinds loose as a whole (indexed by REF_SPHERE...): a kind with fewer
 // primitives than the backend's threshold, the count below which brute force beats
-// the grid on a whole scene, is tested once per ray instead (kernel/scene.glsl,
-// trace). A floor of two triangles under thousands of spheres would otherwise be
+// the grid on a whole scene, is listed in no cell and tested once per ray instead
+// (kernel/scene.glsl, trace). A floor of two triangles under thousands of spheres would otherwise be
 // listed in every cell it spans, stretch the grid's box to its own size, and cost
 // every cell visited a pass through the triangle loop, which SIMD hardware runs even
 // when no lane has a triangle (docs/grid.md). Every kind is listed when no kind
 // reaches the threshold (a grid forced on a small scene), and when the scene gives
 // the resolution: that asks for one particular grid, over the whole scene (the
 // README compares SPD balls with published figures for such grids).
-void choose_grid_kinds(const AccelPolicy& policy, bool resolution_given, SceneGpu& g) {
+std::array<bool, 4> loose_kinds(const AccelPolicy& policy, bool resolution_given, const SceneGpu& g) {
+    const std::array<std::size_t, 4> counts{g.spheres.size(), g.triangles.size(), g.rings.size(), g.cylinders.size()};
+    const bool any_large = std::any_of(counts.begin(), counts.end(),
+                                       [&](std::size_t n) { return n >= policy.brute_force_below; });
+    std::array<bool, 4> loose{};
+    for (std::size_t k = 0; k < counts.size(); ++k) {
+        loose[k] = counts[k] != 0 && !resolution_given && any_large && counts[k] < policy.brute_force_below;
+    }
+    return loose;
+}
+
+// The features that say which kinds the cells list (GRID_) and which the loose
+// references hold (LOOSE_), and the stats' account of the loose ones: a kind loose
+// as a whole as "triangles: 2", some of a listed kind as "triangles: 2 of 49294".
+void note_kinds(const Grid& grid, const AccelPolicy& policy, const std::array<bool, 4>& whole, SceneGpu& g) {
     struct Kind {
-        Feature feature;
+        Feature listed, loose;
         const char* name;
         std::size_t count;
     };
-    const std::array<Kind, 4> kinds{{{Feature::GRID_SPHERES, "spheres", g.spheres.size()},
-                                     {Feature::GRID_TRIANGLES, "triangles", g.triangles.size()},
-                                     {Feature::GRID_RINGS, "rings", g.rings.size()},
-                                     {Feature::GRID_CYLINDERS, "cylinders", g.cylinders.size()}}};
-    const bool any_large = std::any_of(kinds.begin(), kinds.end(),
-                                       [&](const Kind& k) { return k.count >= policy.brute_force_below; });
-    std::vector<std::string> outside;
-    for (const Kind& k : kinds) {
-        const bool listed = k.count != 0 && (resolution_given || !any_large || k.count >= policy.brute_force_below);
-        g.features.set(k.feature, listed);
-        if (k.count != 0 && !listed) outside.push_back(fmt::format("{}: {}", k.name, k.count));
-    }
-    if (!outside.empty()) {
-        g.grid.reason += fmt::format("; tested per ray, outside the grid (fewer than {} of their kind): {}",
-                                     policy.brute_force_below, fmt::join(outside, ", "));
-        g.grid.outside = std::move(outside);
-    }
-}
-
-// The stats' account of the grid's loose primitives, by kind: "triangles: 2 of 49294".
-void note_loose(const Grid& grid, SceneGpu& g) {
-    const std::array<std::pair<const char*, std::size_t>, 4> kinds{
-        {{"spheres", g.spheres.size()}, {"triangles", g.triangles.size()}, {"rings", g.rings.size()},
-         {"cylinders", g.cylinders.size()}}};
-    std::array<std::size_t, 4> counts{};
-    for (std::uint32_t i = 0; i < grid.loose; ++i) ++counts[grid.refs[i] >> kernel::REF_KIND_SHIFT];
-    std::vector<std::string> loose;
+    const std::array<Kind, 4> kinds{
+        {{Feature::GRID_SPHERES, Feature::LOOSE_SPHERES, "spheres", g.spheres.size()},
+         {Feature::GRID_TRIANGLES, Feature::LOOSE_TRIANGLES, "triangles", g.triangles.size()},
+         {Feature::GRID_RINGS, Feature::LOOSE_RINGS, "rings", g.rings.size()},
+         {Feature::GRID_CYLINDERS, Feature::LOOSE_CYLINDERS, "cylinders", g.cylinders.size()}}};
+    std::array<std::size_t, 4> loose{};
+    for (std::uint32_t i = 0; i < grid.loose; ++i) ++loose[grid.refs[i] >> kernel::REF_KIND_SHIFT];
+    std::vector<std::string> small, stretching;
     for (std::size_t k = 0; k < kinds.size(); ++k) {
-        if (counts[k] != 0) loose.push_back(fmt::format("{}: {} of {}", kinds[k].first, counts[k], kinds[k].second));
+        g.features.set(kinds[k].listed, loose[k] < kinds[k].count);
+        g.features.set(kinds[k].loose, loose[k] != 0);
+        if (whole[k]) {
+            small.push_back(fmt::format("{}: {}", kinds[k].name, loose[k]));
+        } else if (loose[k] != 0) {
+            stretching.push_back(fmt::format("{}: {} of {}", kinds[k].name, loose[k], kinds[k].count));
+        }
     }
-    g.grid.reason += fmt::format("; tested per ray, outside the grid (their boxes would make it {:.0f} times "
-                                 "larger): {}", grid.loose_shrink, fmt::join(loose, ", "));
-    g.grid.outside.insert(g.grid.outside.end(), loose.begin(), loose.end());
-}
-
-template <class T>
-std::span<const T> if_listed(const SceneGpu& g, Feature f, const std::vector<T>& items) {
-    return g.features.has(f) ? std::span<const T>(items) : std::span<const T>();
+    if (!small.empty()) {
+        g.grid.reason += fmt::format("; tested per ray, outside the grid (fewer than {} of their kind): {}",
+                                     policy.brute_force_below, fmt::join(small, ", "));
+    }
+    if (!stretching.empty()) {
+        g.grid.reason += fmt::format("; tested per ray, outside the grid (their boxes would make it {:.0f} times "
+                                     "larger): {}", grid.loose_shrink, fmt::join(stretching, ", "));
+    }
+    g.grid.outside = small;
+    g.grid.outside.insert(g.grid.outside.end(), stretching.begin(), stretching.end());
 }
 
 void add_grid(const Scene& scene, const AccelPolicy& policy, SceneGpu& g) {
     const auto start = std::chrono::steady_clock::now();
     GridRequest request;
     request.resolution = scene.render.grid.resolution;
-    choose_grid_kinds(policy, request.resolution != GridResolution{0, 0, 0}, g);
+    // A resolution from the scene asks for a grid over everything.
+    const bool resolution_given = request.resolution != GridResolution{0, 0, 0};
+    request.loose_kinds = loose_kinds(policy, resolution_given, g);
+    request.max_loose = resolution_given ? 0 : policy.brute_force_below;
     request.max_entries = policy.max_buffer_entries;
     request.eye = scene.camera.eye - g.origin;
-    // As for whole kinds: a resolution from the scene asks for a grid over everything.
-    const bool resolution_given = request.resolution != GridResolution{0, 0, 0};
-    request.max_loose = resolution_given ? 0 : policy.brute_force_below;
     std::string note;
-    const GridPrimitives listed{if_listed(g, Feature::GRID_SPHERES, g.spheres),
-                                if_listed(g, Feature::GRID_TRIANGLES, g.triangles),
-                                if_listed(g, Feature::GRID_RINGS, g.rings),
-                                if_listed(g, Feature::GRID_CYLINDERS, g.cylinders)};
-    Grid grid = build_grid(listed, request, note);
+    Grid grid = build_grid(GridPrimitives{g.spheres, g.triangles, g.rings, g.cylinders}, request, note);
+    note_kinds(grid, policy, request.loose_kinds, g);
     kernel::Params& p = g.params;
     p.grid_min = to_vec4(grid.lo);
     p.grid_max = to_vec4(grid.hi);
     p.grid_cell = to_vec4(grid.cell);
     p.grid_inv_cell = to_vec4(1.0 / grid.cell);
     p.grid_res = uvec4(grid.resolution[0], grid.resolution[1], grid.resolution[2], 0u);
-    g.features.set(Feature::GRID_LOOSE, grid.loose != 0);
-    if (grid.loose != 0) note_loose(grid, g);
     g.grid.used = true;
     g.grid.resolution = grid.resolution;
     g.grid.cells = grid.cell_count();

@@ -22,13 +22,15 @@ FEATURE(12, HAS_AREA_LIGHTS)
 FEATURE(13, HAS_REFLECTION)   // mirror rays (material reflect)
 FEATURE(14, HAS_REFRACTION)   // refraction rays, and the reflection rays of glass (material transmit)
 FEATURE(15, HAS_GLOBAL)       // global illumination (global.glsl) instead of the local ray tree
-// With HAS_GRID, the kinds the grid lists. A kind with few primitives is left out of
-// the grid and tested once per ray instead (host/scene/scene_gpu.cpp, docs/grid.md).
+// With HAS_GRID, the kinds the grid's cells list, and the kinds among its loose
+// primitives, which are tested once per ray instead: a kind with few primitives as a
+// whole, and the few primitives of other kinds whose boxes would stretch the grid's
+// (host/scene/scene_gpu.cpp, host/accel/grid.cpp, docs/grid.md).
 FEATURE(16, GRID_SPHERES)
 FEATURE(17, GRID_TRIANGLES)
 FEATURE(18, GRID_RINGS)
 FEATURE(19, GRID_CYLINDERS)
-// With HAS_GRID: some primitives of the listed kinds are loose, tested once per ray
-// instead of listed in cells, because their boxes would stretch the grid's
-// (host/accel/grid.cpp, choose_loose). Their references come before cell 0's.
-FEATURE(20, GRID_LOOSE)
+FEATURE(20, LOOSE_SPHERES)
+FEATURE(21, LOOSE_TRIANGLES)
+FEATURE(22, LOOSE_RINGS)
+FEATURE(23, LOOSE_CYLINDERS)

@@ -93,7 +93,8 @@ bool trace_done(bool any_hit, Nearest nearest) {
 
 // Tests the primitives listed for one grid cell, references i to end - 1 (i < end):
 // its spheres, triangles, rings and cylinders, in that order, one loop per kind the
-// grid lists (GRID_ features).
+// list may hold (with_: constants at each call, so the compilers drop the others).
+// The grid's loose primitives are such a list too, tested before the walk.
 // False means "stop the walk": the loop budget ran out, or `any_hit` is set and
 // something was hit.
 //
@@ -102,9 +103,10 @@ bool trace_done(bool any_hit, Nearest nearest) {
 // lanes are done (lavapipe does, see budget.glsl); here that would be one wasted
 // primitive test per kind and cell. The first test of each loop needs no tick: a
 // loop reached with the budget spent tests one primitive and stops.
-bool test_cell(Ray ray, uint i, uint end, bool any_hit, INOUT(Nearest) nearest) {
+bool test_cell(Ray ray, uint i, uint end, bool any_hit, bool with_spheres, bool with_triangles, bool with_rings,
+               bool with_cylinders, INOUT(Nearest) nearest) {
     uint ref = load_ref(i);
-    if (GRID_SPHERES && (ref >> REF_KIND_SHIFT) == REF_SPHERE) {
+    if (with_spheres && (ref >> REF_KIND_SHIFT) == REF_SPHERE) {
         loop_enter();
         do {
             test_sphere(ray, ref & REF_INDEX_MASK, nearest);
@@ -114,7 +116,7 @@ bool test_cell(Ray ray, uint i, uint end, bool any_hit, INOUT(Nearest) nearest) 
             return false;
         }
     }
-    if (GRID_TRIANGLES && (ref >> REF_KIND_SHIFT) == REF_TRIANGLE) {
+    if (with_triangles && (ref >> REF_KIND_SHIFT) == REF_TRIANGLE) {
         loop_enter();
         do {
             test_triangle(ray, ref & REF_INDEX_MASK, nearest);
@@ -124,7 +126,7 @@ bool test_cell(Ray ray, uint i, uint end, bool any_hit, INOUT(Nearest) nearest) 
             return false;
         }
     }
-    if (GRID_RINGS && (ref >> REF_KIND_SHIFT) == REF_RING) {
+    if (with_rings && (ref >> REF_KIND_SHIFT) == REF_RING) {
         loop_enter();
         do {
             test_ring(ray, ref & REF_INDEX_MASK, nearest);
@@ -134,7 +136,7 @@ bool test_cell(Ray ray, uint i, uint end, bool any_hit, INOUT(Nearest) nearest) 
             return false;
         }
     }
-    if (GRID_CYLINDERS && (ref >> REF_KIND_SHIFT) == REF_CYLINDER) {
+    if (with_cylinders && (ref >> REF_KIND_SHIFT) == REF_CYLINDER) {
         loop_enter();
         do {
             test_cylinder(ray, ref & REF_INDEX_MASK, nearest);
@@ -199,17 +201,16 @@ void grid_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
         }
         if (walking) {
             g_cells_visited += 1u;
-            walking = test_cell(ray, start, end, any_hit, nearest) && grid_advance(ray, w, nearest);
+            walking = test_cell(ray, start, end, any_hit, GRID_SPHERES, GRID_TRIANGLES, GRID_RINGS, GRID_CYLINDERS,
+                                nearest) &&
+                      grid_advance(ray, w, nearest);
         }
     } while (walking);
 }
 
-// Every primitive of the kinds asked for: the whole scene when it is too small to
-// gain from the grid, else the kinds the grid leaves out. The kinds are constants at
-// each call, so the compilers drop the loops not asked for.
-void brute_force_trace(Ray ray, bool any_hit, bool with_spheres, bool with_triangles, bool with_rings,
-                       bool with_cylinders, INOUT(Nearest) nearest) {
-    if (HAS_SPHERES && with_spheres) {
+// Every primitive, one loop per kind: scenes too small to gain from the grid.
+void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
+    if (HAS_SPHERES) {
         loop_enter();
         for (uint i = 0u; i < params.counts.x && loop_tick() && !blocker_found(any_hit, nearest); ++i) {
             test_sphere(ray, i, nearest);
@@ -218,7 +219,7 @@ void brute_force_trace(Ray ray, bool any_hit, bool with_spheres, bool with_trian
             return;
         }
     }
-    if (HAS_TRIANGLES && with_triangles) {
+    if (HAS_TRIANGLES) {
         loop_enter();
         for (uint i = 0u; i < params.counts.y && loop_tick() && !blocker_found(any_hit, nearest); ++i) {
             test_triangle(ray, i, nearest);
@@ -227,7 +228,7 @@ void brute_force_trace(Ray ray, bool any_hit, bool with_spheres, bool with_trian
             return;
         }
     }
-    if (HAS_RINGS && with_rings) {
+    if (HAS_RINGS) {
         loop_enter();
         for (uint i = 0u; i < params.more_counts.x && loop_tick() && !blocker_found(any_hit, nearest); ++i) {
             test_ring(ray, i, nearest);
@@ -236,7 +237,7 @@ void brute_force_trace(Ray ray, bool any_hit, bool with_spheres, bool with_trian
             return;
         }
     }
-    if (HAS_CYLINDERS && with_cylinders) {
+    if (HAS_CYLINDERS) {
         loop_enter();
         for (uint i = 0u; i < params.more_counts.y && loop_tick() && !blocker_found(any_hit, nearest); ++i) {
             test_cylinder(ray, i, nearest);
@@ -244,21 +245,23 @@ void brute_force_trace(Ray ray, bool any_hit, bool with_spheres, bool with_trian
     }
 }
 
-// What lies outside the grid comes first, the kinds it leaves out and then its loose
-// primitives (references 0 to cell 0's start, in kind order like a cell's): a hit
-// among them bounds the walk (and ends a shadow ray at once).
+// The grid's loose primitives (references 0 to cell 0's start, grouped by kind like a
+// cell's) come first: a hit among them bounds the walk, and ends a shadow ray at once.
+// One list for a kind with few primitives and for the few whose boxes would stretch
+// the grid, rather than a loop over each such kind's array: every copy of a loop
+// lavapipe inlines costs it time when it creates the pipeline (docs/grid.md).
 Nearest trace(Ray ray, float t_max, bool any_hit) {
     Nearest nearest = Nearest(t_max, REF_NONE, TriangleHit(INFINITY_T, 0.0f, 0.0f), CYLINDER_SIDE);
     if (HAS_GRID) {
-        brute_force_trace(ray, any_hit, !GRID_SPHERES, !GRID_TRIANGLES, !GRID_RINGS, !GRID_CYLINDERS, nearest);
-        if (GRID_LOOSE && !blocker_found(any_hit, nearest)) {
-            test_cell(ray, 0u, load_cell_start(0u), any_hit, nearest);
+        if (LOOSE_SPHERES || LOOSE_TRIANGLES || LOOSE_RINGS || LOOSE_CYLINDERS) {
+            test_cell(ray, 0u, load_cell_start(0u), any_hit, LOOSE_SPHERES, LOOSE_TRIANGLES, LOOSE_RINGS,
+                      LOOSE_CYLINDERS, nearest);
         }
         if (!blocker_found(any_hit, nearest)) {
             grid_trace(ray, any_hit, nearest);
         }
     } else {
-        brute_force_trace(ray, any_hit, true, true, true, true, nearest);
+        brute_force_trace(ray, any_hit, nearest);
     }
     return nearest;
 }
