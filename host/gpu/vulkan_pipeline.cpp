@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "gpu/spirv_specialize.hpp"
 #include "gpu/vulkan_buffer.hpp"
 #include "render_comp_spv.h"
 
@@ -121,7 +122,15 @@ Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features)
     specialization.dataSize = sizeof(values);
     specialization.pData = values.data();
 
-    return make_compute_pipeline(context.device(), render_comp_spv, types, kPushBytes, &specialization);
+    // The same values folded in on the host (spirv_specialize.hpp says why); should
+    // SPIRV-Tools refuse, the driver specializes the module as it is.
+    std::unordered_map<std::uint32_t, bool> by_id;
+    for (std::uint32_t id = 0; id < kFeatureCount; ++id) by_id.emplace(id, values[id] == VK_TRUE);
+    std::string error;
+    const std::vector<std::uint32_t> specialized = specialize_spirv(render_comp_spv, by_id, error);
+    const std::span<const std::uint32_t> words =
+        specialized.empty() ? std::span<const std::uint32_t>(render_comp_spv) : std::span<const std::uint32_t>(specialized);
+    return make_compute_pipeline(context.device(), words, types, kPushBytes, &specialization);
 }
 
 std::vector<BufferView> write_descriptors(VkDevice device, VkDescriptorSet set,
