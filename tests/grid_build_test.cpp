@@ -243,7 +243,7 @@ TEST(GridBuild, PrimitivesThatStretchTheBoxAreLeftLoose) {
         ASSERT_TRUE(g.refs[i] != floor0 && g.refs[i] != floor0 + 1u) << "a loose primitive is listed in a cell too";
     }
 
-    // Without leave, or asked for a grid over everything: the floor sets the box.
+    // With max_loose = 0 (a grid asked for over everything): the floor sets the box.
     request.max_loose = 0;
     const Grid all = build_grid(s.primitives(), request, note);
     EXPECT_EQ(all.loose, 0u);

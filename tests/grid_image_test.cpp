@@ -52,6 +52,36 @@ Scene with_grid(Scene s, GridMode mode) {
     return s;
 }
 
+// A 4-unit cluster (`objects`, JSON objects each followed by a comma) on a floor of
+// two triangles 200 wide, one light with shadows, 64x48: the scenes of the tests of
+// what the grid leaves out.
+Scene cluster_on_a_floor(const char* name, const std::string& objects) {
+    return test::scene_from_text(name, R"({
+      "camera": {"eye": [0, 6, 9], "look_at": [0, 1, 0], "fov": 45, "width": 64, "height": 48},
+      "render": {"shadows": true},
+      "materials": {"m": {"diffuse": [0.8, 0.6, 0.4], "kd": 1, "ks": 0.3, "shininess": 20}},
+      "lights": [{"type": "point", "position": [4, 10, 6], "intensity": 1}],
+      "objects": [)" + objects + R"(
+        {"type": "triangle", "vertices": [[-100, 0, -100], [100, 0, -100], [100, 0, 100]], "material": "m"},
+        {"type": "triangle", "vertices": [[-100, 0, -100], [100, 0, 100], [-100, 0, 100]], "material": "m"}
+      ]})");
+}
+
+// The scene with its grid gives brute force's image on both backends, with less than
+// half of brute force's tests.
+void expect_brute_forces_image(const Scene& scene) {
+    const Scene brute = with_grid(scene, GridMode::Off);
+    for (const bool vulkan : {false, true}) {
+        const RenderOutcome grid = vulkan ? test::render_vulkan(scene) : test::render_cpu(scene);
+        const RenderOutcome none = vulkan ? test::render_vulkan(brute) : test::render_cpu(brute);
+        test::expect_sane(grid);
+        test::expect_sane(none);
+        EXPECT_TRUE(grid.stats.grid.used);
+        EXPECT_LE(compare_images(grid.image, none.image, 1e-5).max_abs, 1e-5) << (vulkan ? "vulkan" : "cpu");
+        EXPECT_LT(grid.stats.intersection_tests, none.stats.intersection_tests / 2);
+    }
+}
+
 class GridImage : public ::testing::TestWithParam<std::filesystem::path> {};
 
 TEST_P(GridImage, GridAndBruteForceGiveTheSameImage) {
@@ -96,26 +126,19 @@ TEST_P(GridImage, GridAndBruteForceGiveTheSameImage) {
 }
 
 // A kind with fewer primitives than the threshold is left out of the grid's cells and
-// tested once per ray among its loose primitives (scene_gpu.cpp, loose_kinds): here a floor quad 200 wide, a ring
-// and a cylinder beside 48 spheres in a 4-unit cluster. The grid's box is then the
-// cluster's, not the floor's, and the image is brute force's on both backends.
+// tested once per ray among its loose primitives (scene_gpu.cpp, loose_kinds): here
+// a floor quad 200 wide, a ring and a cylinder beside 48 spheres in a 4-unit
+// cluster. The grid's box is then the cluster's, not the floor's, and the image is
+// brute force's on both backends.
 TEST(GridKinds, FewOfAKindAreTestedOutsideTheGrid) {
     std::string spheres;
     for (int i = 0; i < 48; ++i) {
         spheres += fmt::format(R"({{"type": "sphere", "center": [{}, {}, {}], "radius": 0.3, "material": "m"}},)",
                                -1.5 + (i % 4), 0.4 + (i / 16), -1.5 + (i / 4 % 4));
     }
-    const Scene scene = test::scene_from_text("grid_kinds", R"({
-      "camera": {"eye": [0, 6, 9], "look_at": [0, 1, 0], "fov": 45, "width": 64, "height": 48},
-      "render": {"shadows": true},
-      "materials": {"m": {"diffuse": [0.8, 0.6, 0.4], "kd": 1, "ks": 0.3, "shininess": 20}},
-      "lights": [{"type": "point", "position": [4, 10, 6], "intensity": 1}],
-      "objects": [)" + spheres + R"(
-        {"type": "triangle", "vertices": [[-100, 0, -100], [100, 0, -100], [100, 0, 100]], "material": "m"},
-        {"type": "triangle", "vertices": [[-100, 0, -100], [100, 0, 100], [-100, 0, 100]], "material": "m"},
+    const Scene scene = cluster_on_a_floor("grid_kinds", spheres + R"(
         {"type": "ring", "center": [3, 0.01, 2], "normal": [0, 1, 0], "inner": 0.2, "outer": 0.8, "material": "m"},
-        {"type": "cylinder", "base": [-3, 0, 2], "top": [-3, 1.5, 2], "radius": 0.4, "capped": true, "material": "m"}
-      ]})");
+        {"type": "cylinder", "base": [-3, 0, 2], "top": [-3, 1.5, 2], "radius": 0.4, "capped": true, "material": "m"},)");
     const SceneGpu gpu = build_scene_gpu(scene, AccelPolicy{32, 0xFFFFFFFFu});
     ASSERT_TRUE(gpu.grid.used);
     EXPECT_TRUE(gpu.features.has(Feature::GRID_SPHERES));
@@ -143,19 +166,10 @@ TEST(GridKinds, FewOfAKindAreTestedOutsideTheGrid) {
     EXPECT_GT(gpu.params.grid_min.x + gpu.origin.x, -2.0f);
     EXPECT_LT(gpu.params.grid_max.x + gpu.origin.x, 2.0f);
 
-    Scene brute = with_grid(scene, GridMode::Off);
     // Partials rendered with and without the grid still merge (render/fingerprint.hpp).
-    EXPECT_EQ(scene_fingerprint(gpu), scene_fingerprint(build_scene_gpu(brute, AccelPolicy{32, 0xFFFFFFFFu})));
-    for (const bool vulkan : {false, true}) {
-        const RenderOutcome grid = vulkan ? test::render_vulkan(scene) : test::render_cpu(scene);
-        const RenderOutcome none = vulkan ? test::render_vulkan(brute) : test::render_cpu(brute);
-        test::expect_sane(grid);
-        test::expect_sane(none);
-        EXPECT_TRUE(grid.stats.grid.used);
-        EXPECT_EQ(grid.stats.grid.outside.size(), 3u);
-        EXPECT_LE(compare_images(grid.image, none.image, 1e-5).max_abs, 1e-5) << (vulkan ? "vulkan" : "cpu");
-        EXPECT_LT(grid.stats.intersection_tests, none.stats.intersection_tests / 2);
-    }
+    EXPECT_EQ(scene_fingerprint(gpu),
+              scene_fingerprint(build_scene_gpu(with_grid(scene, GridMode::Off), AccelPolicy{32, 0xFFFFFFFFu})));
+    expect_brute_forces_image(scene);
 }
 
 // A primitive whose box would stretch the grid's far beyond the rest is left loose
@@ -173,15 +187,7 @@ TEST(GridLoose, AFloorUnderAClusterIsTestedPerRay) {
         objects += fmt::format(R"({{"type": "sphere", "center": [{}, {}, {}], "radius": 0.2, "material": "m"}},)",
                                x + 0.4, y + 0.3, z + 0.4);
     }
-    const Scene scene = test::scene_from_text("grid_loose", R"({
-      "camera": {"eye": [0, 6, 9], "look_at": [0, 1, 0], "fov": 45, "width": 64, "height": 48},
-      "render": {"shadows": true},
-      "materials": {"m": {"diffuse": [0.8, 0.6, 0.4], "kd": 1, "ks": 0.3, "shininess": 20}},
-      "lights": [{"type": "point", "position": [4, 10, 6], "intensity": 1}],
-      "objects": [)" + objects + R"(
-        {"type": "triangle", "vertices": [[-100, 0, -100], [100, 0, -100], [100, 0, 100]], "material": "m"},
-        {"type": "triangle", "vertices": [[-100, 0, -100], [100, 0, 100], [-100, 0, 100]], "material": "m"}
-      ]})");
+    const Scene scene = cluster_on_a_floor("grid_loose", objects);
     const SceneGpu gpu = build_scene_gpu(scene, AccelPolicy{32, 0xFFFFFFFFu});
     ASSERT_TRUE(gpu.grid.used);
     EXPECT_TRUE(gpu.features.has(Feature::GRID_TRIANGLES));
@@ -195,24 +201,15 @@ TEST(GridLoose, AFloorUnderAClusterIsTestedPerRay) {
     EXPECT_GT(gpu.params.grid_min.x + gpu.origin.x, -2.0f);
     EXPECT_LT(gpu.params.grid_max.x + gpu.origin.x, 2.3f);
 
-    Scene brute = with_grid(scene, GridMode::Off);
-    EXPECT_EQ(scene_fingerprint(gpu), scene_fingerprint(build_scene_gpu(brute, AccelPolicy{32, 0xFFFFFFFFu})));
+    EXPECT_EQ(scene_fingerprint(gpu),
+              scene_fingerprint(build_scene_gpu(with_grid(scene, GridMode::Off), AccelPolicy{32, 0xFFFFFFFFu})));
     // A resolution from the scene asks for a grid over everything.
     Scene given = scene;
     given.render.grid.resolution = {8, 8, 8};
     const SceneGpu everything = build_scene_gpu(given, AccelPolicy{32, 0xFFFFFFFFu});
     EXPECT_FALSE(everything.features.has(Feature::LOOSE_TRIANGLES));
     EXPECT_EQ(everything.grid_cell_starts.front(), 0u);
-
-    for (const bool vulkan : {false, true}) {
-        const RenderOutcome grid = vulkan ? test::render_vulkan(scene) : test::render_cpu(scene);
-        const RenderOutcome none = vulkan ? test::render_vulkan(brute) : test::render_cpu(brute);
-        test::expect_sane(grid);
-        test::expect_sane(none);
-        EXPECT_LE(compare_images(grid.image, none.image, 1e-5).max_abs, 1e-5) << (vulkan ? "vulkan" : "cpu");
-        // Fewer tests than brute force: the loose floor costs two a ray, not a walk.
-        EXPECT_LT(grid.stats.intersection_tests, none.stats.intersection_tests / 2);
-    }
+    expect_brute_forces_image(scene);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, GridImage, ::testing::ValuesIn(vkrt::test::repo_scenes()), test::scene_test_name);

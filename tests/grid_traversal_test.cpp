@@ -129,6 +129,19 @@ std::string describe(const Kernel::Ray& r) {
     return text;
 }
 
+// One random ray of the tests below, `dir` of any length (a zero one is skipped),
+// every third one ending at t = 8: false, and a failure added, when grid and brute
+// force answer differently.
+bool compare_ray(Kernel& grid, Kernel& brute, vec3 origin, vec3 dir, int i) {
+    const float len = glm::length(dir);
+    if (!(len > 0.0f)) return true;
+    const Kernel::Ray ray = make_ray(origin, dir / len);
+    const float t_max = i % 3 == 0 ? 8.0f : kernel::INFINITY_T;
+    const ::testing::AssertionResult same = same_answers(grid, brute, ray, t_max);
+    if (!same) ADD_FAILURE() << describe(ray) << ": " << same.message();
+    return bool(same);
+}
+
 TEST(GridTraversal, HundredThousandRandomRaysMatchBruteForce) {
     GridScene s = random_scene(1, 400, 400);
     s.build();
@@ -180,15 +193,45 @@ TEST(GridTraversal, HundredThousandRandomRaysMatchBruteForce) {
         }
         default: break;
         }
-        const float len = glm::length(dir);
-        if (!(len > 0.0f)) continue;
-        const Kernel::Ray ray = make_ray(origin, dir / len);
-        const float t_max = i % 3 == 0 ? 8.0f : kernel::INFINITY_T;
-        const ::testing::AssertionResult same = same_answers(grid, brute, ray, t_max);
-        if (!same) {
-            ADD_FAILURE() << describe(ray) << ": " << same.message();
-            ++failures;
+        failures += compare_ray(grid, brute, origin, dir, i) ? 0 : 1;
+    }
+}
+
+// Loose primitives (host/accel/grid.cpp): a floor 1,000 wide under the random scene
+// is tested once per ray, and so is a whole kind asked to be loose (the rings); the
+// walk covers the rest. Rays start inside the cluster and on the floor far outside
+// the grid's box, and go every way, so some meet the floor before, after or without
+// the cluster.
+TEST(GridTraversal, LoosePrimitivesAndTheWalkMatchBruteForce) {
+    GridScene s = random_scene(3, 200, 200);
+    const std::uint32_t floor = std::uint32_t(s.triangles.size());
+    s.triangles.push_back(triangle(vec3(-500, -12, -500), vec3(500, -12, -500), vec3(500, -12, 500), 9001));
+    s.triangles.push_back(triangle(vec3(-500, -12, -500), vec3(500, -12, 500), vec3(-500, -12, 500), 9002));
+    GridRequest request;
+    request.max_loose = 32;
+    request.loose_kinds[kernel::REF_RING] = true;
+    s.build(request);
+    ASSERT_EQ(s.grid.loose, 2u + s.rings.size());
+    // In kind order: the floor's two triangles, then every ring.
+    EXPECT_EQ(s.grid.refs[0], (kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | floor);
+    EXPECT_EQ(s.grid.refs[1], (kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | (floor + 1u));
+    EXPECT_EQ(s.grid.refs[2], kernel::REF_RING << kernel::REF_KIND_SHIFT);
+    EXPECT_LT(s.grid.hi.y - s.grid.lo.y, 40.0) << "the floor still sets the box";
+    Kernel grid = s.kernel(true);
+    Kernel brute = s.kernel(false);
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<float> pos(-14.0f, 14.0f);
+    std::uniform_real_distribution<float> far(-400.0f, 400.0f);
+    std::normal_distribution<float> gauss;
+    int failures = 0;
+    for (int i = 0; i < 20000 && failures < 10; ++i) {
+        vec3 origin(pos(rng), pos(rng), pos(rng));
+        vec3 dir(gauss(rng), gauss(rng), gauss(rng));
+        if (i % 4 == 0) {   // from the floor, far outside the grid, toward the cluster
+            origin = vec3(far(rng), -11.99f, far(rng));
+            dir = vec3(pos(rng), pos(rng), pos(rng)) - origin;
         }
+        failures += compare_ray(grid, brute, origin, dir, i) ? 0 : 1;
     }
 }
 

@@ -280,9 +280,9 @@ TEST(VulkanBackend, ShaderDeclaresNoUniformBuffer) {
 
 // The host folds the features into the SPIR-V before the driver sees it
 // (gpu/spirv_specialize.hpp): lavapipe otherwise inlines the whole kernel, switched
-// off or not, and took 2.1-2.3 s to create a pipeline. Every feature set must come
-// out as a valid module with no specialization constant left; a refusal would fall
-// back to the slow path without a word, so it fails here.
+// off or not, and took 2.1-2.3 s to create a pipeline. All features on, all off and
+// the default scene's set must come out as valid modules with no specialization
+// constant left; a refusal falls back to the slow path (with a warning).
 TEST(VulkanBackend, FeaturesAreFoldedIntoTheSpirvOnTheHost) {
     constexpr std::uint32_t kOpSpecConstantTrue = 48, kOpSpecConstantFalse = 49, kOpSpecConstantOp = 52;
     const std::span<const std::uint32_t> words(render_comp_spv, std::size(render_comp_spv));

@@ -89,7 +89,7 @@ constexpr double kLooseGap = 8.0;
 
 // The primitives loose for their size: at most `max_loose` of the largest boxes, the fewest whose
 // absence shrinks the grid's box to within twice the smallest box that leaving out
-// up to `max_loose` of them reaches, and only if that shrinks it kLooseShrink times
+// up to `max_loose` of them reaches, and only if they shrink it kLooseShrink times
 // and they are kLooseGap times larger than the rest. A floor 100 units wide under a
 // tree 3 units wide (SPD tree) otherwise sets the box, and the cell size that the
 // primitive count buys spreads the tree's 53,000 primitives over a few dozen cells
@@ -125,9 +125,10 @@ std::vector<bool> choose_stretching(const std::vector<Aabb>& boxes, std::size_t 
     std::vector<double> volume(k + 1);
     for (std::size_t j = 0; j <= k; ++j) volume[j] = padded_volume(rest[j], least);
     const double best = *std::min_element(volume.begin(), volume.end());
-    if (!(best * kLooseShrink <= volume[0])) return loose;
+    if (!(best > 0.0)) return loose;   // every box a point: nothing to shrink
     std::size_t j = 0;
     while (volume[j] > 2.0 * best) ++j;
+    if (j == 0 || !(volume[j] * kLooseShrink <= volume[0])) return loose;
     if (largest_extent(order[j - 1]) < kLooseGap * largest_extent(order[j])) return loose;
     for (std::size_t i = 0; i < j; ++i) loose[order[i]] = true;
     shrink = volume[0] / volume[j];
@@ -289,6 +290,7 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
     // rest are binned. Kinds that are loose as a whole take no part in choosing the
     // others.
     std::vector<std::uint32_t> loose_refs;
+    std::vector<Aabb> all_boxes;
     {
         std::vector<bool> loose(boxes.size());
         std::vector<std::size_t> kept;   // the others' indices
@@ -317,10 +319,15 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
                 listed_ids.push_back(ids[i]);
             }
         }
+        all_boxes = std::move(boxes);
         boxes = std::move(listed_boxes);
         ids = std::move(listed_ids);
     }
     g.loose = std::uint32_t(loose_refs.size());
+    // Rays may start on a loose primitive far outside the grid's box: the padding
+    // below allows for positions at the magnitude of, and rays as long as, the box
+    // of everything.
+    const Aabb everything = grid_box(all_boxes);
     if (boxes.empty()) {   // everything is loose: one cell, empty
         g.cell_starts = {g.loose, g.loose};
         g.refs = std::move(loose_refs);
@@ -347,11 +354,12 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
                              cell_limit, res[0], res[1], res[2]));
     }
 
-    const double magnitude = std::max({std::abs(box.lo.x), std::abs(box.lo.y), std::abs(box.lo.z),
-                                       std::abs(box.hi.x), std::abs(box.hi.y), std::abs(box.hi.z)});
-    // Rays travel at most from the eye across the box.
-    double reach = glm::length(box.hi - box.lo);
-    if (request.eye) reach += glm::length(*request.eye - glm::clamp(*request.eye, box.lo, box.hi));
+    const double magnitude =
+        std::max({std::abs(everything.lo.x), std::abs(everything.lo.y), std::abs(everything.lo.z),
+                  std::abs(everything.hi.x), std::abs(everything.hi.y), std::abs(everything.hi.z)});
+    // Rays travel at most from the eye across the box of everything.
+    double reach = glm::length(everything.hi - everything.lo);
+    if (request.eye) reach += glm::length(*request.eye - glm::clamp(*request.eye, everything.lo, everything.hi));
     for (;;) {
         g.resolution = res;
         // The grid box is the primitives' box grown by the padding, so that a ray
@@ -382,7 +390,7 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
         }
         if (total > max_refs) {
             throw std::runtime_error(fmt::format("the scene's {} primitives do not fit one grid: {} references, over {}",
-                                                 boxes.size(), total, ref_limit));
+                                                 boxes.size() + g.loose, total, ref_limit));
         }
         // Two passes: count each cell's references, then place them after the prefix sum.
         const std::uint64_t cells = g.cell_count();

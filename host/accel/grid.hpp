@@ -28,7 +28,7 @@ struct GridStats {
     std::string warning;
     std::array<std::uint32_t, 3> resolution{0, 0, 0};
     std::uint64_t cells = 0;
-    std::uint64_t references = 0;                    // primitive references over all cells
+    std::uint64_t references = 0;                    // primitive references: the loose ones and all cells'
     std::size_t bytes = 0;                           // both grid buffers
     double build_seconds = 0.0;
 };

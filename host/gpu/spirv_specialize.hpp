@@ -19,7 +19,8 @@
 namespace vkrt::gpu {
 
 // `spirv` with each specialization constant named in `values` (by constant_id) set
-// to that boolean and frozen, spec-constant expressions folded, and dead branches,
+// to that boolean, and every specialization constant frozen (one not named, at its
+// default: the caller names them all), spec-constant expressions folded, and dead branches,
 // functions and code removed (SPIRV-Tools). Empty if SPIRV-Tools rejects the module,
 // with the reason in `error`; the caller then uses `spirv` as it is.
 std::vector<std::uint32_t> specialize_spirv(std::span<const std::uint32_t> spirv,

@@ -1,6 +1,7 @@
 #include "gpu/vulkan_pipeline.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <vector>
 
 #include "gpu/spirv_specialize.hpp"
@@ -128,6 +129,14 @@ Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features)
     for (std::uint32_t id = 0; id < kFeatureCount; ++id) by_id.emplace(id, values[id] == VK_TRUE);
     std::string error;
     const std::vector<std::uint32_t> specialized = specialize_spirv(render_comp_spv, by_id, error);
+    if (specialized.empty()) {
+        static bool warned = false;   // once a run: every pipeline would say the same
+        if (!warned) {
+            std::fprintf(stderr, "warning: SPIRV-Tools could not specialize the shader (%s); the driver will, and "
+                                 "creating the pipeline takes longer\n", error.c_str());
+            warned = true;
+        }
+    }
     const std::span<const std::uint32_t> words =
         specialized.empty() ? std::span<const std::uint32_t>(render_comp_spv) : std::span<const std::uint32_t>(specialized);
     return make_compute_pipeline(context.device(), words, types, kPushBytes, &specialization);

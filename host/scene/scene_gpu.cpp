@@ -184,6 +184,13 @@ bool want_grid(const Scene& scene, std::size_t primitives, const AccelPolicy& po
     return true;
 }
 
+// At most this many primitives of listed kinds are loose for their size
+// (host/accel/grid.cpp, choose_stretching): each costs every ray a test, and a floor
+// is two. The brute-force threshold's value today (a scene of 32 primitives renders
+// as fast through the grid as by brute force), but a constant of its own, so that
+// re-measuring the threshold leaves it alone.
+constexpr std::size_t kMaxStretching = 32;
+
 // The kinds loose as a whole (indexed by REF_SPHERE...): a kind with fewer
 // primitives than the backend's threshold, the count below which brute force beats
 // the grid on a whole scene, is listed in no cell and tested once per ray instead
@@ -250,7 +257,7 @@ void add_grid(const Scene& scene, const AccelPolicy& policy, SceneGpu& g) {
     // A resolution from the scene asks for a grid over everything.
     const bool resolution_given = request.resolution != GridResolution{0, 0, 0};
     request.loose_kinds = loose_kinds(policy, resolution_given, g);
-    request.max_loose = resolution_given ? 0 : policy.brute_force_below;
+    request.max_loose = resolution_given ? 0 : kMaxStretching;
     request.max_entries = policy.max_buffer_entries;
     request.eye = scene.camera.eye - g.origin;
     std::string note;

@@ -43,7 +43,8 @@ bool budget_exhausted() {
     return g_loop_iterations > params.limits.x;
 }
 
-// True when the driver's own loop cap has cut this invocation's loops. lavapipe
+// True when the driver's own loop cap may have cut this invocation's loops: its
+// vector's counter is spent (a lane that had finished is flagged too). lavapipe
 // keeps one counter for the whole shader run of an 8-lane vector and counts every
 // iteration in which any lane is active, while the budget above counts each
 // invocation's own iterations: where the lanes take different paths through nested

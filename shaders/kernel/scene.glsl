@@ -253,9 +253,9 @@ void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
 Nearest trace(Ray ray, float t_max, bool any_hit) {
     Nearest nearest = Nearest(t_max, REF_NONE, TriangleHit(INFINITY_T, 0.0f, 0.0f), CYLINDER_SIDE);
     if (HAS_GRID) {
-        if (LOOSE_SPHERES || LOOSE_TRIANGLES || LOOSE_RINGS || LOOSE_CYLINDERS) {
-            test_cell(ray, 0u, load_cell_start(0u), any_hit, LOOSE_SPHERES, LOOSE_TRIANGLES, LOOSE_RINGS,
-                      LOOSE_CYLINDERS, nearest);
+        uint loose = (LOOSE_SPHERES || LOOSE_TRIANGLES || LOOSE_RINGS || LOOSE_CYLINDERS) ? load_cell_start(0u) : 0u;
+        if (loose != 0u) {   // test_cell needs a reference to test (the reference's tests turn every feature on)
+            test_cell(ray, 0u, loose, any_hit, LOOSE_SPHERES, LOOSE_TRIANGLES, LOOSE_RINGS, LOOSE_CYLINDERS, nearest);
         }
         if (!blocker_found(any_hit, nearest)) {
             grid_trace(ray, any_hit, nearest);
