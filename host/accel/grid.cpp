@@ -111,10 +111,11 @@ std::vector<bool> choose_stretching(const std::vector<Aabb>& boxes, std::size_t 
     std::vector<std::size_t> order(boxes.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     // The k largest and, after them, the largest of the rest.
-    std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(k + 1), order.end(), [&](std::size_t a, std::size_t b) {
+    auto larger = [&](std::size_t a, std::size_t b) {
         const double ea = largest_extent(a), eb = largest_extent(b);
         return ea != eb ? ea > eb : a < b;   // ties by index: the same choice every run
-    });
+    };
+    std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(k + 1), order.end(), larger);
     // rest[j]: the box of every primitive but the j largest.
     std::vector<Aabb> rest(k + 1);
     rest[k] = boxes[order[k]];

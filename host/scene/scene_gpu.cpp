@@ -194,13 +194,13 @@ constexpr std::size_t kMaxStretching = 32;
 // The kinds loose as a whole (indexed by REF_SPHERE...): a kind with fewer
 // primitives than the backend's threshold, the count below which brute force beats
 // the grid on a whole scene, is listed in no cell and tested once per ray instead
-// (kernel/scene.glsl, trace). A floor of two triangles under thousands of spheres would otherwise be
-// listed in every cell it spans, stretch the grid's box to its own size, and cost
-// every cell visited a pass through the triangle loop, which SIMD hardware runs even
-// when no lane has a triangle (docs/grid.md). Every kind is listed when no kind
-// reaches the threshold (a grid forced on a small scene), and when the scene gives
-// the resolution: that asks for one particular grid, over the whole scene (the
-// README compares SPD balls with published figures for such grids).
+// (kernel/scene.glsl, trace). A floor of two triangles under thousands of spheres
+// would otherwise be listed in every cell it spans, stretch the grid's box to its
+// own size, and cost every cell visited a pass through the triangle loop, which SIMD
+// hardware runs even when no lane has a triangle (docs/grid.md). Every kind is
+// listed when no kind reaches the threshold (a grid forced on a small scene), and
+// when the scene gives the resolution: that asks for one particular grid, over the
+// whole scene (the README compares SPD balls with published figures for such grids).
 std::array<bool, 4> loose_kinds(const AccelPolicy& policy, bool resolution_given, const SceneGpu& g) {
     const std::array<std::size_t, 4> counts{g.spheres.size(), g.triangles.size(), g.rings.size(), g.cylinders.size()};
     const bool any_large = std::any_of(counts.begin(), counts.end(),
