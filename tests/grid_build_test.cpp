@@ -282,7 +282,8 @@ TEST(GridBuild, NothingIsLeftLooseUnlessTheBoxShrinksMuch) {
         const float side = i % 2 == 0 ? -400.0f : 400.0f;
         const glm::vec3 a = i < 4 ? glm::vec3(side, -400, -11) : glm::vec3(-400, side, -11);
         const glm::vec3 b = i < 4 ? glm::vec3(side, 400, -11) : glm::vec3(400, side, -11);
-        room.triangles.push_back(triangle(a, b, (i / 2) % 2 == 0 ? b + glm::vec3(0, 0, 800) : a + glm::vec3(0, 0, 800)));
+        const glm::vec3 up = (i / 2) % 2 == 0 ? b : a;
+        room.triangles.push_back(triangle(a, b, up + glm::vec3(0, 0, 800)));
     }
     EXPECT_EQ(build_grid(room.primitives(), request, note).loose, 0u);
 }

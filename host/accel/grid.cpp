@@ -87,9 +87,9 @@ constexpr double kLooseShrink = 8.0;
 // the grid keeps: where the next ones are nearly as large, the box is still theirs.
 constexpr double kLooseGap = 8.0;
 
-// The primitives loose for their size: at most `max_loose` of the largest boxes, the fewest whose
-// absence shrinks the grid's box to within twice the smallest box that leaving out
-// up to `max_loose` of them reaches, and only if they shrink it kLooseShrink times
+// The primitives loose for their size: at most `max_loose` of the largest boxes, the
+// fewest whose absence shrinks the grid's box to within twice the smallest box that
+// leaving out up to `max_loose` of them reaches, and only if they shrink it kLooseShrink times
 // and they are kLooseGap times larger than the rest. A floor 100 units wide under a
 // tree 3 units wide (SPD tree) otherwise sets the box, and the cell size that the
 // primitive count buys spreads the tree's 53,000 primitives over a few dozen cells
@@ -304,12 +304,7 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
             }
         }
         const std::vector<bool> stretching = choose_stretching(kept_boxes, request.max_loose, g.loose_shrink);
-        for (std::size_t k = 0; k < kept.size(); ++k) {
-            if (stretching[k]) {
-                loose[kept[k]] = true;
-                ++g.stretching;
-            }
-        }
+        for (std::size_t k = 0; k < kept.size(); ++k) loose[kept[k]] = loose[kept[k]] || stretching[k];
         std::vector<Aabb> listed_boxes;
         std::vector<std::uint32_t> listed_ids;
         for (std::size_t i = 0; i < boxes.size(); ++i) {

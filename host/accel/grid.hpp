@@ -52,8 +52,8 @@ struct Grid {
     // (cell_starts[0] == loose).
     std::vector<std::uint32_t> refs;
     std::uint32_t loose = 0;
-    std::uint32_t stretching = 0;  // of those, the ones left out for their boxes
-    double loose_shrink = 1.0;     // how many times larger the box would be with those
+    // How many times larger the box would be with the ones left out for their boxes.
+    double loose_shrink = 1.0;
 
     std::uint64_t cell_count() const {
         return std::uint64_t(resolution[0]) * resolution[1] * resolution[2];

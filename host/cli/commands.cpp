@@ -217,8 +217,8 @@ int run_render(const RenderArgs& args) {
             "the image ({}) is incomplete (lavapipe stops loops silently at 65,535 iterations per 8-lane "
             "vector, so the kernel stops first, or flags what lavapipe cut). {}",
             s.truncated_samples, s.loop_budget, output,
-            s.grid.used ? "Grid cells along these rays hold too many primitives, or a sample traces too many rays through "
-                          "them: try a finer render.grid resolution or a lower render.max_depth"
+            s.grid.used ? "Grid cells along these rays hold too many primitives, or a sample traces too many "
+                          "rays through them: try a finer render.grid resolution or a lower render.max_depth"
                         : "The scene has too many primitives for brute-force tracing: try --grid on"));
     }
     return 0;

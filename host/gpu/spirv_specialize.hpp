@@ -19,9 +19,9 @@
 namespace vkrt::gpu {
 
 // `spirv` with each specialization constant named in `values` (by constant_id) set
-// to that boolean, and every specialization constant frozen (one not named, at its
-// default: the caller names them all), spec-constant expressions folded, and dead branches,
-// functions and code removed (SPIRV-Tools). Empty if SPIRV-Tools rejects the module,
+// to that boolean, every specialization constant frozen (one not named, at its
+// default: the caller names them all), spec-constant expressions folded, and dead
+// branches, functions and code removed (SPIRV-Tools). Empty if SPIRV-Tools rejects the module,
 // with the reason in `error`; the caller then uses `spirv` as it is.
 std::vector<std::uint32_t> specialize_spirv(std::span<const std::uint32_t> spirv,
                                             const std::unordered_map<std::uint32_t, bool>& values, std::string& error);

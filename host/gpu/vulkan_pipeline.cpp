@@ -138,7 +138,8 @@ Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features)
         }
     }
     const std::span<const std::uint32_t> words =
-        specialized.empty() ? std::span<const std::uint32_t>(render_comp_spv) : std::span<const std::uint32_t>(specialized);
+        specialized.empty() ? std::span<const std::uint32_t>(render_comp_spv)
+                            : std::span<const std::uint32_t>(specialized);
     return make_compute_pipeline(context.device(), words, types, kPushBytes, &specialization);
 }
 
