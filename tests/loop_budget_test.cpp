@@ -53,19 +53,22 @@ TEST(LoopBudget, SilentWhenUnderBudget) {
 
 TEST(LoopBudget, CountsEveryIterationAndEveryLoopEntry) {
     // 100 spheres and no lights: the eye ray's sphere loop costs 100 iterations plus
-    // one for its exit test, the way lavapipe counts, so 101 is exactly enough.
+    // one for its exit test, the way lavapipe counts, and the deferred spheres' scan
+    // after it (scene.glsl) one more for its body's masked run, so 102 is exactly
+    // enough.
     Scene scene = too_many_spheres(100);
-    scene.render.loop_budget = 101;
+    scene.render.loop_budget = 102;
     expect_truncation(test::render_cpu(scene), 0);
     expect_truncation(test::render_vulkan(scene), 0);
-    scene.render.loop_budget = 100;
+    scene.render.loop_budget = 101;
     expect_truncation(test::render_cpu(scene), 64);
     expect_truncation(test::render_vulkan(scene), 64);
 }
 
 // One sphere lit by many lights with shadows: each light costs its own iteration plus
-// a shadow ray's one-sphere loop, entry included: three counts a light. Lavapipe cut
-// 22,000 lights silently before shadow-ray loop entries were counted.
+// a shadow ray's one-sphere loop, entry included, and the deferred spheres' scan's
+// entry: four counts a light. Lavapipe cut 22,000 lights silently before shadow-ray
+// loop entries were counted.
 Scene many_lights(std::uint32_t count) {
     Scene s = too_many_spheres(0);
     s.camera.width = 4;
@@ -79,11 +82,11 @@ Scene many_lights(std::uint32_t count) {
 }
 
 TEST(LoopBudget, ShadowRayLoopsCountToo) {
-    const Scene over = many_lights(21000);  // 3 * 21,000 > 60,000
+    const Scene over = many_lights(15100);  // 4 * 15,100 > 60,000
     expect_truncation(test::render_cpu(over), 16);
     expect_truncation(test::render_vulkan(over), 16);
 
-    const Scene under = many_lights(19000);  // 3 * 19,000 + 3 < 60,000: every sample complete
+    const Scene under = many_lights(14900);  // 4 * 14,900 + 4 < 60,000: every sample complete
     const RenderOutcome cpu = test::render_cpu(under);
     const RenderOutcome gpu = test::render_vulkan(under);
     expect_truncation(cpu, 0);

@@ -53,6 +53,70 @@ float sphere_c_exact(vec3 origin, vec3 center, float r) {
     return result;
 }
 
+// What both forms of the sphere test below share: the ray's origin relative to the
+// centre, b = oc . dir, r^2, |oc|^2 and c = |oc|^2 - r^2 as rounded.
+struct SphereSetup {
+    vec3 oc;
+    float b;
+    float r2;
+    float oo;
+    float c;
+};
+
+SphereSetup sphere_setup(Ray ray, vec3 center, float radius) {
+    vec3 oc = ray.origin - center;
+    float b = dot(oc, ray.dir);
+    float r2 = radius * radius;
+    precise float oo = dot(oc, oc);
+    precise float c = oo - r2;
+    return SphereSetup(oc, b, r2, oo, c);
+}
+
+// True where the rounded c cancels: |c| under half of |oc|^2, an origin between
+// 0.82 r and 1.41 r from the centre, such as a point on the sphere itself. There the
+// test needs the error-free c (sphere_exact_c_test); elsewhere c loses under a bit.
+bool sphere_needs_exact_c(SphereSetup s) {
+    return abs(s.c) < 0.5f * s.oo;
+}
+
+// The nearer root in (t_min, t_max) of t^2 + 2 b t + c = 0 given its discriminant,
+// or INFINITY_T: the first root from q, the second from c / q, which do not cancel.
+float sphere_roots(float b, float c, float disc, float t_min, float t_max) {
+    if (!(disc >= 0.0f)) {
+        return INFINITY_T;
+    }
+    float root = sqrt(disc);
+    precise float q = b >= 0.0f ? -(b + root) : root - b;
+    float t_a = q;
+    precise float t_b = q != 0.0f ? c / q : 0.0f;
+    float t_near = min(t_a, t_b);
+    float t_far = max(t_a, t_b);
+    if (t_near > t_min && t_near < t_max) {
+        return t_near;
+    }
+    if (t_far > t_min && t_far < t_max) {
+        return t_far;
+    }
+    return INFINITY_T;
+}
+
+// The sphere test where c does not cancel (!sphere_needs_exact_c): the discriminant
+// from the distance between the centre and the ray's closest point, r^2 - |f|^2.
+float sphere_rounded_c_test(Ray ray, SphereSetup s, float t_min, float t_max) {
+    precise vec3 f = s.oc - s.b * ray.dir;
+    precise float disc = s.r2 - dot(f, f);
+    return sphere_roots(s.b, s.c, disc, t_min, t_max);
+}
+
+// The sphere test where c cancels (sphere_needs_exact_c): c error-free, and the
+// discriminant b^2 - c from it and an exact b^2.
+float sphere_exact_c_test(Ray ray, vec3 center, float radius, SphereSetup s, float t_min, float t_max) {
+    precise float c = sphere_c_exact(ray.origin, center, radius);
+    vec2 bb = exact_product(s.b, s.b);
+    precise float disc = (bb.x - c) + bb.y;
+    return sphere_roots(s.b, c, disc, t_min, t_max);
+}
+
 // Nearest t in (t_min, t_max) where the ray meets the sphere, or INFINITY_T.
 // Uses the form of the quadratic that does not cancel catastrophically (Haines et
 // al., "Precision Improvements for Ray/Sphere Intersection", Ray Tracing Gems ch. 7):
@@ -71,37 +135,16 @@ float sphere_c_exact(vec3 origin, vec3 center, float r) {
 // exact b^2, whose error, 2 b times b's rounding, is at most that of r^2 - |f|^2 (2 r
 // times f's) and far below it for rays near the horizon (b << r), where r^2 - |f|^2
 // lost the root and put hit points up to 1e-2 under the ground.
+//
+// SIMD hardware that runs both sides of a branch (lavapipe) pays for the error-free
+// form on every test; loops over many spheres therefore call the two forms apart and
+// defer the few spheres that need the exact one (scene.glsl, DeferredSpheres).
 float intersect_sphere(Ray ray, vec3 center, float radius, float t_min, float t_max) {
-    vec3 oc = ray.origin - center;
-    float b = dot(oc, ray.dir);
-    float r2 = radius * radius;
-    precise float oo = dot(oc, oc);
-    precise float c = oo - r2;
-    precise float disc;
-    if (abs(c) < 0.5f * oo) {
-        c = sphere_c_exact(ray.origin, center, radius);
-        vec2 bb = exact_product(b, b);
-        disc = (bb.x - c) + bb.y;
-    } else {
-        precise vec3 f = oc - b * ray.dir;
-        disc = r2 - dot(f, f);
+    SphereSetup s = sphere_setup(ray, center, radius);
+    if (sphere_needs_exact_c(s)) {
+        return sphere_exact_c_test(ray, center, radius, s, t_min, t_max);
     }
-    if (!(disc >= 0.0f)) {
-        return INFINITY_T;
-    }
-    float root = sqrt(disc);
-    precise float q = b >= 0.0f ? -(b + root) : root - b;
-    float t_a = q;
-    precise float t_b = q != 0.0f ? c / q : 0.0f;
-    float t_near = min(t_a, t_b);
-    float t_far = max(t_a, t_b);
-    if (t_near > t_min && t_near < t_max) {
-        return t_near;
-    }
-    if (t_far > t_min && t_far < t_max) {
-        return t_far;
-    }
-    return INFINITY_T;
+    return sphere_rounded_c_test(ray, s, t_min, t_max);
 }
 
 // Result of a ray-triangle test: t (INFINITY_T for a miss) and the barycentric

@@ -20,14 +20,55 @@ struct Nearest {
     uint part;        // CYLINDER_SIDE, _BASE_CAP or _TOP_CAP, when ref is a cylinder
 };
 
-void test_sphere(Ray ray, uint index, INOUT(Nearest) nearest) {
-    g_intersection_tests += 1u;
-    Sphere s = load_sphere(index);
-    float t = intersect_sphere(ray, vec3(s.center_radius), s.center_radius.w, 0.0f, nearest.t);
+void set_sphere_nearest(uint index, float t, INOUT(Nearest) nearest) {
     if (t < nearest.t) {
         nearest.t = t;
         nearest.ref = (REF_SPHERE << REF_KIND_SHIFT) | index;
     }
+}
+
+void test_sphere(Ray ray, uint index, INOUT(Nearest) nearest) {
+    g_intersection_tests += 1u;
+    Sphere s = load_sphere(index);
+    set_sphere_nearest(index, intersect_sphere(ray, vec3(s.center_radius), s.center_radius.w, 0.0f, nearest.t),
+                       nearest);
+}
+
+// The spheres a brute-force loop set aside because the ray starts near them
+// (sphere_needs_exact_c): lavapipe runs both sides of every branch, so a loop that
+// made the error-free test in place paid for it on every sphere (SPD balls by brute
+// force took 1.3x as long). Few spheres qualify for any one ray: the one it leaves,
+// and neighbours touching it. The first four are kept here, by selects rather than
+// an indexed array (which lavapipe keeps in memory); past them only their count, and
+// the loop after them (test_deferred_spheres) finds the rest again.
+struct DeferredSpheres {
+    uint count;
+    uvec4 slots;
+};
+
+// One test of a brute-force loop: the rounded-c test, or the sphere deferred.
+void test_sphere_or_defer(Ray ray, uint index, INOUT(Nearest) nearest, INOUT(DeferredSpheres) deferred) {
+    g_intersection_tests += 1u;
+    Sphere s = load_sphere(index);
+    SphereSetup setup = sphere_setup(ray, vec3(s.center_radius), s.center_radius.w);
+    if (sphere_needs_exact_c(setup)) {
+        deferred.slots.x = deferred.count == 0u ? index : deferred.slots.x;
+        deferred.slots.y = deferred.count == 1u ? index : deferred.slots.y;
+        deferred.slots.z = deferred.count == 2u ? index : deferred.slots.z;
+        deferred.slots.w = deferred.count == 3u ? index : deferred.slots.w;
+        deferred.count += 1u;
+    } else {
+        set_sphere_nearest(index, sphere_rounded_c_test(ray, setup, 0.0f, nearest.t), nearest);
+    }
+}
+
+// The error-free test of a deferred sphere (counted when it was deferred).
+void test_sphere_exact(Ray ray, uint index, INOUT(Nearest) nearest) {
+    Sphere s = load_sphere(index);
+    vec3 center = vec3(s.center_radius);
+    SphereSetup setup = sphere_setup(ray, center, s.center_radius.w);
+    set_sphere_nearest(index, sphere_exact_c_test(ray, center, s.center_radius.w, setup, 0.0f, nearest.t),
+                       nearest);
 }
 
 void test_triangle(Ray ray, uint index, INOUT(Nearest) nearest) {
@@ -208,12 +249,43 @@ void grid_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
     } while (walking);
 }
 
+// The spheres test_sphere_or_defer set aside, after the loop: the four it kept, then,
+// for a ray with more, a scan from the last of them on for the rest. On SIMD
+// hardware the scan's body runs once, masked, when no lane needs it: one sphere test.
+void test_deferred_spheres(Ray ray, DeferredSpheres deferred, bool any_hit, INOUT(Nearest) nearest) {
+    if (deferred.count > 0u) {
+        test_sphere_exact(ray, deferred.slots.x, nearest);
+    }
+    if (deferred.count > 1u && !blocker_found(any_hit, nearest)) {
+        test_sphere_exact(ray, deferred.slots.y, nearest);
+    }
+    if (deferred.count > 2u && !blocker_found(any_hit, nearest)) {
+        test_sphere_exact(ray, deferred.slots.z, nearest);
+    }
+    if (deferred.count > 3u && !blocker_found(any_hit, nearest)) {
+        test_sphere_exact(ray, deferred.slots.w, nearest);
+    }
+    uint left = deferred.count > 4u ? deferred.count - 4u : 0u;
+    loop_enter();
+    for (uint i = deferred.slots.w + 1u; left > 0u && loop_tick() && !blocker_found(any_hit, nearest); ++i) {
+        Sphere s = load_sphere(min(i, params.counts.x - 1u));
+        if (sphere_needs_exact_c(sphere_setup(ray, vec3(s.center_radius), s.center_radius.w))) {
+            test_sphere_exact(ray, i, nearest);
+            left -= 1u;
+        }
+    }
+}
+
 // Every primitive, one loop per kind: scenes too small to gain from the grid.
 void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
     if (HAS_SPHERES) {
+        DeferredSpheres deferred = DeferredSpheres(0u, uvec4(0u));
         loop_enter();
         for (uint i = 0u; i < params.counts.x && loop_tick() && !blocker_found(any_hit, nearest); ++i) {
-            test_sphere(ray, i, nearest);
+            test_sphere_or_defer(ray, i, nearest, deferred);
+        }
+        if (!trace_done(any_hit, nearest)) {
+            test_deferred_spheres(ray, deferred, any_hit, nearest);
         }
         if (trace_done(any_hit, nearest)) {
             return;
