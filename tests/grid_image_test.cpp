@@ -32,8 +32,8 @@ using namespace vkrt;
 constexpr std::size_t kBruteForceOnVulkanMax = 20000;
 
 // Whether one sample, traced by brute force, stays within the kernel's loop budget:
-// each ray loops over every primitive (plus a loop entry per kind, and one for the
-// deferred spheres' scan, scene.glsl), and a sample traces its eye ray and, with
+// each ray loops over every primitive (plus a loop entry per kind, and two for the
+// deferred spheres, scene.glsl), and a sample traces its eye ray and, with
 // mirrors or glass, up to max_depth more along the ray tree, each sending a shadow
 // ray per point light and per area-light sample. An estimate
 // that errs low shows up as truncated samples, which the test fails on.
@@ -45,7 +45,7 @@ bool brute_force_fits_loop_budget(const Scene& s, std::size_t primitives) {
     }
     const std::uint64_t rays = secondary ? s.render.max_depth + 1u : 1u;
     const std::uint64_t queries = rays * (1u + s.lights.size() + (emits ? s.render.light_samples : 0u));
-    return queries * (primitives + 5u) <= kernel::DEFAULT_LOOP_BUDGET;
+    return queries * (primitives + 6u) <= kernel::DEFAULT_LOOP_BUDGET;
 }
 
 Scene with_grid(Scene s, GridMode mode) {
