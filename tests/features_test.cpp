@@ -68,6 +68,20 @@ TEST(Features, TrianglesWithNormalsKeepSmoothNormals) {
     EXPECT_EQ(g.triangles.size(), 1u);
 }
 
+// Brute force defers the spheres a ray starts near past its loop from 8 spheres on;
+// with the grid, or fewer spheres, the loop tests them in place.
+TEST(Features, DeferredSpheresOnlyForBruteForceOverManySpheres) {
+    Scene s = spheres_only();
+    EXPECT_FALSE(build_scene_gpu(s).features.has(Feature::DEFERRED_SPHERES));  // one sphere
+    for (int i = 1; i < 8; ++i) s.spheres.push_back(Sphere{{3.0 * i, 0, 0}, 1, 0});
+    s.render.grid.mode = GridMode::Off;
+    EXPECT_TRUE(build_scene_gpu(s).features.has(Feature::DEFERRED_SPHERES));
+    s.render.grid.mode = GridMode::On;
+    const SceneGpu grid = build_scene_gpu(s);
+    ASSERT_TRUE(grid.grid.used);
+    EXPECT_FALSE(grid.features.has(Feature::DEFERRED_SPHERES));
+}
+
 // The program's --stats report says what was kept and left out, for both backends.
 TEST(Features, StatsReportNamesWhatWasLeftOut) {
     const auto dir = test::temp_dir("features_test");

@@ -3,7 +3,8 @@
 // after it, four per pass of the loop, and a ray that met more makes another pass.
 // Whatever the path, the result must be intersect_sphere's on every sphere: the
 // nearest hit, its reference, the blocker of a shadow ray; and every pass counts its
-// tests.
+// tests. DEFERRED_SPHERES is on (the Kernel's default) except where a test turns it
+// off.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -133,6 +134,23 @@ TEST(DeferredSpheres, EachDeferredSphereCanBeTheNearest) {
         }
     }
     EXPECT_GE(hits, 3u) << "the test needs touching spheres ahead of the ray";
+}
+
+// With DEFERRED_SPHERES off (few spheres: host/scene/scene_gpu.cpp) the loop tests
+// each sphere in place, once: the same nearest hit and the same blocker.
+TEST(DeferredSpheres, OffTheLoopTestsInPlaceWithTheSameResult) {
+    const std::vector<Sphere> spheres = scene_spheres(touching_directions());
+    Kernel deferred = brute_force(spheres);
+    Kernel in_place = brute_force(spheres);
+    in_place.DEFERRED_SPHERES = false;
+    const Kernel::Nearest want = deferred.trace(Kernel::Ray(kOrigin, kDir), INFINITY_T, false);
+    const Kernel::Nearest got = in_place.trace(Kernel::Ray(kOrigin, kDir), INFINITY_T, false);
+    EXPECT_EQ(got.t, want.t);
+    EXPECT_EQ(got.ref, want.ref);
+    EXPECT_EQ(got.t, one_by_one(in_place, spheres, INFINITY_T).t);
+    EXPECT_EQ(in_place.g_intersection_tests, spheres.size()) << "one pass";
+    EXPECT_EQ(in_place.occluded(Kernel::Ray(kOrigin, kDir), got.t * 1.01f), true);
+    EXPECT_EQ(in_place.occluded(Kernel::Ray(kOrigin, kDir), got.t * 0.99f), false);
 }
 
 // A shadow ray whose only blocker is the last of eight deferred spheres (found by the

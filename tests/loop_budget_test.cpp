@@ -53,9 +53,10 @@ TEST(LoopBudget, SilentWhenUnderBudget) {
 
 TEST(LoopBudget, CountsEveryIterationAndEveryLoopEntry) {
     // 100 spheres and no lights: the eye ray's sphere loop costs 100 iterations plus
-    // one for its exit test, the way lavapipe counts, and two more loops run once
-    // each (scene.glsl): the passes around it, and the deferred spheres' tests after
-    // it, whose body runs masked when no lane has any. So 103 is exactly enough.
+    // one for its exit test, the way lavapipe counts, and, with 100 spheres
+    // (DEFERRED_SPHERES), two more loops run once each (scene.glsl): the passes
+    // around it, and the deferred spheres' tests after it, whose body runs masked
+    // when no lane has any. So 103 is exactly enough.
     Scene scene = too_many_spheres(100);
     scene.render.loop_budget = 103;
     expect_truncation(test::render_cpu(scene), 0);
@@ -66,9 +67,9 @@ TEST(LoopBudget, CountsEveryIterationAndEveryLoopEntry) {
 }
 
 // One sphere lit by many lights with shadows: each light costs its own iteration plus
-// a shadow ray's one-sphere loop, entry included, and the entries of the passes
-// around that loop and of the deferred spheres' tests after it: five counts a light.
-// Lavapipe cut 22,000 lights silently before shadow-ray loop entries were counted.
+// a shadow ray's one-sphere loop, entry included: three counts a light (one sphere
+// is too few for DEFERRED_SPHERES, whose loops would add two). Lavapipe cut 22,000
+// lights silently before shadow-ray loop entries were counted.
 Scene many_lights(std::uint32_t count) {
     Scene s = too_many_spheres(0);
     s.camera.width = 4;
@@ -76,17 +77,17 @@ Scene many_lights(std::uint32_t count) {
     s.spheres.push_back(Sphere{{0, 0, 0}, 6.0, 0});  // fills the view
     for (std::uint32_t i = 0; i < count; ++i) {
         const double a = double(i) * 0.618;
-        s.lights.push_back(PointLight{{10 * std::cos(a), 10 * std::sin(a), 10}, {1, 1, 1}, 2e-5});
+        s.lights.push_back(PointLight{{10 * std::cos(a), 10 * std::sin(a), 10}, {1, 1, 1}, 1e-5});
     }
     return s;
 }
 
 TEST(LoopBudget, ShadowRayLoopsCountToo) {
-    const Scene over = many_lights(12100);  // 5 * 12,100 > 60,000
+    const Scene over = many_lights(21000);  // 3 * 21,000 > 60,000
     expect_truncation(test::render_cpu(over), 16);
     expect_truncation(test::render_vulkan(over), 16);
 
-    const Scene under = many_lights(11900);  // 5 * 11,900 + 4 < 60,000: every sample complete
+    const Scene under = many_lights(19000);  // 3 * 19,000 + 3 < 60,000: every sample complete
     const RenderOutcome cpu = test::render_cpu(under);
     const RenderOutcome gpu = test::render_vulkan(under);
     expect_truncation(cpu, 0);

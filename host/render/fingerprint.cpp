@@ -29,9 +29,10 @@ private:
     std::uint64_t hash_ = 0xcbf29ce484222325ull;
 };
 
-// The features that say how the scene is accelerated, not what it shows.
-bool is_grid_feature(std::uint32_t id) {
+// The features that say how the scene is traced, not what it shows.
+bool is_acceleration_feature(std::uint32_t id) {
     switch (Feature(id)) {
+    case Feature::DEFERRED_SPHERES:
     case Feature::HAS_GRID:
     case Feature::GRID_SPHERES:
     case Feature::GRID_TRIANGLES:
@@ -55,7 +56,7 @@ std::uint64_t scene_fingerprint(const SceneGpu& scene) {
     Fnv1a h;
     h.add(&params, sizeof params);  // vec4 members only: no padding bytes
     for (std::uint32_t id = 0; id < kFeatureCount; ++id) {
-        const std::uint8_t on = !is_grid_feature(id) && scene.features.has(id) ? 1 : 0;
+        const std::uint8_t on = !is_acceleration_feature(id) && scene.features.has(id) ? 1 : 0;
         h.add(&on, 1);
     }
     const std::uint8_t corners = scene.corners ? 1 : 0;

@@ -13,7 +13,8 @@ namespace vkrt {
 // 64-bit FNV-1a over those bytes. The uniform grid is left out: it decides how
 // rays find what they hit, not what they hit (tests/grid_image_test.cpp renders
 // identical images with and without it), so partials rendered with --grid on, off,
-// or on backends that choose differently still merge.
+// or on backends that choose differently still merge. So is DEFERRED_SPHERES, the
+// order in which brute force tests spheres (tests/kernel_deferred_spheres_test.cpp).
 std::uint64_t scene_fingerprint(const SceneGpu& scene);
 
 // Sixteen lower-case hex digits, as partial files store it.

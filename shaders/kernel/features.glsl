@@ -34,3 +34,7 @@ FEATURE(20, LOOSE_SPHERES)
 FEATURE(21, LOOSE_TRIANGLES)
 FEATURE(22, LOOSE_RINGS)
 FEATURE(23, LOOSE_CYLINDERS)
+// Without the grid, whether the sphere loop tests the spheres a ray starts near
+// after it (scene.glsl, DeferredSpheres) rather than in place: on from
+// kDeferredSpheresFrom spheres (host/scene/scene_gpu.cpp), where it pays on lavapipe.
+FEATURE(24, DEFERRED_SPHERES)

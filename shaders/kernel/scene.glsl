@@ -271,7 +271,7 @@ void test_deferred_slots(Ray ray, DeferredSpheres deferred, bool any_hit, INOUT(
 
 // Every primitive, one loop per kind: scenes too small to gain from the grid.
 void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
-    if (HAS_SPHERES) {
+    if (HAS_SPHERES && DEFERRED_SPHERES) {
         // A second pass only for a ray that met more than four near spheres: it tests
         // (and counts) every sphere again, and keeps the next four.
         DeferredSpheres deferred = DeferredSpheres(0u, 0u, uvec4(0u));
@@ -287,6 +287,15 @@ void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
             }
             deferred.first += 4u;
         } while (deferred.count > deferred.first && loop_tick() && !blocker_found(any_hit, nearest));
+        if (trace_done(any_hit, nearest)) {
+            return;
+        }
+    }
+    if (HAS_SPHERES && !DEFERRED_SPHERES) {
+        loop_enter();
+        for (uint i = 0u; i < params.counts.x && loop_tick() && !blocker_found(any_hit, nearest); ++i) {
+            test_sphere(ray, i, nearest);
+        }
         if (trace_done(any_hit, nearest)) {
             return;
         }
