@@ -73,9 +73,11 @@ TEST(Features, TrianglesWithNormalsKeepSmoothNormals) {
 TEST(Features, DeferredSpheresOnlyForBruteForceOverManySpheres) {
     Scene s = spheres_only();
     EXPECT_FALSE(build_scene_gpu(s).features.has(Feature::DEFERRED_SPHERES));  // one sphere
-    for (int i = 1; i < 8; ++i) s.spheres.push_back(Sphere{{3.0 * i, 0, 0}, 1, 0});
+    for (int i = 1; i < 7; ++i) s.spheres.push_back(Sphere{{3.0 * i, 0, 0}, 1, 0});
     s.render.grid.mode = GridMode::Off;
-    EXPECT_TRUE(build_scene_gpu(s).features.has(Feature::DEFERRED_SPHERES));
+    EXPECT_FALSE(build_scene_gpu(s).features.has(Feature::DEFERRED_SPHERES));  // seven
+    s.spheres.push_back(Sphere{{21.0, 0, 0}, 1, 0});
+    EXPECT_TRUE(build_scene_gpu(s).features.has(Feature::DEFERRED_SPHERES));  // eight
     s.render.grid.mode = GridMode::On;
     const SceneGpu grid = build_scene_gpu(s);
     ASSERT_TRUE(grid.grid.used);

@@ -35,7 +35,8 @@ constexpr std::size_t kBruteForceOnVulkanMax = 20000;
 // each ray loops over every primitive (plus a loop entry per kind, and two for the
 // deferred spheres, scene.glsl), and a sample traces its eye ray and, with
 // mirrors or glass, up to max_depth more along the ray tree, each sending a shadow
-// ray per point light and per area-light sample. An estimate
+// ray per point light and per area-light sample. One pass over the spheres per ray:
+// a ray that starts near more than four makes more (scene.glsl, brute_force_trace). An estimate
 // that errs low shows up as truncated samples, which the test fails on.
 bool brute_force_fits_loop_budget(const Scene& s, std::size_t primitives) {
     bool secondary = false, emits = false;

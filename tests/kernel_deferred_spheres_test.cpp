@@ -136,6 +136,45 @@ TEST(DeferredSpheres, EachDeferredSphereCanBeTheNearest) {
     EXPECT_GE(hits, 3u) << "the test needs touching spheres ahead of the ray";
 }
 
+// A sphere tested by the rounded form, hit between the deferred spheres' hits (about
+// t = 0.002: radius 0.004, its centre 0.006 ahead, 1.5 radii from the origin), and
+// the touching spheres in varying numbers: 5 (two passes, the second with one), 8,
+// and 9 (three passes). Whichever is nearer wins, wherever it lies in the array.
+TEST(DeferredSpheres, RoundedAndDeferredHitsBoundEachOther) {
+    const Sphere rounded{vec4(kOrigin + 0.006f * kDir, 0.004f), uvec4(0u)};
+    std::vector<vec3> nine = touching_directions();
+    nine.push_back(unit(vec3(0.5f, -0.5f, -1.0f)));
+    bool rounded_won = false, deferred_won = false;
+    for (const std::size_t touching : {5u, 8u, 9u}) {
+        for (const bool ahead_turned_away : {false, true}) {
+            std::vector<vec3> directions(nine.begin(), nine.begin() + std::ptrdiff_t(touching));
+            if (ahead_turned_away) {  // leave only hits beyond the rounded sphere's
+                for (vec3& d : directions) {
+                    if (d.x * kDir.x + d.y * kDir.y + d.z * kDir.z > 0.5f) d = -d;
+                }
+            }
+            for (const bool rounded_first : {true, false}) {
+                std::vector<Sphere> spheres = scene_spheres(directions);
+                spheres.insert(rounded_first ? spheres.begin() : spheres.end(), rounded);
+                Kernel k = brute_force(spheres);
+                ASSERT_FALSE(k.sphere_needs_exact_c(k.sphere_setup(Kernel::Ray(kOrigin, kDir),
+                                                                   vec3(rounded.center_radius), 0.004f)));
+                const Expected want = one_by_one(k, spheres, INFINITY_T);
+                k.g_intersection_tests = 0;
+                const Kernel::Nearest got = k.trace(Kernel::Ray(kOrigin, kDir), INFINITY_T, false);
+                EXPECT_EQ(got.t, want.t) << touching << " touching, turned " << ahead_turned_away;
+                EXPECT_EQ(got.ref, sphere_ref(want.index)) << touching << " touching";
+                EXPECT_EQ(k.g_intersection_tests, spheres.size() * ((touching + 3) / 4)) << "a pass per four";
+                const bool rounded_is_nearest = spheres[want.index].center_radius == rounded.center_radius;
+                rounded_won = rounded_won || rounded_is_nearest;
+                deferred_won = deferred_won || !rounded_is_nearest;
+            }
+        }
+    }
+    EXPECT_TRUE(rounded_won);
+    EXPECT_TRUE(deferred_won);
+}
+
 // With DEFERRED_SPHERES off (few spheres: host/scene/scene_gpu.cpp) the loop tests
 // each sphere in place, once: the same nearest hit and the same blocker.
 TEST(DeferredSpheres, OffTheLoopTestsInPlaceWithTheSameResult) {
@@ -153,8 +192,8 @@ TEST(DeferredSpheres, OffTheLoopTestsInPlaceWithTheSameResult) {
     EXPECT_EQ(in_place.occluded(Kernel::Ray(kOrigin, kDir), got.t * 0.99f), false);
 }
 
-// A shadow ray whose only blocker is the last of eight deferred spheres (found by the
-// scan) is blocked; with t_max before that blocker it is not.
+// A shadow ray whose only blocker is the last of eight deferred spheres (found in the
+// second pass) is blocked; with t_max before that blocker it is not.
 TEST(DeferredSpheres, AShadowRayIsBlockedByALateDeferredSphere) {
     std::vector<vec3> directions = touching_directions();
     // Only the last touching sphere lies ahead of the ray: turn the others away.

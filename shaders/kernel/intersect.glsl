@@ -65,7 +65,9 @@ struct SphereSetup {
 
 SphereSetup sphere_setup(Ray ray, vec3 center, float radius) {
     vec3 oc = ray.origin - center;
-    float b = dot(oc, ray.dir);
+    // precise here: the values b feeds are precise, but in the callers, and glslang
+    // marks an expression's operands NoContraction within one function only.
+    precise float b = dot(oc, ray.dir);
     float r2 = radius * radius;
     precise float oo = dot(oc, oc);
     precise float c = oo - r2;

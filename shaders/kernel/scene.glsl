@@ -272,8 +272,9 @@ void test_deferred_slots(Ray ray, DeferredSpheres deferred, bool any_hit, INOUT(
 // Every primitive, one loop per kind: scenes too small to gain from the grid.
 void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
     if (HAS_SPHERES && DEFERRED_SPHERES) {
-        // A second pass only for a ray that met more than four near spheres: it tests
-        // (and counts) every sphere again, and keeps the next four.
+        // A second pass only for a ray that met more than four near spheres: it counts
+        // every sphere again, tests again those it does not defer, and keeps the next
+        // four of those it does.
         DeferredSpheres deferred = DeferredSpheres(0u, 0u, uvec4(0u));
         loop_enter();
         do {
