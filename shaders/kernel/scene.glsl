@@ -41,7 +41,8 @@ void test_sphere(Ray ray, uint index, INOUT(Nearest) nearest) {
 // and neighbours touching it. Four are kept at a time, by selects rather than an
 // indexed array (which lavapipe keeps in memory), and tested after the loop
 // (test_deferred_slots); a ray that met more loops again for the next four
-// (brute_force_trace).
+// (brute_force_trace). Only with DEFERRED_SPHERES, which the host turns on from 8
+// spheres: below that the loops after the sphere loop cost more than they save.
 struct DeferredSpheres {
     uint count;   // near spheres met so far in this pass of the loop
     uint first;   // the count at which this pass's slots start: 0, 4, 8, ...
