@@ -52,12 +52,18 @@ public:
     double setup_seconds() const override { return 0.0; }
 
     RenderResult render(SampleRange samples, const ProgressCallback& progress) override {
-        const auto start = std::chrono::steady_clock::now();
         RenderResult out;
         out.width = scene_.width();
         out.height = scene_.height();
         out.sums.assign(scene_.pixel_count(), kernel::PixelSum{});
         out.counters.assign(scene_.pixel_count(), kernel::Counters{});
+        // The clock starts after the output arrays exist, as the Vulkan backend's
+        // timestamps start after its sums are cleared: render_seconds is the sample
+        // loop. Fresh arrays fault their pages in as they are zeroed (112 bytes a
+        // pixel: 4,096 page faults at 512x512, 20-40 ms of a 0.1 s render of a
+        // million spheres), which made the reference look slower when no earlier
+        // render had left freed memory to reuse (docs/bench.md).
+        const auto start = std::chrono::steady_clock::now();
 
         const std::uint32_t tiles_x = (out.width + kTileSize - 1) / kTileSize;
         const std::uint32_t tiles_y = (out.height + kTileSize - 1) / kTileSize;
