@@ -59,10 +59,10 @@ public:
         out.counters.assign(scene_.pixel_count(), kernel::Counters{});
         // The clock starts after the output arrays exist, as the Vulkan backend's
         // timestamps start after its sums are cleared: render_seconds is the sample
-        // loop. Fresh arrays fault their pages in as they are zeroed (112 bytes a
-        // pixel, about 4,000 page faults at 512x512); timed, they took image H's
-        // reference render from 0.082-0.086 s to 0.123-0.133 s whenever the
-        // allocator handed out fresh pages (docs/bench.md).
+        // loop (and starting the threads that run it). Fresh arrays fault their
+        // pages in as they are zeroed, 112 bytes a pixel, which timed here made the
+        // reference look up to 2x slower whenever the allocator handed out fresh
+        // pages (docs/bench.md has the measurement).
         const auto start = std::chrono::steady_clock::now();
 
         const std::uint32_t tiles_x = (out.width + kTileSize - 1) / kTileSize;
