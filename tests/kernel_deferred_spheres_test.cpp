@@ -2,8 +2,8 @@
 // starts near (sphere_needs_exact_c) is set aside by the loop and tested error-free
 // after it, four per pass of the loop, and a ray that met more makes another pass.
 // Whatever the path, the result must be intersect_sphere's on every sphere: the
-// nearest hit, its reference, the blocker of a shadow ray; and every pass counts its
-// tests. DEFERRED_SPHERES is on (the Kernel's default) except where a test turns it
+// nearest hit, its reference, the blocker of a shadow ray (which defers nothing);
+// and every pass counts its tests. DEFERRED_SPHERES is on (the Kernel's default) except where a test turns it
 // off.
 #include <gtest/gtest.h>
 
@@ -192,9 +192,10 @@ TEST(DeferredSpheres, OffTheLoopTestsInPlaceWithTheSameResult) {
     EXPECT_EQ(in_place.occluded(Kernel::Ray(kOrigin, kDir), got.t * 0.99f), false);
 }
 
-// A shadow ray whose only blocker is the last of eight deferred spheres (found in the
-// second pass) is blocked; with t_max before that blocker it is not.
-TEST(DeferredSpheres, AShadowRayIsBlockedByALateDeferredSphere) {
+// A shadow ray defers nothing (its test, sphere_blocks, needs no error-free c): over
+// the eight touching spheres it tests each in place, once, and is blocked by the last
+// of them, the only one ahead; with t_max before that blocker it is not.
+TEST(DeferredSpheres, AShadowRayTestsEveryTouchingSphereInPlace) {
     std::vector<vec3> directions = touching_directions();
     // Only the last touching sphere lies ahead of the ray: turn the others away.
     for (std::size_t i = 0; i + 1 < directions.size(); ++i) {
@@ -208,9 +209,13 @@ TEST(DeferredSpheres, AShadowRayIsBlockedByALateDeferredSphere) {
     const Expected want = one_by_one(k, spheres, INFINITY_T);
     ASSERT_LT(want.t, INFINITY_T);
     ASSERT_EQ(want.index, spheres.size() - 2) << "the last touching sphere is the only one hit";
+    k.g_intersection_tests = 0;
     EXPECT_EQ(k.trace(Kernel::Ray(kOrigin, kDir), INFINITY_T, true).ref, sphere_ref(want.index));
+    EXPECT_EQ(k.g_intersection_tests, want.index + 1) << "one pass, ending at the blocker";
     EXPECT_TRUE(k.occluded(Kernel::Ray(kOrigin, kDir), want.t * 1.01f));
+    k.g_intersection_tests = 0;
     EXPECT_FALSE(k.occluded(Kernel::Ray(kOrigin, kDir), want.t * 0.99f));
+    EXPECT_EQ(k.g_intersection_tests, spheres.size()) << "one pass over every sphere";
 }
 
 }  // namespace

@@ -34,6 +34,26 @@ void test_sphere(Ray ray, uint index, INOUT(Nearest) nearest) {
                        nearest);
 }
 
+// A shadow ray's sphere test: whether the sphere blocks it, not where (sphere_blocks).
+// A blocker sets only the reference; the trace ends there.
+void test_sphere_blocks(Ray ray, uint index, INOUT(Nearest) nearest) {
+    g_intersection_tests += 1u;
+    Sphere s = load_sphere(index);
+    if (sphere_blocks(ray, vec3(s.center_radius), s.center_radius.w, nearest.t)) {
+        nearest.ref = (REF_SPHERE << REF_KIND_SHIFT) | index;
+    }
+}
+
+// The sphere test for the ray's question: where it first meets the sphere, or, with
+// any_hit, whether it meets it at all.
+void test_sphere_for(Ray ray, uint index, bool any_hit, INOUT(Nearest) nearest) {
+    if (any_hit) {
+        test_sphere_blocks(ray, index, nearest);
+    } else {
+        test_sphere(ray, index, nearest);
+    }
+}
+
 // The spheres a brute-force loop set aside because the ray starts near them
 // (sphere_needs_exact_c): lavapipe runs both sides of every branch, so a loop that
 // made the error-free test in place paid for it on every sphere (SPD balls by brute
@@ -42,7 +62,9 @@ void test_sphere(Ray ray, uint index, INOUT(Nearest) nearest) {
 // indexed array (which lavapipe keeps in memory), and tested after the loop
 // (test_deferred_slots); a ray that met more loops again for the next four
 // (brute_force_trace). Only with DEFERRED_SPHERES, which the host turns on from 8
-// spheres: below that the loops after the sphere loop cost more than they save.
+// spheres: below that the loops after the sphere loop cost more than they save. And
+// only for rays that need the nearest hit: a shadow ray's test (sphere_blocks) needs
+// no error-free c, so shadow rays test every sphere in place.
 struct DeferredSpheres {
     uint count;   // near spheres met so far in this pass of the loop
     uint first;   // the count at which this pass's slots start: 0, 4, 8, ...
@@ -154,7 +176,7 @@ bool test_cell(Ray ray, uint i, uint end, bool any_hit, bool with_spheres, bool 
     if (with_spheres && (ref >> REF_KIND_SHIFT) == REF_SPHERE) {
         loop_enter();
         do {
-            test_sphere(ray, ref & REF_INDEX_MASK, nearest);
+            test_sphere_for(ray, ref & REF_INDEX_MASK, any_hit, nearest);
             ref = next_ref(i, end);
         } while (loop_tick() && (ref >> REF_KIND_SHIFT) == REF_SPHERE && !blocker_found(any_hit, nearest));
         if (trace_done(any_hit, nearest)) {
@@ -270,9 +292,10 @@ void test_deferred_slots(Ray ray, DeferredSpheres deferred, bool any_hit, INOUT(
     } while (k < n && loop_tick() && !blocker_found(any_hit, nearest));
 }
 
-// Every primitive, one loop per kind: scenes too small to gain from the grid.
+// Every primitive, one loop per kind: scenes too small to gain from the grid. Shadow
+// rays (any_hit) never defer a sphere and take the in-place loop.
 void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
-    if (HAS_SPHERES && DEFERRED_SPHERES) {
+    if (HAS_SPHERES && DEFERRED_SPHERES && !any_hit) {
         // A second pass only for a ray that met more than four near spheres: it counts
         // every sphere again, tests again those it does not defer, and keeps the next
         // four of those it does.
@@ -293,10 +316,10 @@ void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
             return;
         }
     }
-    if (HAS_SPHERES && !DEFERRED_SPHERES) {
+    if (HAS_SPHERES && (!DEFERRED_SPHERES || any_hit)) {
         loop_enter();
         for (uint i = 0u; i < params.counts.x && loop_tick() && !blocker_found(any_hit, nearest); ++i) {
-            test_sphere(ray, i, nearest);
+            test_sphere_for(ray, i, any_hit, nearest);
         }
         if (trace_done(any_hit, nearest)) {
             return;
