@@ -163,8 +163,9 @@ const float SPHERE_C_SIGN_MARGIN = 3.814697265625e-06f;   // 2^-18
 // non-negative, the nearer root t0 is positive when c > 0 and b < 0 (the origin is
 // outside and the ray heads toward the centre), the farther t1 when c < 0 or b < 0.
 // Only their comparisons with t_max need the roots themselves, -b -+ sqrt(disc): each
-// cancels only where it is tiny, far below any t_max but a light's distance a rounding
-// from the origin, and a shadow ray stops short of its light anyway (SHADOW_RAY_END).
+// cancels only where it is tiny, and is then far below t_max unless the light lies
+// within a rounding of the ray's origin; a shadow ray stops short of its light anyway
+// (SHADOW_RAY_END).
 // So c matters only for its sign, which the rounded c gets right unless the origin
 // lies within SPHERE_C_SIGN_MARGIN of the surface; such an origin, a shadow ray
 // leaving the sphere it starts on, counts as on the surface (c = 0): a ray leaving the
