@@ -3,8 +3,8 @@
 // after it, four per pass of the loop, and a ray that met more makes another pass.
 // Whatever the path, the result must be intersect_sphere's on every sphere: the
 // nearest hit, its reference, the blocker of a shadow ray (which defers nothing);
-// and every pass counts its tests. DEFERRED_SPHERES is on (the Kernel's default) except where a test turns it
-// off.
+// and every pass counts its tests. DEFERRED_SPHERES is on (the Kernel's default)
+// except where a test turns it off.
 #include <gtest/gtest.h>
 
 #include <cmath>

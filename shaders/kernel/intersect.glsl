@@ -102,12 +102,17 @@ float sphere_roots(float b, float c, float disc, float t_min, float t_max) {
     return INFINITY_T;
 }
 
-// The sphere test where c does not cancel (!sphere_needs_exact_c): the discriminant
-// from the distance between the centre and the ray's closest point, r^2 - |f|^2.
-float sphere_rounded_c_test(Ray ray, SphereSetup s, float t_min, float t_max) {
+// The discriminant from the distance between the centre and the ray's closest point,
+// r^2 - |f|^2, which does not cancel for distant spheres as b^2 - c does.
+float sphere_closest_point_disc(Ray ray, SphereSetup s) {
     precise vec3 f = s.oc - s.b * ray.dir;
     precise float disc = s.r2 - dot(f, f);
-    return sphere_roots(s.b, s.c, disc, t_min, t_max);
+    return disc;
+}
+
+// The sphere test where c does not cancel (!sphere_needs_exact_c).
+float sphere_rounded_c_test(Ray ray, SphereSetup s, float t_min, float t_max) {
+    return sphere_roots(s.b, s.c, sphere_closest_point_disc(ray, s), t_min, t_max);
 }
 
 // The sphere test where c cancels (sphere_needs_exact_c): c error-free, and the
@@ -172,8 +177,8 @@ const float SPHERE_C_SIGN_MARGIN = 3.814697265625e-06f;   // 2^-18
 // surface is not blocked by it, a ray entering it is (t1 = -2b). The error-free c
 // would say the same wherever the origin lies outside, as offset_ray_origin puts it,
 // and would let a hit point that rounded to inside block its own shadow ray.
-// The discriminant is r^2 - |f|^2, as in the rounded-c test; its error moves the
-// decision only for rays tangent to the sphere within a rounding.
+// The discriminant is sphere_closest_point_disc, as in the rounded-c test; its error
+// moves the decision only for rays tangent to the sphere within a rounding.
 // Compared with intersect_sphere(ray, ..., 0, t_max) != INFINITY_T, which it equals
 // away from those margins, it skips the error-free c that lavapipe computes on every
 // test (both sides of the branch) and the division for the second root: image H
@@ -181,8 +186,7 @@ const float SPHERE_C_SIGN_MARGIN = 3.814697265625e-06f;   // 2^-18
 // 100,000 spheres 1.15x and 1.13x, with the same images (docs/grid.md).
 bool sphere_blocks(Ray ray, vec3 center, float radius, float t_max) {
     SphereSetup s = sphere_setup(ray, center, radius);
-    precise vec3 f = s.oc - s.b * ray.dir;
-    precise float disc = s.r2 - dot(f, f);
+    float disc = sphere_closest_point_disc(ray, s);
     float c = abs(s.c) < SPHERE_C_SIGN_MARGIN * s.oo ? 0.0f : s.c;
     float h = sqrt(max(disc, 0.0f));
     precise float t0 = -s.b - h;

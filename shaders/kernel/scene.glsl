@@ -15,6 +15,7 @@
 // The nearest hit so far: the primitive's reference and its distance.
 struct Nearest {
     float t;          // the bound for further tests: t_max until something is hit
+                      // (a shadow ray's sphere blocker leaves it: the trace ends there)
     uint ref;         // REF_NONE until something is hit
     TriangleHit tri;  // barycentrics, when ref is a triangle
     uint part;        // CYLINDER_SIDE, _BASE_CAP or _TOP_CAP, when ref is a cylinder
