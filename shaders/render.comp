@@ -14,12 +14,18 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "kernel/sums.glsl"
 
 // Binding numbers are mirrored in host/gpu/vulkan_pipeline.hpp (enum Binding).
-// Every binding is a texel buffer (one uvec4/vec4 texel per struct member):
-// - Not SSBOs for the scene arrays and sums: lavapipe (Mesa 22.3) turns every SSBO
-//   load or store into a scalar loop over the 8 SIMD lanes with a bounds check and a
-//   stack round-trip per component, which made the primitive loops ~10x slower than
-//   the C++ reference. Texel fetches and image loads/stores are vector gathers and
-//   scatters.
+// Every binding is a storage texel buffer, an imageBuffer of 16-byte texels (one
+// uvec4/vec4 per struct member; the grid's two arrays are r32ui), the scene's read-only:
+// - Not SSBOs: lavapipe (Mesa 22.3) turns every SSBO load or store into a scalar loop
+//   over the 8 SIMD lanes with a bounds check and a stack round-trip per component,
+//   which made the primitive loops ~10x slower than the C++ reference. Image loads
+//   and stores are vector gathers and scatters, compiled inline.
+// - Not uniform texel buffers (texelFetch on a usamplerBuffer), as the scene was read
+//   until 2026-12-02: lavapipe compiles a texel fetch from any format but 8-bit RGBA
+//   into a call to a sampling function of its own, and every vector register live
+//   across the call is spilled to the stack and read back. Each sphere test and each
+//   grid cell paid that. With image loads, image H renders 1.03x faster on lavapipe
+//   and SPD balls by brute force 1.1x, same images (docs/grid.md, "Image loads").
 // - Not a uniform buffer for the params either: lavapipe inlines uniform-buffer values
 //   that decide a branch or a loop into the shader and compiles that variant when a
 //   dispatch is recorded after the pipeline or descriptors were bound, every time (no
@@ -30,24 +36,28 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 //   and the pipeline is compiled once, when it is created. The push constants (sample
 //   and band) are uniform-buffer values to lavapipe too, so they must not decide a
 //   branch by themselves. vulkan_backend_test checks that no uniform buffer is declared.
-layout(binding = 0) uniform usamplerBuffer params_texels;      // 19 texels: one Params
+// Storage texel buffers count against a device's storage-image limits, whose
+// guaranteed minimum is 4: device selection (gpu/vulkan_devices.cpp) asks for one per
+// binding.
+layout(binding = 0, rgba32ui) uniform readonly uimageBuffer params_texels;      // 19 texels: one Params
 Params params;   // set by main() before anything reads it
-layout(binding = 1) uniform usamplerBuffer material_texels;    // 5 texels per Material
-layout(binding = 2) uniform usamplerBuffer sphere_texels;      // 2 texels per Sphere
-layout(binding = 3) uniform usamplerBuffer triangle_texels;    // 7 texels per Triangle
-layout(binding = 4) uniform usamplerBuffer light_texels;       // 2 texels per PointLight
+layout(binding = 1, rgba32ui) uniform readonly uimageBuffer material_texels;    // 5 texels per Material
+layout(binding = 2, rgba32ui) uniform readonly uimageBuffer sphere_texels;      // 2 texels per Sphere
+layout(binding = 3, rgba32ui) uniform readonly uimageBuffer triangle_texels;    // 7 texels per Triangle
+layout(binding = 4, rgba32ui) uniform readonly uimageBuffer light_texels;       // 2 texels per PointLight
 layout(binding = 5, rgba32ui) uniform uimageBuffer sums;       // 3 texels per pixel (PixelSum)
 layout(binding = 6, rgba32ui) uniform uimageBuffer counters;   // 4 texels per pixel (Counters)
-layout(binding = 7) uniform usamplerBuffer grid_cell_starts;    // r32ui, cells + 1 entries
-layout(binding = 8) uniform usamplerBuffer grid_refs;           // r32ui, one per reference
-layout(binding = 9) uniform usamplerBuffer ring_texels;         // 3 texels per Ring
-layout(binding = 10) uniform usamplerBuffer cylinder_texels;    // 3 texels per Cylinder
-layout(binding = 11) uniform usamplerBuffer emitter_texels;     // 2 texels per Emitter
+layout(binding = 7, r32ui) uniform readonly uimageBuffer grid_cell_starts;    // r32ui, cells + 1 entries
+layout(binding = 8, r32ui) uniform readonly uimageBuffer grid_refs;           // r32ui, one per reference
+layout(binding = 9, rgba32ui) uniform readonly uimageBuffer ring_texels;         // 3 texels per Ring
+layout(binding = 10, rgba32ui) uniform readonly uimageBuffer cylinder_texels;    // 3 texels per Cylinder
+layout(binding = 11, rgba32ui) uniform readonly uimageBuffer emitter_texels;     // 2 texels per Emitter
 layout(push_constant) uniform PassBlock { uvec4 pass; };   // x = sample index, y = first row of the band
 
 // The buffer accessors the kernel calls (host/ref/kernel.hpp has the C++ ones). Fields
-// a caller does not use are dropped by the driver's dead-code elimination.
-vec4 fetch_vec4(usamplerBuffer b, uint i) { return uintBitsToFloat(texelFetch(b, int(i))); }
+// a caller does not use are dropped by the driver's dead-code elimination. A macro, not a
+// function: an image parameter would lose the format that imageLoad needs.
+#define fetch_vec4(b, i) uintBitsToFloat(imageLoad(b, int(i)))
 Material load_material(uint i) {
     uint b = 5u * i;
     return Material(fetch_vec4(material_texels, b), fetch_vec4(material_texels, b + 1u),
@@ -55,29 +65,29 @@ Material load_material(uint i) {
                     fetch_vec4(material_texels, b + 4u));
 }
 Sphere load_sphere(uint i) {
-    return Sphere(fetch_vec4(sphere_texels, 2u * i), texelFetch(sphere_texels, int(2u * i + 1u)));
+    return Sphere(fetch_vec4(sphere_texels, 2u * i), imageLoad(sphere_texels, int(2u * i + 1u)));
 }
 Triangle load_triangle(uint i) {
     uint b = 7u * i;
     return Triangle(fetch_vec4(triangle_texels, b), fetch_vec4(triangle_texels, b + 1u),
                     fetch_vec4(triangle_texels, b + 2u), fetch_vec4(triangle_texels, b + 3u),
                     fetch_vec4(triangle_texels, b + 4u), fetch_vec4(triangle_texels, b + 5u),
-                    texelFetch(triangle_texels, int(b + 6u)));
+                    imageLoad(triangle_texels, int(b + 6u)));
 }
 PointLight load_light(uint i) {
     return PointLight(fetch_vec4(light_texels, 2u * i), fetch_vec4(light_texels, 2u * i + 1u));
 }
 Ring load_ring(uint i) {
     uint b = 3u * i;
-    return Ring(fetch_vec4(ring_texels, b), fetch_vec4(ring_texels, b + 1u), texelFetch(ring_texels, int(b + 2u)));
+    return Ring(fetch_vec4(ring_texels, b), fetch_vec4(ring_texels, b + 1u), imageLoad(ring_texels, int(b + 2u)));
 }
 Cylinder load_cylinder(uint i) {
     uint b = 3u * i;
     return Cylinder(fetch_vec4(cylinder_texels, b), fetch_vec4(cylinder_texels, b + 1u),
-                    texelFetch(cylinder_texels, int(b + 2u)));
+                    imageLoad(cylinder_texels, int(b + 2u)));
 }
 Emitter load_emitter(uint i) {
-    return Emitter(texelFetch(emitter_texels, int(2u * i)), fetch_vec4(emitter_texels, 2u * i + 1u));
+    return Emitter(imageLoad(emitter_texels, int(2u * i)), fetch_vec4(emitter_texels, 2u * i + 1u));
 }
 // The Params struct, member by member (layout.glsl).
 Params load_params() {
@@ -87,22 +97,22 @@ Params load_params() {
                   fetch_vec4(params_texels, 3u),
                   fetch_vec4(params_texels, 4u),
                   fetch_vec4(params_texels, 5u),
-                  texelFetch(params_texels, 6),
-                  texelFetch(params_texels, 7),
-                  texelFetch(params_texels, 8),
+                  imageLoad(params_texels, 6),
+                  imageLoad(params_texels, 7),
+                  imageLoad(params_texels, 8),
                   fetch_vec4(params_texels, 9u),
                   fetch_vec4(params_texels, 10u),
                   fetch_vec4(params_texels, 11u),
                   fetch_vec4(params_texels, 12u),
-                  texelFetch(params_texels, 13),
-                  texelFetch(params_texels, 14),
+                  imageLoad(params_texels, 13),
+                  imageLoad(params_texels, 14),
                   fetch_vec4(params_texels, 15u),
-                  texelFetch(params_texels, 16),
+                  imageLoad(params_texels, 16),
                   fetch_vec4(params_texels, 17u),
-                  texelFetch(params_texels, 18));
+                  imageLoad(params_texels, 18));
 }
-uint load_cell_start(uint i) { return texelFetch(grid_cell_starts, int(i)).x; }
-uint load_ref(uint i) { return texelFetch(grid_refs, int(i)).x; }
+uint load_cell_start(uint i) { return imageLoad(grid_cell_starts, int(i)).x; }
+uint load_ref(uint i) { return imageLoad(grid_refs, int(i)).x; }
 
 #include "kernel/all.glsl"
 

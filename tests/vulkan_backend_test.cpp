@@ -90,6 +90,41 @@ TEST(VulkanBackend, UnknownDeviceListsTheAvailableOnes) {
     EXPECT_THROW(make_vulkan_backend(VulkanOptions{"99", false}), GpuError);
 }
 
+// Every binding of render.comp is a storage texel buffer, and those count against the
+// device's storage-image limits, whose guaranteed minimum (4) is below what the shader
+// binds: a device short of them is passed over, and refused by name with the reason.
+TEST(VulkanBackend, DeviceWithTooFewStorageTexelBuffersIsRefused) {
+    gpu::PhysicalDevice enough;
+    enough.info.index = 0;
+    enough.info.name = "roomy";
+    enough.has_compute = true;
+    enough.api_version = VK_API_VERSION_1_1;
+    enough.storage_texel_buffers = gpu::kBindingCount;
+    gpu::PhysicalDevice short_of_them = enough;
+    short_of_them.info.index = 1;
+    short_of_them.info.name = "cramped";
+    short_of_them.storage_texel_buffers = gpu::kBindingCount - 1;
+    short_of_them.type = VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU;   // preferred, were it usable
+
+    const std::vector<gpu::PhysicalDevice> both{enough, short_of_them};
+    EXPECT_EQ(gpu::select_device(both, "").info.name, "roomy");
+    const std::string needs = std::to_string(gpu::kBindingCount) + " storage texel buffers";
+    try {
+        gpu::select_device(both, "cramped");
+        FAIL() << "expected GpuError";
+    } catch (const GpuError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("cramped"), std::string::npos) << message;
+        EXPECT_NE(message.find(needs), std::string::npos) << message;
+    }
+    try {
+        gpu::select_device({short_of_them}, "");
+        FAIL() << "expected GpuError";
+    } catch (const GpuError& e) {
+        EXPECT_NE(std::string(e.what()).find(needs), std::string::npos) << e.what();
+    }
+}
+
 // The sums of `n` samples of radiance `v`, as the kernel adds them.
 kernel::PixelSum repeated(glm::vec3 v, std::uint32_t n) {
     kernel::PixelSum s{};

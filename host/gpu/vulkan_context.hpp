@@ -71,6 +71,9 @@ struct PhysicalDevice {
     VkDriverId driver_id{};  // 0 when the device cannot report it
     std::uint32_t api_version = 0;
     bool has_compute = false;
+    // Storage texel buffers a compute shader may bind: the lesser of the per-stage and
+    // per-set limits on storage images, which they count against.
+    std::uint32_t storage_texel_buffers = 0;
 };
 
 // The instance and, when asked for, the validation layer's messenger. Not movable:

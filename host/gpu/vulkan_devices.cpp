@@ -7,6 +7,7 @@
 #include <string>
 
 #include "gpu/vulkan_context.hpp"
+#include "gpu/vulkan_pipeline.hpp"
 
 namespace vkrt::gpu {
 
@@ -85,8 +86,14 @@ std::string lower(std::string s) {
     return s;
 }
 
+// Every binding of render.comp is a storage texel buffer (render.comp says why).
 bool usable(const PhysicalDevice& d) {
-    return d.has_compute && d.api_version >= VK_API_VERSION_1_1;
+    return d.has_compute && d.api_version >= VK_API_VERSION_1_1 && d.storage_texel_buffers >= kBindingCount;
+}
+
+std::string needs() {
+    return "it needs Vulkan 1.1, a compute queue and " + std::to_string(kBindingCount) +
+           " storage texel buffers in one shader stage";
 }
 
 std::string describe(const PhysicalDevice& d) {
@@ -125,6 +132,8 @@ PhysicalDevice describe_device(VkPhysicalDevice handle, std::uint32_t index,
     d.info.type = type_name(props.deviceType);
     d.info.api_version = version_string(props.apiVersion);
     d.info.driver = "unknown driver";
+    d.storage_texel_buffers =
+        std::min(props.limits.maxPerStageDescriptorStorageImages, props.limits.maxDescriptorSetStorageImages);
 
     // Driver properties are core from 1.2 (as both sides see it), else an extension.
     const std::uint32_t effective = std::min(instance_api, props.apiVersion);
@@ -170,8 +179,7 @@ const PhysicalDevice& select_device(const std::vector<PhysicalDevice>& devices,
             }
         }
         if (!chosen) {
-            throw GpuError("no Vulkan device supports Vulkan 1.1 with a compute queue; available: " +
-                           describe_all(devices));
+            throw GpuError("no Vulkan device can run vkrt (" + needs() + "); available: " + describe_all(devices));
         }
         return *chosen;
     }
@@ -193,8 +201,7 @@ const PhysicalDevice& select_device(const std::vector<PhysicalDevice>& devices,
         throw GpuError("no Vulkan device matches '" + selector + "'; available: " + describe_all(devices));
     }
     if (!usable(*chosen)) {
-        throw GpuError("Vulkan device " + describe(*chosen) +
-                       " cannot run vkrt: it needs Vulkan 1.1 and a compute queue");
+        throw GpuError("Vulkan device " + describe(*chosen) + " cannot run vkrt: " + needs());
     }
     return *chosen;
 }

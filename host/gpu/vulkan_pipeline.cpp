@@ -12,14 +12,8 @@ namespace vkrt::gpu {
 
 namespace {
 
-// The descriptor types and texel formats that kSceneUsage and kSumsUsage are for.
-VkDescriptorType descriptor_type(std::uint32_t binding) {
-    switch (binding) {
-    case kSums:
-    case kCounters: return VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
-    default: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
-    }
-}
+// The texel formats of the bindings (all storage texel buffers, kSceneUsage and
+// kSumsUsage).
 VkFormat texel_format(std::uint32_t binding) {
     switch (binding) {
     case kGridCellStarts:
@@ -107,7 +101,7 @@ Pipeline make_compute_pipeline(VkDevice device, std::span<const std::uint32_t> s
 
 Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features) {
     std::array<VkDescriptorType, kBindingCount> types{};
-    for (std::uint32_t i = 0; i < kBindingCount; ++i) types[i] = descriptor_type(i);
+    types.fill(VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER);
 
     // One VkBool32 per feature, constant_id = feature id: a feature that is off is
     // compiled out by the driver.
@@ -153,7 +147,7 @@ std::vector<BufferView> write_descriptors(VkDevice device, VkDescriptorSet set,
         writes[i].dstSet = set;
         writes[i].dstBinding = i;
         writes[i].descriptorCount = 1;
-        writes[i].descriptorType = descriptor_type(i);
+        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
         VkBufferViewCreateInfo view_info{};
         view_info.sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO;
         view_info.buffer = buffers[i]->get();
