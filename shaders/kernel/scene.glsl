@@ -28,30 +28,20 @@ void set_sphere_nearest(uint index, float t, INOUT(Nearest) nearest) {
     }
 }
 
-void test_sphere(Ray ray, uint index, INOUT(Nearest) nearest) {
+// The sphere test for the ray's question, on sphere `index` whose center and radius
+// are `center_radius` (the caller loads them: load_sphere, or load_grid_sphere in the
+// grid): where the ray first meets it, or, with any_hit (a shadow ray), whether it
+// meets it at all (sphere_blocks), in which case a blocker sets only the reference and
+// the trace ends there.
+void test_sphere_for(Ray ray, uint index, vec4 center_radius, bool any_hit, INOUT(Nearest) nearest) {
     g_intersection_tests += 1u;
-    Sphere s = load_sphere(index);
-    set_sphere_nearest(index, intersect_sphere(ray, vec3(s.center_radius), s.center_radius.w, 0.0f, nearest.t),
-                       nearest);
-}
-
-// A shadow ray's sphere test: whether the sphere blocks it, not where (sphere_blocks).
-// A blocker sets only the reference; the trace ends there.
-void test_sphere_blocks(Ray ray, uint index, INOUT(Nearest) nearest) {
-    g_intersection_tests += 1u;
-    Sphere s = load_sphere(index);
-    if (sphere_blocks(ray, vec3(s.center_radius), s.center_radius.w, nearest.t)) {
-        nearest.ref = (REF_SPHERE << REF_KIND_SHIFT) | index;
-    }
-}
-
-// The sphere test for the ray's question: where it first meets the sphere, or, with
-// any_hit, whether it meets it at all.
-void test_sphere_for(Ray ray, uint index, bool any_hit, INOUT(Nearest) nearest) {
+    vec3 center = vec3(center_radius);
     if (any_hit) {
-        test_sphere_blocks(ray, index, nearest);
+        if (sphere_blocks(ray, center, center_radius.w, nearest.t)) {
+            nearest.ref = (REF_SPHERE << REF_KIND_SHIFT) | index;
+        }
     } else {
-        test_sphere(ray, index, nearest);
+        set_sphere_nearest(index, intersect_sphere(ray, center, center_radius.w, 0.0f, nearest.t), nearest);
     }
 }
 
@@ -177,7 +167,7 @@ bool test_cell(Ray ray, uint i, uint end, bool any_hit, bool with_spheres, bool 
     if (with_spheres && (ref >> REF_KIND_SHIFT) == REF_SPHERE) {
         loop_enter();
         do {
-            test_sphere_for(ray, ref & REF_INDEX_MASK, any_hit, nearest);
+            test_sphere_for(ray, ref & REF_INDEX_MASK, load_grid_sphere(i), any_hit, nearest);
             ref = next_ref(i, end);
         } while (loop_tick() && (ref >> REF_KIND_SHIFT) == REF_SPHERE && !blocker_found(any_hit, nearest));
         if (trace_done(any_hit, nearest)) {
@@ -320,7 +310,7 @@ void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
     if (HAS_SPHERES && (!DEFERRED_SPHERES || any_hit)) {
         loop_enter();
         for (uint i = 0u; i < params.counts.x && loop_tick() && !blocker_found(any_hit, nearest); ++i) {
-            test_sphere_for(ray, i, any_hit, nearest);
+            test_sphere_for(ray, i, load_sphere(i).center_radius, any_hit, nearest);
         }
         if (trace_done(any_hit, nearest)) {
             return;
