@@ -114,14 +114,15 @@ Params load_params() {
 }
 uint load_cell_start(uint i) { return imageLoad(grid_cell_starts, int(i)).x; }
 uint load_ref(uint i) { return imageLoad(grid_refs, int(i)).x; }
-// The sphere of grid reference i (center, radius), from the copy the host keeps beside
-// the references (gpu/grid_spheres.hpp) rather than through the reference. Both
-// reads are gathers here; through the reference the sphere's had to wait for the
-// reference's, and a cell's spheres lay scattered over the sphere array instead of in
-// consecutive texels. Image H rendered 1.1x faster on lavapipe, a million spheres
-// 1.15x (docs/grid.md, "Spheres beside their references"). The C++ reference reads
-// through the reference, which is faster there.
-vec4 load_grid_sphere(uint i) { return fetch_vec4(grid_sphere_texels, i); }
+// The center and radius of sphere `index`, listed at `position` in the grid's
+// references: read from the copy the host keeps beside the references
+// (gpu/grid_spheres.hpp), at `position`, rather than from the sphere array at `index`.
+// Both reads are gathers here; from the sphere array the sphere's had to wait for the
+// reference's, and a cell's spheres lay scattered instead of in consecutive texels.
+// Image H rendered 1.17x faster on lavapipe, a million spheres 1.27x (docs/grid.md,
+// "Spheres beside their references"). The C++ reference reads the sphere array, which
+// is faster there.
+vec4 load_grid_sphere(uint position, uint index) { return fetch_vec4(grid_sphere_texels, position); }
 
 #include "kernel/all.glsl"
 
