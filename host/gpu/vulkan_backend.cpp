@@ -13,7 +13,6 @@
 
 #include "gpu/band_batcher.hpp"
 #include "gpu/batch_timer.hpp"
-#include "gpu/grid_spheres.hpp"
 #include "gpu/vulkan_buffer.hpp"
 #include "gpu/vulkan_context.hpp"
 #include "gpu/vulkan_pipeline.hpp"
@@ -138,14 +137,13 @@ public:
           refs_(array_buffer(context, "grid refs", scene.grid_refs)),
           rings_(array_buffer(context, "rings", scene.rings)),
           cylinders_(array_buffer(context, "cylinders", scene.cylinders)),
-          grid_spheres_(array_buffer(context, "grid spheres", grid_sphere_copies(scene))),
           sums_(context, "sums", scene.pixel_count() * sizeof(kernel::PixelSum), kSumsUsage),
           counters_(context, "counters", scene.pixel_count() * sizeof(kernel::Counters), kSumsUsage),
           views_(write_descriptors(context.device(), pipeline_.set,
                                    {&params_, or_dummy(materials_), or_dummy(spheres_), or_dummy(triangles_),
                                     or_dummy(lights_), &sums_, &counters_, or_dummy(cell_starts_),
                                     or_dummy(refs_), or_dummy(rings_), or_dummy(cylinders_),
-                                    or_dummy(emitters_), or_dummy(grid_spheres_)})),
+                                    or_dummy(emitters_)})),
           timer_(context),
           batcher_(((groups_y_ + kBandGroups - 1) / kBandGroups), kTargetSubmitSeconds, kMaxBatch) {
         params_.upload(&scene.params, sizeof(kernel::Params));
@@ -166,7 +164,7 @@ private:
     VulkanBuffer params_;
     VulkanBuffer dummy_;
     std::optional<VulkanBuffer> materials_, spheres_, triangles_, lights_, emitters_, cell_starts_, refs_, rings_,
-        cylinders_, grid_spheres_;
+        cylinders_;
     VulkanBuffer sums_;
     VulkanBuffer counters_;
     std::vector<BufferView> views_;
@@ -253,8 +251,7 @@ public:
     std::string name() const override { return "vulkan"; }
     AccelPolicy accel_policy() const override {
         // The grid arrays are uint texel buffers: bounded by the texel count a view
-        // may have (the spheres' copies, one 16-byte texel per reference, too) and,
-        // for a device that would need them as storage buffers, by
+        // may have and, for a device that would need them as storage buffers, by
         // maxStorageBufferRange.
         const VkPhysicalDeviceLimits& l = context_.properties().limits;
         return {kBruteForceBelow, std::min<std::uint64_t>(l.maxTexelBufferElements, l.maxStorageBufferRange / 4)};
