@@ -18,6 +18,7 @@
 #include "image/compare.hpp"
 #include "kernel_types.hpp"
 #include "render/fingerprint.hpp"
+#include "gpu/grid_spheres.hpp"
 #include "scene/load_scene.hpp"
 #include "scene/scene_gpu.hpp"
 #include "test_support.hpp"
@@ -212,6 +213,54 @@ TEST(GridLoose, AFloorUnderAClusterIsTestedPerRay) {
     EXPECT_FALSE(everything.features.has(Feature::LOOSE_TRIANGLES));
     EXPECT_EQ(everything.grid_cell_starts.front(), 0u);
     expect_brute_forces_image(scene);
+}
+
+// The Vulkan backend reads a grid sphere from a copy at its reference's position
+// (render.comp, load_grid_sphere): one center_radius per reference, the sphere's for a
+// sphere and zero for the other kinds, and no copies when the grid lists no sphere.
+TEST(GridSpheres, EachReferenceHasItsSpheresCopy) {
+    std::string objects;
+    for (int i = 0; i < 48; ++i) {
+        const double x = -1.5 + (i % 4), y = 0.4 + (i / 16), z = -1.5 + (i / 4 % 4);
+        objects += fmt::format(R"({{"type": "triangle", "vertices": [[{}, {}, {}], [{}, {}, {}], [{}, {}, {}]],
+                                   "material": "m"}},)",
+                               x - 0.3, y, z, x + 0.3, y, z + 0.1, x, y + 0.4, z - 0.2);
+        objects += fmt::format(R"({{"type": "sphere", "center": [{}, {}, {}], "radius": {}, "material": "m"}},)",
+                               x + 0.4, y + 0.3, z + 0.4, 0.1 + 0.002 * i);
+    }
+    const Scene scene = cluster_on_a_floor("grid_spheres", objects);
+    const SceneGpu gpu = build_scene_gpu(scene, AccelPolicy{32, 0xFFFFFFFFu});
+    ASSERT_TRUE(gpu.grid.used);
+    ASSERT_EQ(gpu::grid_sphere_copy_count(gpu), gpu.grid_refs.size());
+    // One more than the count, to catch a write past the end.
+    const glm::vec4 unwritten(-7.0f);
+    std::vector<glm::vec4> copies(gpu.grid_refs.size() + 1, unwritten);
+    gpu::write_grid_sphere_copies(gpu, copies.data());
+    EXPECT_EQ(copies.back(), unwritten);
+    std::size_t spheres = 0;
+    for (std::size_t i = 0; i < gpu.grid_refs.size(); ++i) {
+        const std::uint32_t ref = gpu.grid_refs[i];
+        if ((ref >> kernel::REF_KIND_SHIFT) == kernel::REF_SPHERE) {
+            ++spheres;
+            EXPECT_EQ(copies[i], gpu.spheres.at(ref & kernel::REF_INDEX_MASK).center_radius) << i;
+        } else {
+            EXPECT_EQ(copies[i], glm::vec4(0.0f)) << i;
+        }
+    }
+    EXPECT_GE(spheres, 48u);
+    expect_brute_forces_image(scene);
+
+    std::string triangles_only;
+    for (int i = 0; i < 48; ++i) {
+        const double x = -1.5 + (i % 4), y = 0.4 + (i / 16), z = -1.5 + (i / 4 % 4);
+        triangles_only += fmt::format(R"({{"type": "triangle", "vertices": [[{}, {}, {}], [{}, {}, {}], [{}, {}, {}]],
+                                          "material": "m"}},)",
+                                      x - 0.3, y, z, x + 0.3, y, z + 0.1, x, y + 0.4, z - 0.2);
+    }
+    const SceneGpu no_spheres =
+        build_scene_gpu(cluster_on_a_floor("grid_triangles", triangles_only), AccelPolicy{32, 0xFFFFFFFFu});
+    ASSERT_TRUE(no_spheres.grid.used);
+    EXPECT_EQ(gpu::grid_sphere_copy_count(no_spheres), 0u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, GridImage, ::testing::ValuesIn(vkrt::test::repo_scenes()), test::scene_test_name);

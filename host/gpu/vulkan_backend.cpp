@@ -13,6 +13,7 @@
 
 #include "gpu/band_batcher.hpp"
 #include "gpu/batch_timer.hpp"
+#include "gpu/grid_spheres.hpp"
 #include "gpu/vulkan_buffer.hpp"
 #include "gpu/vulkan_context.hpp"
 #include "gpu/vulkan_pipeline.hpp"
@@ -53,6 +54,19 @@ std::optional<VulkanBuffer> array_buffer(const VulkanContext& context, const cha
     std::optional<VulkanBuffer> buffer;
     buffer.emplace(context, name, items.size() * sizeof(T), kSceneUsage);
     buffer->upload(items.data(), buffer->size());
+    return buffer;
+}
+
+// The grid spheres' copies (grid_spheres.hpp), written straight into the buffer.
+std::optional<VulkanBuffer> grid_spheres_buffer(const VulkanContext& context, const SceneGpu& scene) {
+    const std::size_t count = grid_sphere_copy_count(scene);
+    if (count == 0) {
+        return std::nullopt;
+    }
+    std::optional<VulkanBuffer> buffer;
+    buffer.emplace(context, "grid spheres", count * sizeof(glm::vec4), kSceneUsage);
+    buffer->upload_with(buffer->size(),
+                        [&](void* target) { write_grid_sphere_copies(scene, static_cast<glm::vec4*>(target)); });
     return buffer;
 }
 
@@ -137,13 +151,14 @@ public:
           refs_(array_buffer(context, "grid refs", scene.grid_refs)),
           rings_(array_buffer(context, "rings", scene.rings)),
           cylinders_(array_buffer(context, "cylinders", scene.cylinders)),
+          grid_spheres_(grid_spheres_buffer(context, scene)),
           sums_(context, "sums", scene.pixel_count() * sizeof(kernel::PixelSum), kSumsUsage),
           counters_(context, "counters", scene.pixel_count() * sizeof(kernel::Counters), kSumsUsage),
           views_(write_descriptors(context.device(), pipeline_.set,
                                    {&params_, or_dummy(materials_), or_dummy(spheres_), or_dummy(triangles_),
                                     or_dummy(lights_), &sums_, &counters_, or_dummy(cell_starts_),
                                     or_dummy(refs_), or_dummy(rings_), or_dummy(cylinders_),
-                                    or_dummy(emitters_)})),
+                                    or_dummy(emitters_), or_dummy(grid_spheres_)})),
           timer_(context),
           batcher_(((groups_y_ + kBandGroups - 1) / kBandGroups), kTargetSubmitSeconds, kMaxBatch) {
         params_.upload(&scene.params, sizeof(kernel::Params));
@@ -164,7 +179,7 @@ private:
     VulkanBuffer params_;
     VulkanBuffer dummy_;
     std::optional<VulkanBuffer> materials_, spheres_, triangles_, lights_, emitters_, cell_starts_, refs_, rings_,
-        cylinders_;
+        cylinders_, grid_spheres_;
     VulkanBuffer sums_;
     VulkanBuffer counters_;
     std::vector<BufferView> views_;
@@ -251,7 +266,8 @@ public:
     std::string name() const override { return "vulkan"; }
     AccelPolicy accel_policy() const override {
         // The grid arrays are uint texel buffers: bounded by the texel count a view
-        // may have and, for a device that would need them as storage buffers, by
+        // may have (the spheres' copies, one 16-byte texel per reference, too) and,
+        // for a device that would need them as storage buffers, by
         // maxStorageBufferRange.
         const VkPhysicalDeviceLimits& l = context_.properties().limits;
         return {kBruteForceBelow, std::min<std::uint64_t>(l.maxTexelBufferElements, l.maxStorageBufferRange / 4)};

@@ -18,7 +18,7 @@ class VulkanBuffer;
 // dummy buffer.
 enum Binding : std::uint32_t {
     kParams, kMaterials, kSpheres, kTriangles, kLights, kSums, kCounters, kGridCellStarts, kGridRefs, kRings,
-    kCylinders, kEmitters, kBindingCount
+    kCylinders, kEmitters, kGridSpheres, kBindingCount
 };
 constexpr std::uint32_t kLocalSize = 8;   // local_size_x and _y of render.comp
 constexpr std::uint32_t kPushBytes = 16;  // uvec4 pass

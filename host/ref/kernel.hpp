@@ -41,6 +41,10 @@ struct Kernel {
     Emitter load_emitter(uint i) const { return emitters[i]; }
     uint load_cell_start(uint i) const { return grid_cell_starts[i]; }
     uint load_ref(uint i) const { return grid_refs[i]; }
+    // From the sphere array: read from copies beside the references, as the Vulkan
+    // backend reads it (gpu/grid_spheres.hpp), the reference backend was slower
+    // (docs/grid.md, "Spheres beside their references").
+    vec4 load_grid_sphere(uint /*position*/, uint index) const { return spheres[index].center_radius; }
 
 #include "kernel/all.glsl"
 };
