@@ -52,7 +52,7 @@ std::optional<VulkanBuffer> array_buffer(const VulkanContext& context, const cha
         return std::nullopt;
     }
     std::optional<VulkanBuffer> buffer;
-    buffer.emplace(context, name, items.size() * sizeof(T), kSceneUsage);
+    buffer.emplace(context, name, items.size() * sizeof(T), kBindingUsage);
     buffer->upload(items.data(), buffer->size());
     return buffer;
 }
@@ -64,7 +64,7 @@ std::optional<VulkanBuffer> grid_spheres_buffer(const VulkanContext& context, co
         return std::nullopt;
     }
     std::optional<VulkanBuffer> buffer;
-    buffer.emplace(context, "grid spheres", count * sizeof(glm::vec4), kSceneUsage);
+    buffer.emplace(context, "grid spheres", count * sizeof(glm::vec4), kBindingUsage);
     buffer->upload_with(buffer->size(),
                         [&](void* target) { write_grid_sphere_copies(scene, static_cast<glm::vec4*>(target)); });
     return buffer;
@@ -138,10 +138,10 @@ public:
           groups_y_((height_ + kLocalSize - 1) / kLocalSize),
           setup_start_(Clock::now()),
           pipeline_(make_pipeline(context, scene.features)),
-          params_(context, "params", sizeof(kernel::Params), kSceneUsage),
+          params_(context, "params", sizeof(kernel::Params), kBindingUsage),
           // Stands in for every array the scene leaves out: the shader still declares
           // the binding, but with the feature off nothing reads it.
-          dummy_(context, "unused", 16, kSceneUsage),
+          dummy_(context, "unused", 16, kBindingUsage),
           materials_(array_buffer(context, "materials", scene.materials)),
           spheres_(array_buffer(context, "spheres", scene.spheres)),
           triangles_(array_buffer(context, "triangles", scene.triangles)),
@@ -152,8 +152,8 @@ public:
           rings_(array_buffer(context, "rings", scene.rings)),
           cylinders_(array_buffer(context, "cylinders", scene.cylinders)),
           grid_spheres_(grid_spheres_buffer(context, scene)),
-          sums_(context, "sums", scene.pixel_count() * sizeof(kernel::PixelSum), kSumsUsage),
-          counters_(context, "counters", scene.pixel_count() * sizeof(kernel::Counters), kSumsUsage),
+          sums_(context, "sums", scene.pixel_count() * sizeof(kernel::PixelSum), kBindingUsage),
+          counters_(context, "counters", scene.pixel_count() * sizeof(kernel::Counters), kBindingUsage),
           views_(write_descriptors(context.device(), pipeline_.set,
                                    {&params_, or_dummy(materials_), or_dummy(spheres_), or_dummy(triangles_),
                                     or_dummy(lights_), &sums_, &counters_, or_dummy(cell_starts_),

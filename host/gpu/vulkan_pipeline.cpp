@@ -12,8 +12,7 @@ namespace vkrt::gpu {
 
 namespace {
 
-// The texel formats of the bindings (all storage texel buffers, kSceneUsage and
-// kSumsUsage).
+// The texel formats of the bindings (all storage texel buffers, kBindingUsage).
 VkFormat texel_format(std::uint32_t binding) {
     switch (binding) {
     case kGridCellStarts:

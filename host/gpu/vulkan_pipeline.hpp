@@ -25,8 +25,7 @@ constexpr std::uint32_t kPushBytes = 16;  // uvec4 pass
 
 // Every binding is a storage texel buffer of 16-byte texels (r32ui for the grid's
 // arrays; render.comp says why): the params, the read-only scene arrays and the sums.
-constexpr VkBufferUsageFlags kSceneUsage = VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT;
-constexpr VkBufferUsageFlags kSumsUsage = VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT;
+constexpr VkBufferUsageFlags kBindingUsage = VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT;
 
 // The pipeline and its descriptor set. Members are destroyed in reverse order.
 struct Pipeline {
