@@ -119,7 +119,7 @@ uint load_ref(uint i) { return imageLoad(grid_refs, int(i)).x; }
 // (gpu/grid_spheres.hpp), at `position`, rather than from the sphere array at `index`.
 // Both reads are gathers here; from the sphere array the sphere's had to wait for the
 // reference's, and a cell's spheres lay scattered instead of in consecutive texels.
-// Image H rendered 1.17x faster on lavapipe, a million spheres 1.27x (docs/grid.md,
+// Image H rendered 1.16x faster on lavapipe, a million spheres 1.11x (docs/grid.md,
 // "Spheres beside their references"). The C++ reference reads the sphere array, which
 // is faster there.
 vec4 load_grid_sphere(uint position, uint index) { return fetch_vec4(grid_sphere_texels, position); }
