@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cstdlib>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -249,6 +250,15 @@ TEST(GridSpheres, EachReferenceHasItsSpheresCopy) {
     }
     EXPECT_GE(spheres, 48u);
     expect_brute_forces_image(scene);
+
+    // A discrete GPU takes the staging path, where the copies are written into a
+    // staging buffer and copied over; lavapipe takes it only when forced.
+    const RenderOutcome mapped = test::render_vulkan(scene);
+    ASSERT_EQ(setenv("VKRT_VULKAN_FORCE_STAGING", "1", 1), 0);
+    const RenderOutcome staged = test::render_vulkan(scene);
+    unsetenv("VKRT_VULKAN_FORCE_STAGING");
+    EXPECT_EQ(compare_images(staged.image, mapped.image, 0.0).max_abs, 0.0);
+    EXPECT_EQ(staged.stats.intersection_tests, mapped.stats.intersection_tests);
 
     std::string triangles_only;
     for (int i = 0; i < 48; ++i) {
