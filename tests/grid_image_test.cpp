@@ -71,6 +71,24 @@ Scene cluster_on_a_floor(const char* name, const std::string& objects) {
       ]})");
 }
 
+// 48 small triangles in the cluster, each with a sphere beside it of radius
+// sphere_radius + radius_step * i when sphere_radius is above zero: objects for
+// cluster_on_a_floor.
+std::string triangles_and_spheres(double sphere_radius, double radius_step = 0.0) {
+    std::string objects;
+    for (int i = 0; i < 48; ++i) {
+        const double x = -1.5 + (i % 4), y = 0.4 + (i / 16), z = -1.5 + (i / 4 % 4);
+        objects += fmt::format(R"({{"type": "triangle", "vertices": [[{}, {}, {}], [{}, {}, {}], [{}, {}, {}]],
+                                   "material": "m"}},)",
+                               x - 0.3, y, z, x + 0.3, y, z + 0.1, x, y + 0.4, z - 0.2);
+        if (sphere_radius > 0.0) {
+            objects += fmt::format(R"({{"type": "sphere", "center": [{}, {}, {}], "radius": {}, "material": "m"}},)",
+                                   x + 0.4, y + 0.3, z + 0.4, sphere_radius + radius_step * i);
+        }
+    }
+    return objects;
+}
+
 // The scene with its grid gives brute force's image on both backends, with less than
 // half of brute force's tests.
 void expect_brute_forces_image(const Scene& scene) {
@@ -182,16 +200,7 @@ TEST(GridKinds, FewOfAKindAreTestedOutsideTheGrid) {
 // cluster. The grid's box is the cluster's, the floor is tested once per ray from
 // the references before cell 0's, and the image is brute force's on both backends.
 TEST(GridLoose, AFloorUnderAClusterIsTestedPerRay) {
-    std::string objects;
-    for (int i = 0; i < 48; ++i) {
-        const double x = -1.5 + (i % 4), y = 0.4 + (i / 16), z = -1.5 + (i / 4 % 4);
-        objects += fmt::format(R"({{"type": "triangle", "vertices": [[{}, {}, {}], [{}, {}, {}], [{}, {}, {}]],
-                                   "material": "m"}},)",
-                               x - 0.3, y, z, x + 0.3, y, z + 0.1, x, y + 0.4, z - 0.2);
-        objects += fmt::format(R"({{"type": "sphere", "center": [{}, {}, {}], "radius": 0.2, "material": "m"}},)",
-                               x + 0.4, y + 0.3, z + 0.4);
-    }
-    const Scene scene = cluster_on_a_floor("grid_loose", objects);
+    const Scene scene = cluster_on_a_floor("grid_loose", triangles_and_spheres(0.2));
     const SceneGpu gpu = build_scene_gpu(scene, AccelPolicy{32, 0xFFFFFFFFu});
     ASSERT_TRUE(gpu.grid.used);
     EXPECT_TRUE(gpu.features.has(Feature::GRID_TRIANGLES));
@@ -220,16 +229,7 @@ TEST(GridLoose, AFloorUnderAClusterIsTestedPerRay) {
 // (render.comp, load_grid_sphere): one center_radius per reference, the sphere's for a
 // sphere and zero for the other kinds, and no copies when the grid lists no sphere.
 TEST(GridSpheres, EachReferenceHasItsSpheresCopy) {
-    std::string objects;
-    for (int i = 0; i < 48; ++i) {
-        const double x = -1.5 + (i % 4), y = 0.4 + (i / 16), z = -1.5 + (i / 4 % 4);
-        objects += fmt::format(R"({{"type": "triangle", "vertices": [[{}, {}, {}], [{}, {}, {}], [{}, {}, {}]],
-                                   "material": "m"}},)",
-                               x - 0.3, y, z, x + 0.3, y, z + 0.1, x, y + 0.4, z - 0.2);
-        objects += fmt::format(R"({{"type": "sphere", "center": [{}, {}, {}], "radius": {}, "material": "m"}},)",
-                               x + 0.4, y + 0.3, z + 0.4, 0.1 + 0.002 * i);
-    }
-    const Scene scene = cluster_on_a_floor("grid_spheres", objects);
+    const Scene scene = cluster_on_a_floor("grid_spheres", triangles_and_spheres(0.1, 0.002));
     const SceneGpu gpu = build_scene_gpu(scene, AccelPolicy{32, 0xFFFFFFFFu});
     ASSERT_TRUE(gpu.grid.used);
     ASSERT_EQ(gpu::grid_sphere_copy_count(gpu), gpu.grid_refs.size());
@@ -260,15 +260,8 @@ TEST(GridSpheres, EachReferenceHasItsSpheresCopy) {
     EXPECT_EQ(compare_images(staged.image, mapped.image, 0.0).max_abs, 0.0);
     EXPECT_EQ(staged.stats.intersection_tests, mapped.stats.intersection_tests);
 
-    std::string triangles_only;
-    for (int i = 0; i < 48; ++i) {
-        const double x = -1.5 + (i % 4), y = 0.4 + (i / 16), z = -1.5 + (i / 4 % 4);
-        triangles_only += fmt::format(R"({{"type": "triangle", "vertices": [[{}, {}, {}], [{}, {}, {}], [{}, {}, {}]],
-                                          "material": "m"}},)",
-                                      x - 0.3, y, z, x + 0.3, y, z + 0.1, x, y + 0.4, z - 0.2);
-    }
-    const SceneGpu no_spheres =
-        build_scene_gpu(cluster_on_a_floor("grid_triangles", triangles_only), AccelPolicy{32, 0xFFFFFFFFu});
+    const SceneGpu no_spheres = build_scene_gpu(cluster_on_a_floor("grid_triangles", triangles_and_spheres(0.0)),
+                                                AccelPolicy{32, 0xFFFFFFFFu});
     ASSERT_TRUE(no_spheres.grid.used);
     EXPECT_EQ(gpu::grid_sphere_copy_count(no_spheres), 0u);
 }
