@@ -3,8 +3,11 @@
 namespace vkrt::gpu {
 
 std::size_t grid_sphere_copy_count(const SceneGpu& scene) {
-    const bool spheres = scene.features.has(Feature::GRID_SPHERES) || scene.features.has(Feature::LOOSE_SPHERES);
-    return spheres ? scene.grid_refs.size() : 0;
+    if (scene.features.has(Feature::GRID_SPHERES)) {
+        return scene.grid_refs.size();
+    }
+    // Only the loose references, which come first, can be spheres.
+    return scene.features.has(Feature::LOOSE_SPHERES) ? scene.grid_cell_starts.front() : 0;
 }
 
 void write_grid_sphere_copies(const SceneGpu& scene, glm::vec4* out) {

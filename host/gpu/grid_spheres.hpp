@@ -14,8 +14,9 @@
 
 namespace vkrt::gpu {
 
-// How many copies: one per entry of scene.grid_refs, none when the grid lists no
-// spheres, loose or in cells.
+// How many copies: one per entry of scene.grid_refs where the cells list spheres, one
+// per loose reference (the first grid_cell_starts[0]) where only the loose ones hold
+// spheres, none where neither does.
 std::size_t grid_sphere_copy_count(const SceneGpu& scene);
 
 // Writes grid_sphere_copy_count(scene) center_radius values to `out`: the sphere's for

@@ -264,6 +264,13 @@ public:
     explicit VulkanBackend(const VulkanOptions& options) : context_(options) {}
 
     std::string name() const override { return "vulkan"; }
+    std::vector<BufferSize> derived_buffers(const SceneGpu& scene) const override {
+        const std::size_t copies = grid_sphere_copy_count(scene);
+        if (copies == 0) {
+            return {};
+        }
+        return {{"grid_sphere_copies", copies * sizeof(glm::vec4)}};
+    }
     AccelPolicy accel_policy() const override {
         // The grid arrays are uint texel buffers: bounded by the texel count a view
         // may have (the spheres' copies, one 16-byte texel per reference, too) and,

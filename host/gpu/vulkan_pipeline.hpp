@@ -23,8 +23,9 @@ enum Binding : std::uint32_t {
 constexpr std::uint32_t kLocalSize = 8;   // local_size_x and _y of render.comp
 constexpr std::uint32_t kPushBytes = 16;  // uvec4 pass
 
-// Every binding is a storage texel buffer of 16-byte texels (r32ui for the grid's
-// arrays; render.comp says why): the params, the read-only scene arrays and the sums.
+// Every binding is a storage texel buffer of 16-byte texels (r32ui for the grid's cell
+// starts and references; render.comp says why): the params, the read-only scene arrays
+// and the sums.
 constexpr VkBufferUsageFlags kBindingUsage = VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT;
 
 // The pipeline and its descriptor set. Members are destroyed in reverse order.

@@ -41,9 +41,10 @@ struct Kernel {
     Emitter load_emitter(uint i) const { return emitters[i]; }
     uint load_cell_start(uint i) const { return grid_cell_starts[i]; }
     uint load_ref(uint i) const { return grid_refs[i]; }
-    // From the sphere array: read from copies beside the references, as the Vulkan
-    // backend reads it (gpu/grid_spheres.hpp), the reference backend was slower
-    // (docs/grid.md, "Spheres beside their references").
+    // Reads the sphere array at `index`, not a copy at `position` beside the
+    // references as the Vulkan backend does (gpu/grid_spheres.hpp): the copies made
+    // the reference slower (docs/grid.md, "Spheres beside their references"). So only
+    // Vulkan renders can catch a wrong `position`.
     vec4 load_grid_sphere(uint /*position*/, uint index) const { return spheres[index].center_radius; }
 
 #include "kernel/all.glsl"

@@ -329,7 +329,7 @@ void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
     if (HAS_SPHERES && (!DEFERRED_SPHERES || any_hit)) {
         loop_enter();
         for (uint i = 0u; i < params.counts.x && loop_tick() && !blocker_found(any_hit, nearest); ++i) {
-            test_sphere_for(ray, i, i, false, any_hit, nearest);
+            test_sphere_for(ray, i, 0u, false, any_hit, nearest);   // position: unused outside the grid
         }
         if (trace_done(any_hit, nearest)) {
             return;
