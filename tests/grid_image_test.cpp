@@ -141,9 +141,13 @@ TEST_P(GridImage, GridAndBruteForceGiveTheSameImage) {
         std::printf(", vulkan %.3g\n", gpu.max_abs);
         EXPECT_LE(gpu.max_abs, 1e-5) << "Vulkan backend";
     } else {
-        const ImageDiff cross = compare_images(gpu_grid.image, cpu_brute.image, 1e-3);
-        std::printf(", vulkan grid vs cpu brute force: %zu pixels over 1e-3\n", cross.pixels_over);
-        EXPECT_LE(cross.fraction_over(), 0.001);
+        // Lavapipe cannot trace this scene by brute force (its loop cap), so Vulkan's
+        // grid image is held to the reference's brute force instead, at the same
+        // 1e-5: the two backends' float results agree that closely here (6e-7 at most
+        // on the shipped scenes, 2026-12-02).
+        const ImageDiff cross = compare_images(gpu_grid.image, cpu_brute.image, 1e-5);
+        std::printf(", vulkan grid vs cpu brute force %.3g\n", cross.max_abs);
+        EXPECT_LE(cross.max_abs, 1e-5) << "Vulkan grid against the reference's brute force";
     }
 }
 
