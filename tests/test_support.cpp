@@ -13,6 +13,8 @@
 #include <iterator>
 #include <sstream>
 
+#include <zlib.h>
+
 #include "gpu/vulkan_backend.hpp"
 #include "ref/ref_backend.hpp"
 #include "scene/load_scene.hpp"
@@ -115,6 +117,14 @@ RenderOutcome render_vulkan(const Scene& scene) {
     // message it prints fails the test that rendered.
     EXPECT_EQ(out.stats.validation_messages, 0u) << "the validation layer reported problems (see stderr)";
     return out;
+}
+
+void write_gzip(const std::filesystem::path& file, const std::string& text) {
+    gzFile out = gzopen(file.c_str(), "wb9");
+    ASSERT_NE(out, nullptr) << file;
+    const int written = text.empty() ? 0 : gzwrite(out, text.data(), static_cast<unsigned>(text.size()));
+    ASSERT_EQ(gzclose(out), Z_OK) << file;
+    ASSERT_EQ(written, static_cast<int>(text.size())) << file;
 }
 
 Scene scene_from_text(const std::string& name, const std::string& text) {

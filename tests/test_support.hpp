@@ -57,6 +57,9 @@ std::string expect_one_error(const ProgramRun& run, const std::vector<std::strin
 // reads files, and relative paths in the text are then relative to that directory).
 Scene scene_from_text(const std::string& name, const std::string& text);
 
+// Writes `text` to `file` gzip-compressed, in one gzip member.
+void write_gzip(const std::filesystem::path& file, const std::string& text);
+
 // How many channel values of the image are NaN or infinite.
 std::size_t nonfinite_values(const Image& image);
 
