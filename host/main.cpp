@@ -244,9 +244,9 @@ int main(int argc, char** argv) {
     CLI::Option* spd = b->add_flag("--spd", bench.spd,
                                    "Measure the SPD scenes under the SPD rules: ray counts against the published "
                                    "ones, preprocessing and ray-tracing times");
-    b->add_option("--spd-dir", bench.spd_dir, "Where --spd finds the SPD .nff files")
-        ->needs(spd)
-        ->capture_default_str();
+    b->add_option("--spd-dir", bench.spd_dir,
+                  "Where --spd finds the SPD .nff (or .nff.gz) files; default: the source tree's scenes/spd")
+        ->needs(spd);
     // The SPD rules fix the image (the file's resolution) and the scene list, and the
     // SPD table has its own columns: none of these mean anything with --spd.
     spd->excludes(scene_opt)->excludes(width_opt)->excludes(height_opt)->excludes(sweep_opt)->excludes(threshold_opt);

@@ -217,12 +217,12 @@ std::vector<std::vector<std::string>> markdown_rows(const std::string& text, std
 
 // Two tiny NFF files: "tetra.nff", which the published table has a row for (so its
 // published columns must be SPD tetra's and the differences computed against them),
-// and "mirror.nff", which it has not.
+// and "mirror.nff.gz", which it has not, gzipped as the repo's SPD scenes are.
 fs::path write_spd_dir(const fs::path& dir) {
     const fs::path spd = dir / "spd";
     fs::create_directories(spd);
     std::ofstream(spd / "tetra.nff") << square_nff(0.0);
-    std::ofstream(spd / "mirror.nff") << square_nff(0.5);
+    test::write_gzip(spd / "mirror.nff.gz", square_nff(0.5));
     std::ofstream(spd / "notes.txt") << "not a scene: --spd reads .nff files only\n";
     return spd;
 }
@@ -333,17 +333,27 @@ TEST(BenchSpd, MistakesAreOneLineErrors) {
     expect_one_error("bench --spd -q" + spd_dir, {"broken.nff", "'s'"}, dir);
 }
 
-// Without --spd-dir the SPD files are looked for relative to the repo root, and
-// elsewhere the error says so.
-TEST(BenchSpd, DefaultDirectoryNeedsTheRepoRoot) {
+// Without --spd-dir, --spd renders the ten SPD scenes the repo carries, from any
+// working directory, and the seven with published counts land within their 10%.
+TEST(BenchSpd, DefaultDirectoryIsTheReposScenes) {
     const fs::path dir = test::temp_dir("bench_spd_default");
+    const fs::path csv = dir / "spd.csv";
     const fs::path previous = fs::current_path();
     fs::current_path(dir);
-    const test::ProgramRun run = test::run_vkrt("bench --spd -q", dir);
+    const test::ProgramRun run =
+        test::run_vkrt("bench --spd --backend cpu --runs 1 -q --csv " + test::shell_quote(csv.string()), dir);
     fs::current_path(previous);
-    EXPECT_EQ(run.code, 1);
-    EXPECT_NE(run.stderr_text.find("../shared/spd/nff: no such directory"), std::string::npos) << run.stderr_text;
-    EXPECT_NE(run.stderr_text.find("repo root"), std::string::npos) << run.stderr_text;
+    ASSERT_EQ(run.code, 0) << run.stderr_text;
+    std::string header;
+    const auto rows = read_csv(csv, header);
+    std::vector<std::string> names;
+    for (const auto& row : rows) {
+        names.push_back(row.at("scene"));
+        const bool published = row.at("scene") != "jacks" && row.at("scene") != "lattice" && row.at("scene") != "shells";
+        EXPECT_EQ(row.at("within_10pct"), published ? "yes" : "") << row.at("scene");
+    }
+    EXPECT_EQ(names, (std::vector<std::string>{"balls", "gears", "jacks", "lattice", "mount", "rings", "shells",
+                                                "teapot", "tetra", "tree"}));
 }
 
 }  // namespace

@@ -107,7 +107,7 @@ TEST(LoopBudget, ShadowRayLoopsCountToo) {
 // lanes'. Before driver_cut_loops() Vulkan flagged 6 samples here against the
 // reference's 190, and traced 1,410 reflection rays against 1,537.
 TEST(LoopBudget, LoopsTheDriverCutAreFlaggedToo) {
-    Scene scene = load_scene(test::source_dir() / ".." / "shared" / "spd" / "nff" / "balls.nff");
+    Scene scene = load_scene(test::source_dir() / "scenes" / "spd" / "balls.nff.gz");
     scene.render.grid.mode = GridMode::Off;
     scene.camera.width = 48;
     scene.camera.height = 48;

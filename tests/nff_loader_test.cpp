@@ -1,7 +1,7 @@
 // The NFF loader (docs/nff.md), in process: a small file checked field by field,
 // every class of malformed line refused with its line number and what was expected,
 // cones and cylinders ('c') in both spellings, and every SPD scene in
-// ../shared/spd/nff loading with the README's primitive counts.
+// scenes/spd loading with the README's primitive counts.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,6 +12,7 @@
 #include <fstream>
 #include <map>
 #include <ostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@
 #include "scene/json_reader.hpp"
 #include "scene/load_scene.hpp"
 #include "scene/polygon.hpp"
+#include "scene/read_text.hpp"
 #include "scene/scene_error.hpp"
 #include "test_support.hpp"
 
@@ -551,7 +553,7 @@ struct SpdExpectation {
     double fov = 45.0;
 };
 
-// Counts from shared/spd/README.md: one triangle per 'p 3' or 'pp 3', two per
+// Counts from scenes/spd/README.md: one triangle per 'p 3' or 'pp 3', two per
 // quadrilateral, n - 2 per n-gon (gears: 9,217 quadrilaterals and 128 faces of 144
 // vertices, 9,345 polygons); a cylinder per 'c' of equal radii; 2 smooth triangles
 // per side of a cone frustum (tree's 4,095 cones all have two non-zero radii; 4,068
@@ -577,13 +579,12 @@ const std::map<std::string, SpdExpectation>& spd_expectations() {
 }
 
 TEST(SpdTest, EveryFileLoadsWithThePublishedCounts) {
-    // CI has the shared directory, so its absence is a failure, not a skip.
-    const fs::path dir = test::source_dir() / ".." / "shared" / "spd" / "nff";
+    const fs::path dir = test::source_dir() / "scenes" / "spd";
     ASSERT_TRUE(fs::is_directory(dir)) << "missing SPD scenes: " << dir;
     std::vector<std::string> seen;
     for (const auto& entry : fs::directory_iterator(dir)) {
-        if (entry.path().extension() != ".nff") continue;
-        const std::string name = entry.path().stem().string();
+        if (vkrt::format_extension(entry.path()) != ".nff") continue;
+        const std::string name = vkrt::scene_stem(entry.path());
         SCOPED_TRACE(name);
         seen.push_back(name);
         const auto it = spd_expectations().find(name);
@@ -609,7 +610,7 @@ TEST(SpdTest, EveryFileLoadsWithThePublishedCounts) {
 }
 
 TEST(SpdTest, BallsMaterials) {
-    const fs::path file = test::source_dir() / ".." / "shared" / "spd" / "nff" / "balls.nff";
+    const fs::path file = test::source_dir() / "scenes" / "spd" / "balls.nff.gz";
     const Scene s = vkrt::load_scene(file);
     // The floor (f on line 12) and the balls (line 18), nothing else.
     ASSERT_EQ(s.materials.size(), 2u);
@@ -627,9 +628,8 @@ TEST(SpdTest, BallsMaterials) {
 TEST(SpdTest, GearFacesAreSplitWithoutFillingTheGapsBetweenTeeth) {
     // Each 144-vertex face is non-convex; its triangles must add up to its area,
     // which a fan from vertex 0 would exceed.
-    const fs::path file = test::source_dir() / ".." / "shared" / "spd" / "nff" / "gears.nff";
-    std::ifstream in(file);
-    ASSERT_TRUE(in) << file;
+    const fs::path file = test::source_dir() / "scenes" / "spd" / "gears.nff.gz";
+    std::istringstream in(vkrt::read_text(file, file.string(), "scene"));
     double faces_area = 0.0;  // by the shoelace formula on the file's first face (z = const)
     std::string line;
     while (std::getline(in, line) && line != "p 144") {

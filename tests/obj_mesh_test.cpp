@@ -440,12 +440,11 @@ TEST_F(ObjMeshTest, BadObjectFieldsAreRefused) {
 struct RealModel {
     const char* file;
     std::size_t faces;
-    dvec3 lo, hi;  // bounding box, from ../shared/models/README.md
+    dvec3 lo, hi;  // bounding box, from scenes/models/README.md
 };
 
 void check_real_model(const RealModel& model, const fs::path& scene_file) {
-    const fs::path obj = test::source_dir() / ".." / "shared" / "models" / model.file;
-    // CI has the shared directory, so its absence is a failure, not a skip.
+    const fs::path obj = test::source_dir() / "scenes" / "models" / model.file;
     ASSERT_TRUE(fs::exists(obj)) << "not found: " << obj;
     std::ofstream(scene_file) << fmt::format(
         R"({{"camera": {{"eye": [0, 0, 5], "look_at": [0, 0, 0]}}, "materials": {{"m": {{}}}},
@@ -486,11 +485,11 @@ void check_real_model(const RealModel& model, const fs::path& scene_file) {
 }
 
 TEST_F(ObjMeshTest, LoadsTheUtahTeapot) {
-    check_real_model({"teapot.obj", 6320, {-3.0, 0.0, -2.0}, {3.434, 3.15, 2.0}}, dir_ / "teapot.json");
+    check_real_model({"teapot.obj.gz", 6320, {-3.0, 0.0, -2.0}, {3.434, 3.15, 2.0}}, dir_ / "teapot.json");
 }
 
 TEST_F(ObjMeshTest, LoadsTheStanfordBunny) {
-    check_real_model({"stanford-bunny.obj", 69451, {-0.095, 0.033, -0.062}, {0.061, 0.187, 0.059}},
+    check_real_model({"stanford-bunny.obj.gz", 69451, {-0.095, 0.033, -0.062}, {0.061, 0.187, 0.059}},
                      dir_ / "bunny.json");
 }
 

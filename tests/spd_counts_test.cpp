@@ -1,4 +1,4 @@
-// The SPD ray counts (../shared/spd/README.md): rendered under the SPD rules, which
+// The SPD ray counts (scenes/spd/README.md): rendered under the SPD rules, which
 // is what loading an .nff file sets up (513 x 513 corner rays, depth 5, nothing
 // pruned), every scene's eye rays that hit, reflection, refraction and shadow rays
 // land within 10% of the published table, on both backends, at full size. (tree ran
@@ -22,7 +22,7 @@ struct Published {
     std::uint64_t eye_hits, reflection, refraction, shadow;
 };
 
-// Eric Haines' published counts, as ../shared/spd/README.md gives them.
+// Eric Haines' published counts, as scenes/spd/README.md gives them.
 constexpr Published kBalls{"balls", 263169, 175095, 0, 954368};
 constexpr Published kGears{"gears", 245086, 304643, 207564, 2246955};
 constexpr Published kMount{"mount", 173125, 354769, 354769, 412922};
@@ -51,7 +51,7 @@ void expect_counts(const RenderOutcome& out, const Published& p) {
 
 // The file as loaded: 512 x 512, its own size.
 Scene spd(const Published& p) {
-    return load_scene(test::source_dir() / ".." / "shared" / "spd" / "nff" / (std::string(p.scene) + ".nff"));
+    return load_scene(test::source_dir() / "scenes" / "spd" / (std::string(p.scene) + ".nff.gz"));
 }
 
 std::string scene_name(const ::testing::TestParamInfo<Published>& param) { return param.param.scene; }

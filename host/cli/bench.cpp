@@ -18,6 +18,7 @@
 #include "cli/bench_spd.hpp"
 #include "cli/bench_support.hpp"
 #include "cli/bench_table.hpp"
+#include "cli/source_tree.hpp"
 #include "kernel_types.hpp"
 #include "render/render.hpp"
 #include "scene/limits.hpp"
@@ -29,9 +30,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Relative to the repo root; docs/bench.md says where each comes from.
+// In the source tree; docs/bench.md says where each comes from.
 const std::vector<std::string> kDefaultScenes = {
-    "scenes/gallery/h_random_spheres.json", "../shared/spd/nff/balls.nff", "../shared/spd/nff/tetra.nff",
+    "scenes/gallery/h_random_spheres.json", "scenes/spd/balls.nff.gz", "scenes/spd/tetra.nff.gz",
     "scenes/gallery/j_torus_knot.json",     "scenes/bench/ten_spheres.json",
 };
 const std::vector<std::uint64_t> kSweepCounts = {1000, 10000, 100000, 1000000};
@@ -226,18 +227,17 @@ void print_header(const BenchArgs& args, const std::vector<std::unique_ptr<Backe
 
 std::vector<BenchScene> load_listed_scenes(const BenchArgs& args) {
     const bool defaults = args.scenes.empty();
-    const std::vector<std::string>& files = defaults ? kDefaultScenes : args.scenes;
+    const std::vector<std::string>& labels = defaults ? kDefaultScenes : args.scenes;
+    std::vector<std::string> files;
+    for (const std::string& label : labels) {
+        files.push_back(defaults ? source_tree_path(label).string() : label);
+    }
     // Every file is checked before the first render, not after minutes of benchmark.
     for (const std::string& file : files) {
-        if (fs::is_regular_file(file)) continue;
-        throw std::runtime_error(
-            defaults ? fmt::format("{}: no such scene file (the default scenes are named relative to the repo root: "
-                                   "run vkrt bench from there, or name scenes with --scene)",
-                                   file)
-                     : fmt::format("{}: no such scene file", file));
+        if (!fs::is_regular_file(file)) throw std::runtime_error(fmt::format("{}: no such scene file", file));
     }
     std::vector<BenchScene> scenes;
-    for (const std::string& file : files) scenes.push_back(load_bench_scene(file, file, args.quiet));
+    for (std::size_t i = 0; i < files.size(); ++i) scenes.push_back(load_bench_scene(labels[i], files[i], args.quiet));
     return scenes;
 }
 

@@ -20,7 +20,7 @@ struct BenchArgs {
     bool sweep = false;               // random spheres, 1k to 1M: cost against primitive count
     bool threshold = false;           // random spheres, 1 to 256: where the grid starts to win
     bool spd = false;                 // the SPD scenes under the SPD rules: ray counts against the published ones
-    std::string spd_dir = "../shared/spd/nff";  // where --spd finds them, relative to the repo root
+    std::string spd_dir;               // where --spd finds them; empty: the source tree's scenes/spd
     bool quiet = false;
     std::string command_line;         // printed above the table, so a pasted table says how it was made
 };

@@ -17,7 +17,9 @@
 #include "cli/bench_spd_table.hpp"
 #include "cli/bench_support.hpp"
 #include "render/render.hpp"
+#include "cli/source_tree.hpp"
 #include "scene/load_scene.hpp"
+#include "scene/read_text.hpp"
 
 namespace vkrt::cli {
 namespace {
@@ -46,24 +48,23 @@ struct SpdScene {
     std::vector<SpdCell> cells;
 };
 
-// Every .nff file in the directory, by name. A missing directory or one without
-// SPD files is an error before anything renders.
+// Every .nff or .nff.gz file in the directory, by name. A missing directory or one
+// without SPD files is an error before anything renders.
 std::vector<fs::path> find_spd_files(const BenchArgs& args) {
-    const fs::path dir = args.spd_dir;
+    const fs::path dir = args.spd_dir.empty() ? source_tree_path("scenes/spd") : fs::path(args.spd_dir);
     std::error_code error;
     if (!fs::is_directory(dir, error)) {
-        throw std::runtime_error(
-            args.spd_dir == BenchArgs{}.spd_dir
-                ? fmt::format("{}: no such directory (the SPD scenes are looked for relative to the repo root: run "
-                              "vkrt bench from there, or point --spd-dir at them)",
-                              args.spd_dir)
-                : fmt::format("{}: no such directory (--spd-dir)", args.spd_dir));
+        throw std::runtime_error(args.spd_dir.empty()
+                                     ? fmt::format("{}: no such directory (the SPD scenes of the source tree vkrt was "
+                                                   "built from; point --spd-dir at them)",
+                                                   dir.string())
+                                     : fmt::format("{}: no such directory (--spd-dir)", dir.string()));
     }
     std::vector<fs::path> files;
     for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
-        if (entry.is_regular_file() && entry.path().extension() == ".nff") files.push_back(entry.path());
+        if (entry.is_regular_file() && format_extension(entry.path()) == ".nff") files.push_back(entry.path());
     }
-    if (files.empty()) throw std::runtime_error(fmt::format("{}: no .nff files in this directory", args.spd_dir));
+    if (files.empty()) throw std::runtime_error(fmt::format("{}: no .nff files in this directory", dir.string()));
     std::sort(files.begin(), files.end());
     return files;
 }
@@ -128,7 +129,7 @@ public:
             note("bench: loading {}", file.string());
             const Scene s = load_scene(file);
             for (const std::string& warning : s.warnings) fmt::print(stderr, "warning: {}\n", warning);
-            SpdScene scene{file.stem().string(), file, s.primitive_count(), s.camera.width, s.camera.height, {}};
+            SpdScene scene{scene_stem(file), file, s.primitive_count(), s.camera.width, s.camera.height, {}};
             for (const auto& b : backends_) scene.cells.push_back(SpdCell{b.get(), {}});
             scenes.push_back(std::move(scene));
         }

@@ -23,6 +23,7 @@
 #include "render/stats_json.hpp"
 #include "scene/limits.hpp"
 #include "scene/load_scene.hpp"
+#include "scene/read_text.hpp"
 #include "scene/scene_error.hpp"
 
 namespace vkrt::cli {
@@ -78,7 +79,7 @@ std::string progress_detail(const ProgressiveStatus& status) {
 
 // <scene name>.png, or for a partial render <scene name>_A-B.exr.
 std::string default_output(const std::string& scene, const std::optional<SampleRange>& samples) {
-    const std::string stem = std::filesystem::path(scene).stem().string();
+    const std::string stem = scene_stem(scene);
     return samples ? fmt::format("{}_{}-{}.exr", stem, samples->first, samples->end()) : stem + ".png";
 }
 

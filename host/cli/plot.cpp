@@ -14,6 +14,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "cli/source_tree.hpp"
+
 extern char** environ;
 
 namespace vkrt::cli {
@@ -70,7 +72,7 @@ std::string find_gnuplot() {
 }
 
 std::filesystem::path plot_script() {
-    const std::filesystem::path script = std::filesystem::path(VKRT_SCRIPTS_DIR) / "plot_convergence.gp";
+    const std::filesystem::path script = source_tree_path("scripts/plot_convergence.gp");
     if (!std::filesystem::is_regular_file(script)) {
         throw std::runtime_error(fmt::format(
             "--plot: the plotting script {} is missing (it comes with vkrt's source tree)", script.string()));
