@@ -1,6 +1,6 @@
 # Warnings are errors in spirit: the build is kept free of them (-Wall -Wextra).
 # -ffp-contract=off keeps the C++ reference from fusing a*b+c into one rounding,
-# which the GLSL side controls with `precise` (see DESIGN.md, "The shared kernel").
+# which the GLSL side controls with `precise` (see docs/architecture.md, "The shared kernel").
 function(vkrt_set_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -ffp-contract=off)
   if(VKRT_SANITIZE)

@@ -357,7 +357,7 @@ TEST(AreaLight, SameSeedSameImageAcrossRunsAndThreadCounts) {
     EXPECT_GT(differing, lit * 9 / 10);
 }
 
-// Split invariance (DESIGN.md principle 4) holds for the light samples too: their
+// Split invariance (docs/architecture.md, principle 4) holds for the light samples too: their
 // numbers come from the sample's own stream.
 TEST(AreaLight, SplitSamplesDrawTheSameLightSamples) {
     const Scene scene = test::load_at_size(test::source_dir() / "scenes" / "area_light.json", 32, 24);

@@ -3,7 +3,8 @@
 // view of the shared GLSL, on scenes built by hand. As in kernel_intersect_test.cpp
 // the inputs are chosen so that intermediates are exact in float wherever the maths
 // allows, and the checks are then equalities; the shading formula is recomputed here
-// in double, straight from DESIGN.md, and compared within a float's rounding.
+// in double, straight from docs/architecture.md ("Numbers and conventions"), and
+// compared within a float's rounding.
 //
 // Exact loop-iteration counts are deliberately not pinned: what a loop costs is an
 // accounting choice of budget.glsl, tested in loop_budget_test.cpp.
@@ -345,8 +346,8 @@ TEST(Occluded, AnyBlockerAmongSeveral) {
 
 // ---------------------------------------------------------------- shade_local
 
-// DESIGN.md's local model for one point light, computed here in double from the
-// geometry: colour * intensity * (kd * diffuse * cos(theta) + ks * specular *
+// The local model (docs/architecture.md, "Numbers and conventions") for one point
+// light, computed here in double from the geometry: colour * intensity * (kd * diffuse * cos(theta) + ks * specular *
 // cos(alpha)^shininess), alpha between the light vector mirrored about the normal
 // and the eye vector. No clamping is needed for the configurations below.
 glm::dvec3 paper_light_term(glm::dvec3 point, glm::dvec3 normal, glm::dvec3 eye, glm::dvec3 light_pos,

@@ -1,6 +1,6 @@
 // The JSON scene loader, in process: valid files give the exact values (defaults
 // included), and every class of bad input gives a SceneError that names the file,
-// the JSON path and what was wrong (DESIGN.md principle 5).
+// the JSON path and what was wrong (docs/architecture.md, principle 5).
 #include <gtest/gtest.h>
 #include <unistd.h>
 

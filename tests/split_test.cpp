@@ -1,4 +1,4 @@
-// Split-invariant sampling (DESIGN.md principle 4): rendering samples [0, 5) in one
+// Split-invariant sampling (docs/architecture.md, principle 4): rendering samples [0, 5) in one
 // run, or [0, 2) and [2, 5) in two and adding the results, traces the same rays.
 // Sums (exact fixed point, kernel/sums.glsl) and counters agree bit for bit.
 #include <gtest/gtest.h>

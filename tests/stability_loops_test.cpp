@@ -138,7 +138,7 @@ TEST(UnboundedInput, LocalRayTreeAndGridEndForAnyDirection) {
 }
 
 // The tree's size is exponential in max_depth: at 64 with no weight cut-off, glass
-// between mirrors asks for more rays than any invocation may trace (DESIGN.md,
+// between mirrors asks for more rays than any invocation may trace (docs/architecture.md,
 // "Bounded work per invocation"). There the loop budget is the mechanism, and the
 // sample must be stopped, counted as truncated and kept out of the pixel.
 TEST(UnboundedInput, AnExponentialRayTreeIsStoppedAndCounted) {

@@ -1,7 +1,7 @@
 #pragma once
 // Eric Haines' published ray counts for the Standard Procedural Databases at their
 // default sizes, under the SPD test rules (513 x 513 eye rays through the pixel
-// corners, ray-tree depth 5), as ../shared/spd/README.md gives them. lattice,
+// corners, ray-tree depth 5), as scenes/spd/README.md gives them. lattice,
 // shells and jacks have no published row.
 #include <array>
 #include <cstdint>

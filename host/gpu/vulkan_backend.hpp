@@ -1,6 +1,6 @@
 #pragma once
 // The Vulkan compute backend. This header is Vulkan-free on purpose: only the .cpp
-// files of host/gpu/ include vulkan.h (DESIGN.md layout).
+// files of host/gpu/ include vulkan.h (docs/architecture.md).
 #include <cstdint>
 #include <memory>
 #include <stdexcept>

@@ -2,7 +2,7 @@
 // The reference backend's view of the kernel: the GLSL files of shaders/kernel/ are
 // included inside a struct whose members carry the same names as the shader's
 // uniforms, specialization constants and buffer accessors (load_sphere, ...), so the
-// very same text compiles as C++ member functions (DESIGN.md, "The shared kernel,
+// very same text compiles as C++ member functions (docs/architecture.md, "The shared kernel,
 // concretely"; docs/architecture.md says why buffers are read through accessors).
 // One Kernel object plays the part of one invocation's private state: make one per
 // thread.

@@ -1,5 +1,5 @@
 #pragma once
-// The feature set a scene needs (DESIGN.md principle 3). The list of features is
+// The feature set a scene needs (docs/architecture.md, principle 3). The list of features is
 // shaders/kernel/features.glsl, shared with the kernel, where each becomes a
 // specialization constant (Vulkan) or a Kernel member (reference).
 #include <algorithm>

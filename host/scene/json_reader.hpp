@@ -3,7 +3,7 @@
 //
 // Every value handed out carries its JSON path ("objects[3].radius"), so that any
 // complaint about it can name the file, the path, what was expected and what was
-// found (DESIGN.md principle 5) without the loader repeating that bookkeeping at
+// found (docs/architecture.md, principle 5) without the loader repeating that bookkeeping at
 // each field. The definitions live in json_reader.cpp; only one-liners stay here.
 #include <cstddef>
 #include <cstdint>

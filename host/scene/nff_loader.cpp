@@ -48,7 +48,7 @@ bool is_keyword(std::string_view word) {
            std::find(kEntityKeys.begin(), kEntityKeys.end(), word) != kEntityKeys.end();
 }
 
-// The SPD rule (shared/spd/README.md): each uncoloured light gets
+// The SPD rule (scenes/spd/README.md): each uncoloured light gets
 // sqrt(#lights) / (#lights * 2), so that the lights together stay about as bright
 // however many a scene has. It needs the final count, so it is applied at the end.
 double spd_light_intensity(std::size_t lights) {
@@ -144,7 +144,7 @@ public:
 
     Scene read(const std::filesystem::path& file) {
         scene_.source = file;
-        // The SPD test rules (../shared/spd/README.md): rays through the pixel
+        // The SPD test rules (scenes/spd/README.md): rays through the pixel
         // corners, four averaged; a ray tree of depth 5 counting the eye ray, so 4
         // generations after it; every reflection and refraction ray traced, however
         // little it weighs. Ambient stays 0: NFF has none.

@@ -1,6 +1,6 @@
 #pragma once
 // The one error type for bad input. Its message is complete and user-facing:
-// "<file>: <json path or line>: <what was expected>" (DESIGN.md principle 5).
+// "<file>: <json path or line>: <what was expected>" (docs/architecture.md, principle 5).
 #include <stdexcept>
 #include <string>
 

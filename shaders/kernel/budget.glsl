@@ -1,4 +1,4 @@
-// The per-invocation loop budget (DESIGN.md, "Bounded work per invocation").
+// The per-invocation loop budget (docs/architecture.md, "Bounded work per invocation").
 // lavapipe counts every evaluation of a loop's condition, so a loop that runs n times
 // costs n + 1 (measured: 22,000 lights with one-sphere shadow rays, three counts a
 // light, were cut silently). The kernel counts the same way: loop_enter() before

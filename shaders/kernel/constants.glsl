@@ -45,7 +45,7 @@ const uint CYLINDER_BASE_CAP = 1u;
 const uint CYLINDER_TOP_CAP = 2u;
 
 // Mesa's lavapipe stops an invocation's loops silently after 65,535 iterations in
-// total (DESIGN.md). The kernel counts its own iterations the way lavapipe does
+// total (docs/architecture.md). The kernel counts its own iterations the way lavapipe does
 // (budget.glsl) against a budget below that cap, with room to spare.
 const uint DEFAULT_LOOP_BUDGET = 60000u;
 

@@ -1,6 +1,6 @@
 // Counter-based random numbers: every value is a pure function of
 // (seed, pixel, sample index, dimension), so any split of the sample range over
-// runs or machines draws exactly the same numbers (DESIGN.md, principle 4).
+// runs or machines draws exactly the same numbers (docs/architecture.md, principle 4).
 // The mixing function is pcg4d from Jarzynski & Olano, "Hash Functions for GPU
 // Rendering" (JCGT 2020): an LCG step on each lane, then two rounds of cross-lane
 // multiply-adds around an xorshift. It is integer-only, so both backends agree bit

@@ -1,4 +1,4 @@
-// One sample of one pixel: the unit of work of one invocation (DESIGN.md), and the
+// One sample of one pixel: the unit of work of one invocation (docs/architecture.md), and the
 // single entry point that both the compute shader and the reference renderer call.
 
 // A ray waiting to be traced, with the factor its radiance is weighed by in the

@@ -1,4 +1,4 @@
-// Local illumination as the paper defines it (DESIGN.md, "Numbers and conventions"):
+// Local illumination as the paper defines it (docs/architecture.md, "Numbers and conventions"):
 // per point light, colour * intensity * (kd * diffuse * cos(theta) + ks * specular *
 // cos(alpha)^shininess), with alpha between the mirrored light vector and the eye
 // vector; plus ambient * kd * diffuse, plus the material's own emission seen from

@@ -1,5 +1,6 @@
-// Exact per-pixel sums. DESIGN.md asks that any split of a pixel's samples (over
-// passes, runs or machines) add up to the very image of one run. Float addition is
+// Exact per-pixel sums. Any split of a pixel's samples (over passes, runs or
+// machines) must add up to the very image of one run (docs/architecture.md,
+// principle 4). Float addition is
 // not associative: (s0 + s1) + (s2 + s3 + s4) is not ((((s0 + s1) + s2) + s3) + s4),
 // so float sums could only promise that up to a rounding. Here each sample's
 // radiance is instead rounded down once to a multiple of 2^-40 (a fixed step, the
