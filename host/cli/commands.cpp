@@ -7,10 +7,10 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "cli/float_profile_json.hpp"
-#include "cli/float_profile_table.hpp"
-#include "cli/output_paths.hpp"
-#include "cli/progress.hpp"
+#include "probe/float_profile_json.hpp"
+#include "probe/float_profile_table.hpp"
+#include "app/output_paths.hpp"
+#include "app/progress.hpp"
 #include "gpu/float_probe.hpp"
 #include "gpu/vulkan_backend.hpp"
 #include "image/compare.hpp"
@@ -155,12 +155,12 @@ int run_render(const RenderArgs& args) {
     const std::string output = args.output.empty() ? default_output(args.scene, samples) : args.output;
 
     // Mistakes in the output paths are found now, not after a long render.
-    check_writable_image(output);
-    if (samples && !is_exr(output)) {
+    app::check_writable_image(output);
+    if (samples && !app::is_exr(output)) {
         throw std::runtime_error(fmt::format(
             "{}: --samples writes a partial file, which is OpenEXR: give -o a name ending in .exr", output));
     }
-    if (!args.stats_file.empty()) check_writable_file(args.stats_file, "stats file");
+    if (!args.stats_file.empty()) app::check_writable_file(args.stats_file, "stats file");
     warn_ignored_options(args);
 
     const auto backend_start = std::chrono::steady_clock::now();
@@ -263,9 +263,9 @@ int run_devices(const DevicesArgs& args) {
             columns.push_back(probe::summarize(run.device, run.results));
             probe::note_differences(columns.back(), run.results, cpu);
         }
-        fmt::print("{}", float_profile_table(columns));
+        fmt::print("{}", probe::float_profile_table(columns));
         if (json.is_open()) {
-            json << float_profile_json(columns).dump(2) << "\n";
+            json << probe::float_profile_json(columns).dump(2) << "\n";
             if (!json) throw std::runtime_error(fmt::format("{}: cannot write the JSON file", args.json));
         }
         return 0;

@@ -46,36 +46,13 @@ struct MergeArgs {
     bool quiet = false;
 };
 
-struct ConvergeArgs {
-    std::string scene;
-    std::string reference;                 // empty: render one (reference_spp of path+nee)
-    std::uint32_t reference_spp = 1024;
-    std::vector<std::string> backends;     // empty: vulkan
-    std::vector<std::string> estimators;   // empty: the scene's own settings
-    std::optional<double> until;           // seconds of passes per curve
-    std::optional<std::uint32_t> spp;      // samples per curve; with until, whichever ends first
-    std::string csv;
-    std::string plot;                      // empty: no plot
-    std::optional<std::uint32_t> width;
-    std::optional<std::uint32_t> height;
-    std::optional<std::uint32_t> seed;
-    std::string device;
-    unsigned threads = 0;
-    bool validate = false;
-    bool quiet = false;
-};
-
 struct DevicesArgs {
     bool float_profile = false;  // probe float behaviour (docs/numerics.md) instead of listing
     std::string device;          // with float_profile: only this device (as render's --device)
     std::string json;            // with float_profile: also write the profile here
 };
 
-// Without --spp or --until, a curve runs to this many samples per pixel.
-inline constexpr std::uint32_t kDefaultConvergeSpp = 64;
-
 int run_render(const RenderArgs& args);
-int run_converge(const ConvergeArgs& args);
 int run_merge(const MergeArgs& args);
 int run_compare(const CompareArgs& args);
 int run_devices(const DevicesArgs& args);

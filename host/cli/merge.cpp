@@ -8,7 +8,7 @@
 #include <fmt/ranges.h>
 
 #include "cli/commands.hpp"
-#include "cli/output_paths.hpp"
+#include "app/output_paths.hpp"
 #include "image/image.hpp"
 #include "render/accumulate.hpp"
 #include "render/fingerprint.hpp"
@@ -63,7 +63,7 @@ void check_mergeable(const std::vector<std::string>& names, const std::vector<Pa
 }  // namespace
 
 int run_merge(const MergeArgs& args) {
-    check_writable_image(args.output);
+    app::check_writable_image(args.output);
     std::vector<PartialFile> parts;
     for (const std::string& name : args.partials) parts.push_back(read_partial(name));
     check_mergeable(args.partials, parts);
@@ -82,7 +82,7 @@ int run_merge(const MergeArgs& args) {
     merged.samples = normalize_sample_ranges(merged.samples);
     merged.backend = fmt::format("{}", fmt::join(backends, "+"));
 
-    if (is_exr(args.output)) {
+    if (app::is_exr(args.output)) {
         write_partial(merged, args.output);
     } else {
         write_image(resolve_image(merged.sums, merged.corners), args.output);
@@ -96,7 +96,7 @@ int run_merge(const MergeArgs& args) {
         fmt::print("image     {}x{}{}, samples {}: {} per pixel\n", merged.sums.width, merged.sums.height,
                    merged.corners ? " corner rays" : "", format_sample_ranges(merged.samples),
                    sample_count(merged.samples));
-        fmt::print("wrote     {}{}\n", args.output, is_exr(args.output) ? " (a partial file, mergeable again)" : "");
+        fmt::print("wrote     {}{}\n", args.output, app::is_exr(args.output) ? " (a partial file, mergeable again)" : "");
     }
     if (const std::vector<SampleRange> gaps = sample_gaps(merged.samples); !gaps.empty()) {
         fmt::print(stderr,

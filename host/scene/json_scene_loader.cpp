@@ -345,8 +345,11 @@ void read_objects(const Node& n, const MaterialIndex& materials, Scene& scene) {
 }  // namespace
 
 Scene load_json_scene(const std::filesystem::path& file) {
+    return parse_json_scene(read_text(file, file.string(), "scene"), file);
+}
+
+Scene parse_json_scene(const std::string& text, const std::filesystem::path& file) {
     const std::string name = file.string();
-    const std::string text = read_text(file, name, "scene");
     const json::Json doc = json::parse_document(name, text);
     const Node root(name, doc, "");
     if (!doc.is_object()) {

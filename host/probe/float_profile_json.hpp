@@ -9,8 +9,8 @@
 
 #include "probe/float_profile.hpp"
 
-namespace vkrt::cli {
+namespace vkrt::probe {
 
 nlohmann::json float_profile_json(const std::vector<probe::FloatProfile>& columns);
 
-}  // namespace vkrt::cli
+}  // namespace vkrt::probe

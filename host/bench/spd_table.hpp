@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "cli/spd_published.hpp"
+#include "bench/spd_published.hpp"
 
-namespace vkrt::cli {
+namespace vkrt::bench {
 
 // One (SPD scene, backend) measurement: ray counts from the first run (every run
 // must give the same), times as medians over the runs.
@@ -49,4 +49,4 @@ std::optional<double> difference_percent(std::uint64_t got, std::uint64_t publis
 void write_spd_markdown(std::ostream& out, const std::vector<SpdRow>& rows);
 void write_spd_csv(std::ostream& out, const std::vector<SpdRow>& rows);
 
-}  // namespace vkrt::cli
+}  // namespace vkrt::bench

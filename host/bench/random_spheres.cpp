@@ -1,13 +1,10 @@
-#include "cli/bench_scenes.hpp"
+#include "bench/random_spheres.hpp"
 
 #include <cmath>
-#include <fstream>
-#include <stdexcept>
 
 #include <fmt/format.h>
-#include <unistd.h>
 
-namespace vkrt::cli {
+namespace vkrt::bench {
 
 std::string random_spheres_scene(std::uint64_t count) {
     // h_random_spheres.json's cube, camera, light and radii at 100,000 spheres
@@ -34,23 +31,4 @@ std::string random_spheres_scene(std::uint64_t count) {
                        count, 0.005 * scale, 0.02 * scale);
 }
 
-TempSceneDir::TempSceneDir()
-    : dir_(std::filesystem::temp_directory_path() / fmt::format("vkrt_bench_{}", ::getpid())) {
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-}
-
-TempSceneDir::~TempSceneDir() {
-    std::error_code ignored;  // a destructor must not throw; a leftover temp file is harmless
-    std::filesystem::remove_all(dir_, ignored);
-}
-
-std::filesystem::path TempSceneDir::write(const std::string& name, const std::string& text) const {
-    const std::filesystem::path file = dir_ / name;
-    std::ofstream out(file);
-    out << text;
-    if (!out) throw std::runtime_error(fmt::format("{}: cannot write a generated scene", file.string()));
-    return file;
-}
-
-}  // namespace vkrt::cli
+}  // namespace vkrt::bench

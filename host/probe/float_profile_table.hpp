@@ -6,8 +6,8 @@
 
 #include "probe/float_profile.hpp"
 
-namespace vkrt::cli {
+namespace vkrt::probe {
 
 std::string float_profile_table(const std::vector<probe::FloatProfile>& columns);
 
-}  // namespace vkrt::cli
+}  // namespace vkrt::probe

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace vkrt::cli {
+namespace vkrt::bench {
 
 struct BenchArgs {
     std::vector<std::string> scenes;  // empty: the default list (docs/bench.md)
@@ -27,4 +27,4 @@ struct BenchArgs {
 
 int run_bench(const BenchArgs& args);
 
-}  // namespace vkrt::cli
+}  // namespace vkrt::bench

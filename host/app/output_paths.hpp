@@ -3,7 +3,7 @@
 // typo in a path is an error at once and not after a long render.
 #include <filesystem>
 
-namespace vkrt::cli {
+namespace vkrt::app {
 
 // Throws when the file's directory does not exist; `what` names it in the message
 // ("image", "stats file", ...).
@@ -16,4 +16,4 @@ void check_writable_image(const std::filesystem::path& file);
 // file can be.
 bool is_exr(const std::filesystem::path& file);
 
-}  // namespace vkrt::cli
+}  // namespace vkrt::app

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string_view>
 
-namespace vkrt::cli {
+namespace vkrt::bench {
 
 struct SpdCounts {
     std::uint64_t eye_hits = 0;    // eye rays that hit something
@@ -39,4 +39,4 @@ inline const SpdPublished* find_spd_published(std::string_view scene) {
     return nullptr;
 }
 
-}  // namespace vkrt::cli
+}  // namespace vkrt::bench

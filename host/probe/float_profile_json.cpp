@@ -1,10 +1,10 @@
-#include "cli/float_profile_json.hpp"
+#include "probe/float_profile_json.hpp"
 
 #include <fmt/format.h>
 
 #include "probe/float_cases.hpp"
 
-namespace vkrt::cli {
+namespace vkrt::probe {
 
 namespace {
 
@@ -66,4 +66,4 @@ nlohmann::json float_profile_json(const std::vector<FloatProfile>& columns) {
     return out;
 }
 
-}  // namespace vkrt::cli
+}  // namespace vkrt::probe

@@ -1,4 +1,4 @@
-#include "cli/float_profile_table.hpp"
+#include "probe/float_profile_table.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include "probe/float_cases.hpp"
 
-namespace vkrt::cli {
+namespace vkrt::probe {
 
 namespace {
 
@@ -125,4 +125,4 @@ std::string float_profile_table(const std::vector<FloatProfile>& columns) {
     return out;
 }
 
-}  // namespace vkrt::cli
+}  // namespace vkrt::probe

@@ -7,7 +7,7 @@
 
 #include "render/backend.hpp"
 
-namespace vkrt::cli {
+namespace vkrt::bench {
 
 struct BenchArgs;
 
@@ -26,4 +26,4 @@ double median(std::vector<double> values);
 // print many of them as 0.00 or as noise.
 std::string significant(double value, int digits = 3);
 
-}  // namespace vkrt::cli
+}  // namespace vkrt::bench

@@ -1,4 +1,4 @@
-#include "cli/bench_spd.hpp"
+#include "bench/spd.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -14,14 +14,14 @@
 
 #include <fmt/format.h>
 
-#include "cli/bench_spd_table.hpp"
-#include "cli/bench_support.hpp"
+#include "bench/spd_table.hpp"
+#include "bench/support.hpp"
 #include "render/render.hpp"
-#include "cli/source_tree.hpp"
+#include "app/source_tree.hpp"
 #include "scene/load_scene.hpp"
 #include "scene/read_text.hpp"
 
-namespace vkrt::cli {
+namespace vkrt::bench {
 namespace {
 
 namespace fs = std::filesystem;
@@ -51,7 +51,7 @@ struct SpdScene {
 // Every .nff or .nff.gz file in the directory, by name. A missing directory or one
 // without SPD files is an error before anything renders.
 std::vector<fs::path> find_spd_files(const BenchArgs& args) {
-    const fs::path dir = args.spd_dir.empty() ? source_tree_path("scenes/spd") : fs::path(args.spd_dir);
+    const fs::path dir = args.spd_dir.empty() ? app::source_tree_path("scenes/spd") : fs::path(args.spd_dir);
     std::error_code error;
     if (!fs::is_directory(dir, error)) {
         throw std::runtime_error(args.spd_dir.empty()
@@ -261,4 +261,4 @@ int run_spd_bench(const BenchArgs& args) {
     return status;
 }
 
-}  // namespace vkrt::cli
+}  // namespace vkrt::bench

@@ -9,10 +9,10 @@
 
 #include <fmt/format.h>
 
-#include "cli/commands.hpp"
-#include "cli/output_paths.hpp"
-#include "cli/plot.hpp"
-#include "cli/progress.hpp"
+#include "app/output_paths.hpp"
+#include "converge/converge.hpp"
+#include "converge/plot.hpp"
+#include "app/progress.hpp"
 #include "gpu/vulkan_backend.hpp"
 #include "image/error_metrics.hpp"
 #include "image/image.hpp"
@@ -25,7 +25,7 @@
 #include "scene/load_scene.hpp"
 #include "scene/scene_error.hpp"
 
-namespace vkrt::cli {
+namespace vkrt::converge {
 namespace {
 
 // The reference's random numbers must not be the curves': with the same seed its
@@ -185,11 +185,11 @@ int run_converge(const ConvergeArgs& args) {
     }
 
     // Every output and the plotting tool are checked before the first sample.
-    check_writable_file(args.csv, "CSV file");
+    app::check_writable_file(args.csv, "CSV file");
     std::string gnuplot;
     std::filesystem::path script;
     if (!args.plot.empty()) {
-        check_writable_image(args.plot);
+        app::check_writable_image(args.plot);
         if (std::filesystem::path(args.plot).extension() != ".png") {
             throw std::runtime_error(fmt::format("--plot {}: the plot is drawn as PNG: give a name ending in .png",
                                                  args.plot));
@@ -259,4 +259,4 @@ int run_converge(const ConvergeArgs& args) {
     return 0;
 }
 
-}  // namespace vkrt::cli
+}  // namespace vkrt::converge

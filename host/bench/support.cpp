@@ -1,4 +1,4 @@
-#include "cli/bench_support.hpp"
+#include "bench/support.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,11 +8,11 @@
 #include <fmt/format.h>
 #include <sys/utsname.h>
 
-#include "cli/bench.hpp"
+#include "bench/bench.hpp"
 #include "gpu/vulkan_backend.hpp"
 #include "ref/ref_backend.hpp"
 
-namespace vkrt::cli {
+namespace vkrt::bench {
 namespace {
 
 std::string read_first_value(const char* file, const std::string& key) {
@@ -71,4 +71,4 @@ double median(std::vector<double> values) {
     return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
-}  // namespace vkrt::cli
+}  // namespace vkrt::bench

@@ -1,4 +1,4 @@
-#include "cli/bench.hpp"
+#include "bench/bench.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -14,18 +14,19 @@
 
 #include <fmt/format.h>
 
-#include "cli/bench_scenes.hpp"
-#include "cli/bench_spd.hpp"
-#include "cli/bench_support.hpp"
-#include "cli/bench_table.hpp"
-#include "cli/source_tree.hpp"
+#include "bench/random_spheres.hpp"
+#include "bench/spd.hpp"
+#include "bench/support.hpp"
+#include "bench/table.hpp"
+#include "app/source_tree.hpp"
 #include "kernel_types.hpp"
 #include "render/render.hpp"
 #include "scene/limits.hpp"
+#include "scene/json_scene_loader.hpp"
 #include "scene/load_scene.hpp"
 #include "scene/scene_error.hpp"
 
-namespace vkrt::cli {
+namespace vkrt::bench {
 namespace {
 
 namespace fs = std::filesystem;
@@ -209,11 +210,14 @@ private:
     std::set<std::string> grid_warned_;
 };
 
+BenchScene bench_scene(const std::string& label, Scene scene) {
+    for (const std::string& warning : scene.warnings) fmt::print(stderr, "warning: {}\n", warning);
+    return {label, std::move(scene)};
+}
+
 BenchScene load_bench_scene(const std::string& label, const fs::path& file, bool quiet) {
     if (!quiet) fmt::print(stderr, "bench: loading {}\n", label);
-    BenchScene s{label, load_scene(file)};
-    for (const std::string& warning : s.scene.warnings) fmt::print(stderr, "warning: {}\n", warning);
-    return s;
+    return bench_scene(label, load_scene(file));
 }
 
 // The machine and command, and how the figures were measured.
@@ -230,7 +234,7 @@ std::vector<BenchScene> load_listed_scenes(const BenchArgs& args) {
     const std::vector<std::string>& labels = defaults ? kDefaultScenes : args.scenes;
     std::vector<std::string> files;
     for (const std::string& label : labels) {
-        files.push_back(defaults ? source_tree_path(label).string() : label);
+        files.push_back(defaults ? app::source_tree_path(label).string() : label);
     }
     // Every file is checked before the first render, not after minutes of benchmark.
     for (const std::string& file : files) {
@@ -241,12 +245,12 @@ std::vector<BenchScene> load_listed_scenes(const BenchArgs& args) {
     return scenes;
 }
 
-std::vector<BenchScene> generated_scenes(const TempSceneDir& dir, const std::vector<std::uint64_t>& counts,
-                                         bool quiet) {
+std::vector<BenchScene> generated_scenes(const std::vector<std::uint64_t>& counts, bool quiet) {
     std::vector<BenchScene> scenes;
     for (const std::uint64_t count : counts) {
-        const fs::path file = dir.write(fmt::format("random_spheres_{}.json", count), random_spheres_scene(count));
-        scenes.push_back(load_bench_scene(fmt::format("{} random sphere{}", count, count == 1 ? "" : "s"), file, quiet));
+        const std::string label = fmt::format("{} random sphere{}", count, count == 1 ? "" : "s");
+        if (!quiet) fmt::print(stderr, "bench: generating {}\n", label);
+        scenes.push_back(bench_scene(label, parse_json_scene(random_spheres_scene(count), fmt::format("{}.json", label))));
     }
     return scenes;
 }
@@ -266,12 +270,9 @@ int run_bench(const BenchArgs& args) {
     // CSV file and the devices: every mistake fails before the benchmark, not after.
     const bool listed = (!args.sweep && !args.threshold) || !args.scenes.empty();
     std::vector<BenchScene> scenes = listed ? load_listed_scenes(args) : std::vector<BenchScene>{};
-    std::optional<TempSceneDir> temp;
-    if (args.sweep || args.threshold) temp.emplace();
-    std::vector<BenchScene> sweep = args.sweep ? generated_scenes(*temp, kSweepCounts, args.quiet)
-                                               : std::vector<BenchScene>{};
-    std::vector<BenchScene> threshold = args.threshold ? generated_scenes(*temp, kThresholdCounts, args.quiet)
-                                                       : std::vector<BenchScene>{};
+    std::vector<BenchScene> sweep = args.sweep ? generated_scenes(kSweepCounts, args.quiet) : std::vector<BenchScene>{};
+    std::vector<BenchScene> threshold =
+        args.threshold ? generated_scenes(kThresholdCounts, args.quiet) : std::vector<BenchScene>{};
     std::ofstream csv;
     if (!args.csv.empty()) {
         csv.open(args.csv);
@@ -318,4 +319,4 @@ int run_bench(const BenchArgs& args) {
     return 0;
 }
 
-}  // namespace vkrt::cli
+}  // namespace vkrt::bench

@@ -1,6 +1,6 @@
-#include "cli/bench_table.hpp"
+#include "bench/table.hpp"
 
-#include "cli/bench_support.hpp"
+#include "bench/support.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include <fmt/format.h>
 
-namespace vkrt::cli {
+namespace vkrt::bench {
 namespace {
 
 const BenchRow* find_row(const std::vector<BenchRow>& rows, const std::string& scene, const std::string& backend,
@@ -157,4 +157,4 @@ std::vector<std::string> threshold_summary(const std::vector<BenchRow>& rows) {
     return lines;
 }
 
-}  // namespace vkrt::cli
+}  // namespace vkrt::bench

@@ -1,6 +1,6 @@
-#include "cli/bench_spd_table.hpp"
+#include "bench/spd_table.hpp"
 
-#include "cli/bench_support.hpp"
+#include "bench/support.hpp"
 
 #include <array>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include <fmt/format.h>
 
-namespace vkrt::cli {
+namespace vkrt::bench {
 namespace {
 
 constexpr const char* kNone = "–";
@@ -125,4 +125,4 @@ void write_spd_csv(std::ostream& out, const std::vector<SpdRow>& rows) {
     }
 }
 
-}  // namespace vkrt::cli
+}  // namespace vkrt::bench

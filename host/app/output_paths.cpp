@@ -1,4 +1,4 @@
-#include "cli/output_paths.hpp"
+#include "app/output_paths.hpp"
 
 #include <algorithm>
 #include <stdexcept>
@@ -8,7 +8,7 @@
 
 #include "image/image.hpp"
 
-namespace vkrt::cli {
+namespace vkrt::app {
 
 void check_writable_file(const std::filesystem::path& file, const char* what) {
     const std::filesystem::path dir = file.parent_path().empty() ? "." : file.parent_path();
@@ -33,4 +33,4 @@ bool is_exr(const std::filesystem::path& file) {
     return ext == ".exr";
 }
 
-}  // namespace vkrt::cli
+}  // namespace vkrt::app

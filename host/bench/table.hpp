@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace vkrt::cli {
+namespace vkrt::bench {
 
 // One (scene, backend, accel) measurement: medians over the runs.
 struct BenchRow {
@@ -56,4 +56,4 @@ void write_csv(std::ostream& out, const std::vector<BenchRow>& rows);
 // force at every larger count measured, as one line each; rows from --threshold.
 std::vector<std::string> threshold_summary(const std::vector<BenchRow>& rows);
 
-}  // namespace vkrt::cli
+}  // namespace vkrt::bench

@@ -5,10 +5,10 @@
 #include <filesystem>
 #include <string_view>
 
-namespace vkrt::cli {
+namespace vkrt::app {
 
 inline std::filesystem::path source_tree_path(std::string_view relative) {
     return std::filesystem::path(VKRT_SOURCE_DIR) / relative;
 }
 
-}  // namespace vkrt::cli
+}  // namespace vkrt::app

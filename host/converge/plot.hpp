@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace vkrt::cli {
+namespace vkrt::converge {
 
 // The gnuplot program: $VKRT_GNUPLOT when set (a path or a name on PATH), else
 // gnuplot on PATH. Throws, naming the Debian package, when there is none.
@@ -21,4 +21,4 @@ void plot_convergence(const std::string& gnuplot, const std::filesystem::path& s
                       const std::filesystem::path& csv, const std::filesystem::path& png,
                       const std::vector<std::string>& curves);
 
-}  // namespace vkrt::cli
+}  // namespace vkrt::converge

@@ -1,4 +1,4 @@
-#include "cli/plot.hpp"
+#include "converge/plot.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -14,11 +14,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "cli/source_tree.hpp"
+#include "app/source_tree.hpp"
 
 extern char** environ;
 
-namespace vkrt::cli {
+namespace vkrt::converge {
 namespace {
 
 constexpr const char* kPackage = "gnuplot-nox";
@@ -72,7 +72,7 @@ std::string find_gnuplot() {
 }
 
 std::filesystem::path plot_script() {
-    const std::filesystem::path script = source_tree_path("scripts/plot_convergence.gp");
+    const std::filesystem::path script = app::source_tree_path("scripts/plot_convergence.gp");
     if (!std::filesystem::is_regular_file(script)) {
         throw std::runtime_error(fmt::format(
             "--plot: the plotting script {} is missing (it comes with vkrt's source tree)", script.string()));
@@ -104,4 +104,4 @@ void plot_convergence(const std::string& gnuplot, const std::filesystem::path& s
     }
 }
 
-}  // namespace vkrt::cli
+}  // namespace vkrt::converge

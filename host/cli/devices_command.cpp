@@ -1,0 +1,22 @@
+// `vkrt devices`: its options; the work is run_devices (cli/commands.cpp).
+#include <memory>
+
+#include "cli/command.hpp"
+#include "cli/commands.hpp"
+
+namespace vkrt::cli {
+
+Command add_devices_command(CLI::App& program) {
+    auto args = std::make_shared<DevicesArgs>();
+    CLI::App* d = program.add_subcommand("devices", "List the Vulkan devices");
+    CLI::Option* float_profile =
+        d->add_flag("--float-profile", args->float_profile,
+                    "Probe each device's float arithmetic against the CPU's and print a table (docs/numerics.md)");
+    d->add_option("--device", args->device, "With --float-profile: only this device, index or name (e.g. lavapipe)")
+        ->needs(float_profile);
+    d->add_option("--json", args->json, "With --float-profile: also write the profile to this JSON file")
+        ->needs(float_profile);
+    return {d, [args] { return run_devices(*args); }};
+}
+
+}  // namespace vkrt::cli

@@ -1,0 +1,38 @@
+// `vkrt merge` and `vkrt compare`: their options; the work is run_merge
+// (cli/merge.cpp) and run_compare (cli/commands.cpp).
+#include <memory>
+
+#include "cli/command.hpp"
+#include "cli/commands.hpp"
+#include "cli/options.hpp"
+
+namespace vkrt::cli {
+
+Command add_merge_command(CLI::App& program) {
+    auto args = std::make_shared<MergeArgs>();
+    CLI::App* m = program.add_subcommand("merge", "Add up partial files of disjoint sample ranges into one image");
+    m->add_option("partials", args->partials, "Partial files (.exr) written by vkrt render --samples or vkrt merge")
+        ->required();
+    m->add_option("-o,--output", args->output,
+                  "Output image; .exr writes a partial file again (mergeable), other formats an image")
+        ->required();
+    add_quiet(m, args->quiet);
+    return {m, [args] { return run_merge(*args); }};
+}
+
+Command add_compare_command(CLI::App& program) {
+    auto args = std::make_shared<CompareArgs>();
+    CLI::App* c = program.add_subcommand("compare", "Compare two images; exit 1 when over a given bound");
+    c->add_option("a", args->a, "First image")->required();
+    c->add_option("b", args->b, "Second image")->required();
+    c->add_option("--max-rmse", args->max_rmse, "Fail when the RMSE is above this")->check(non_negative());
+    c->add_option("--max-abs", args->max_abs, "Fail when the largest channel difference is above this")
+        ->check(non_negative());
+    c->add_option("--threshold", args->threshold, "Per-channel difference counted as a differing pixel")
+        ->check(non_negative())
+        ->capture_default_str();
+    // compare keeps 1 for "over the bound", so a script can tell the two apart.
+    return {c, [args] { return run_compare(*args); }, 2};
+}
+
+}  // namespace vkrt::cli

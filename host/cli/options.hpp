@@ -1,0 +1,33 @@
+#pragma once
+// The options several commands share, each defined once, and the validators that
+// answer a wrong value with what was expected (CLI11's own Range answers "abc" with
+// "not in range").
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace vkrt::cli {
+
+// A whole number in [lo, hi].
+CLI::Validator whole_number(std::uint64_t lo, std::uint64_t hi);
+// A number >= 0.
+CLI::Validator non_negative();
+// A finite number of seconds above 0 (a budget of 0 could render nothing).
+CLI::Validator positive_seconds();
+
+// --width and --height, each overriding the scene's.
+void add_image_size(CLI::App* command, std::optional<std::uint32_t>& width, std::optional<std::uint32_t>& height);
+// --seed, overriding the scene's.
+void add_seed(CLI::App* command, std::optional<std::uint32_t>& seed);
+// --device: a Vulkan device by index or name.
+void add_device(CLI::App* command, std::string& device);
+// --threads: the reference backend's threads.
+void add_threads(CLI::App* command, unsigned& threads);
+// --validate: the Vulkan validation layer, any message an error.
+void add_validate(CLI::App* command, bool& validate);
+// -q, --quiet.
+void add_quiet(CLI::App* command, bool& quiet, const char* description = "Print nothing but warnings and errors");
+
+}  // namespace vkrt::cli

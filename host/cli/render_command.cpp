@@ -1,0 +1,68 @@
+// `vkrt render`: its options; the work is run_render (cli/commands.cpp).
+#include <memory>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "cli/command.hpp"
+#include "cli/commands.hpp"
+#include "cli/options.hpp"
+#include "render/sample_ranges.hpp"
+#include "scene/limits.hpp"
+
+namespace vkrt::cli {
+
+Command add_render_command(CLI::App& program) {
+    auto args = std::make_shared<RenderArgs>();
+    CLI::App* r = program.add_subcommand("render", "Render a scene file to an image");
+    r->add_option("scene", args->scene, "Scene file (.json, .nff, either optionally gzipped as .gz)")->required();
+    r->add_option("-o,--output", args->output,
+                  "Output image; the extension picks the format (.png .ppm: 8-bit sRGB; .exr .hdr: linear float). "
+                  "Default: <scene name>.png");
+    r->add_option("--backend", args->backend, "Renderer: vulkan (compute shader) or cpu (C++ reference)")
+        ->check(CLI::IsMember({"vulkan", "cpu"}))
+        ->capture_default_str();
+    add_device(r, args->device);
+    add_image_size(r, args->width, args->height);
+    r->add_option("--spp", args->spp, "Samples per pixel (default: the scene's, else aa*aa)")
+        ->check(whole_number(1, limits::kMaxSpp));
+    r->add_option("--time", args->time,
+                  "Render progressive passes for this many seconds, then stop (with --spp: whichever comes first)")
+        ->check(positive_seconds());
+    CLI::Option* samples =
+        r->add_option("--samples", args->samples,
+                      "Render only the samples A to B-1 of every pixel, to a partial file (.exr) that vkrt merge adds "
+                      "up with others (default output: <scene name>_A-B.exr)")
+            ->check(CLI::Validator(
+                [](const std::string& text) {
+                    try {
+                        parse_sample_range(text, limits::kMaxSpp);
+                    } catch (const std::invalid_argument& e) {
+                        return std::string(e.what());
+                    }
+                    return std::string();
+                },
+                "A:B"));
+    add_seed(r, args->seed);
+    r->add_option("--grid", args->grid,
+                  "Uniform grid: auto (when the scene has enough primitives for it to pay), on, off, or a "
+                  "resolution NXxNYxNZ in cells (e.g. 46x46x3); overrides the scene")
+        ->check(CLI::Validator(
+            [](const std::string& text) {
+                return parse_grid_option(text)
+                           ? std::string()
+                           : fmt::format("expected auto, on, off or NXxNYxNZ (each 1 to {}), got '{}'",
+                                         limits::kMaxGridAxisCells, text);
+            },
+            "auto|on|off|NXxNYxNZ"));
+    add_threads(r, args->threads);
+    r->add_option("--stats", args->stats_file, "Write render statistics as JSON to this file");
+    add_validate(r, args->validate);
+    add_quiet(r, args->quiet);
+    // A partial file is a fixed range of samples: a count or a time budget would
+    // contradict it.
+    samples->excludes("--spp")->excludes("--time");
+    return {r, [args] { return run_render(*args); }};
+}
+
+}  // namespace vkrt::cli
