@@ -18,12 +18,12 @@ namespace fs = std::filesystem;
 using vkrt::read_text;
 using vkrt::SceneError;
 
-// An NFF scene long enough to span more than one of the reader's 64 KiB buffers
+// An NFF scene long enough to span more than two of the reader's 64 KiB buffers
 // once decompressed: a view, a light, a material and many spheres.
 std::string long_nff() {
     std::string text = "v\nfrom 0 0 -10\nat 0 0 0\nup 0 1 0\nangle 40\nhither 0.1\nresolution 16 16\n"
                        "b 0 0 0\nl 0 10 -10\nf 1 1 1 1 0 1 0 1\n";
-    for (int i = 0; i < 5000; ++i) text += "s " + std::to_string(i % 50 - 25) + " " + std::to_string(i / 50 - 50) + " 30 0.4\n";
+    for (int i = 0; i < 10000; ++i) text += "s " + std::to_string(i % 50 - 25) + " " + std::to_string(i / 50 - 50) + " 30 0.4\n";
     return text;
 }
 
@@ -109,7 +109,7 @@ TEST(ReadText, GzippedScenesLoadAsTheirPlainFiles) {
     vkrt::test::write_gzip(dir / "packed.nff.gz", nff);
     const vkrt::Scene plain = vkrt::load_scene(dir / "plain.nff");
     const vkrt::Scene packed = vkrt::load_scene(dir / "packed.nff.gz");
-    EXPECT_EQ(packed.spheres.size(), 5000u);
+    EXPECT_EQ(packed.spheres.size(), 10000u);
     EXPECT_EQ(packed.spheres.size(), plain.spheres.size());
     EXPECT_EQ(packed.camera.width, plain.camera.width);
 
