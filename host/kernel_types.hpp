@@ -2,7 +2,9 @@
 // The kernel's shared constants and buffer layouts (shaders/kernel/), seen from C++.
 // GLSL types come from GLM; the layout file is included verbatim, so the host and
 // the shader cannot disagree on a field.
+#include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <glm/glm.hpp>
 
 namespace vkrt::kernel {
@@ -28,14 +30,42 @@ static_assert(sizeof(PointLight) == 32);
 static_assert(sizeof(Ring) == 48);
 static_assert(sizeof(Cylinder) == 48);
 static_assert(sizeof(Emitter) == 32);
-static_assert(sizeof(Params) == 304);
-static_assert(offsetof(Params, image) == 96 && offsetof(Params, limits) == 128);
-static_assert(offsetof(Params, grid_res) == 208 && offsetof(Params, more_counts) == 224);
-static_assert(offsetof(Params, ray_tree) == 240);
-static_assert(offsetof(Params, area_lights) == 256 && offsetof(Params, emitter_area) == 272);
-static_assert(offsetof(Params, global) == 288);
+static_assert(sizeof(Params) == 16 * PARAM_TEXELS);
 static_assert(sizeof(Counters) == 64);
 static_assert(sizeof(PixelSum) == 48);
+
+// The host's accessors of the per-render constants (kernel/params.glsl): name(params)
+// reads a value, set_name(params, value) writes it.
+#define PARAM(T, name, texel, lane)                                                                   \
+    inline T name(const Params& p) { return PARAM_FROM_BITS_##T(p.texels[texel].lane); }               \
+    inline void set_##name(Params& p, T value) { p.texels[texel].lane = PARAM_TO_BITS_##T(value); }
+#define PARAM3(T, name, texel)                                                                        \
+    inline T name(const Params& p) { return PARAM_FROM_BITS_##T(uvec3(p.texels[texel])); }             \
+    inline void set_##name(Params& p, T value) { p.texels[texel] = uvec4(PARAM_TO_BITS_##T(value), 0u); }
+#include "kernel/params.glsl"
+
+// No two values of params.glsl share a lane, and every lane lies inside Params.
+namespace param_table {
+struct Lane {
+    uint texel, lane;
+};
+constexpr uint x = 0, y = 1, z = 2, w = 3;
+constexpr Lane kLanes[] = {
+#define PARAM(T, name, texel, lane) {texel, lane},
+#define PARAM3(T, name, texel) {texel, x}, {texel, y}, {texel, z},
+#include "kernel/params.glsl"
+};
+consteval bool lanes_distinct_and_inside() {
+    for (std::size_t i = 0; i < std::size(kLanes); ++i) {
+        if (kLanes[i].texel >= PARAM_TEXELS) return false;
+        for (std::size_t j = 0; j < i; ++j) {
+            if (kLanes[i].texel == kLanes[j].texel && kLanes[i].lane == kLanes[j].lane) return false;
+        }
+    }
+    return true;
+}
+static_assert(lanes_distinct_and_inside(), "kernel/params.glsl: two values share a lane, or a texel is out of range");
+}  // namespace param_table
 
 inline bool operator==(const Counters& a, const Counters& b) {
     return a.rays == b.rays && a.work == b.work && a.tree == b.tree && a.paths == b.paths;

@@ -475,9 +475,9 @@ TEST(EmitterList, OneEntryPerEmissivePrimitiveWithAreaFractions) {
     ASSERT_TRUE(g.features.has(Feature::HAS_AREA_LIGHTS));
     ASSERT_EQ(g.emitters.size(), 3u);
     const double total = 2.0 + kPi;
-    EXPECT_NEAR(g.params.emitter_area.x, total, 1e-6);
-    EXPECT_EQ(g.params.area_lights.x, 3u);
-    EXPECT_EQ(g.params.area_lights.y, 16u);
+    EXPECT_NEAR(kernel::emitter_area(g.params), total, 1e-6);
+    EXPECT_EQ(kernel::emitter_count(g.params), 3u);
+    EXPECT_EQ(kernel::light_samples(g.params), 16u);
     // Spheres first, then triangles (the floor's two are triangles 0 and 1).
     EXPECT_EQ(g.emitters[0].prim.x, (kernel::REF_SPHERE << kernel::REF_KIND_SHIFT) | 0u);
     EXPECT_EQ(g.emitters[1].prim.x, (kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | 2u);
@@ -500,7 +500,7 @@ TEST(EmitterList, NoLightSamplesNoAreaLights) {
     EXPECT_TRUE(g.features.has(Feature::HAS_EMISSION));  // the lamp is still seen
     EXPECT_FALSE(g.features.has(Feature::HAS_SHADOWS));  // nothing casts any
     EXPECT_TRUE(g.emitters.empty());
-    EXPECT_EQ(g.params.area_lights.x, 0u);
+    EXPECT_EQ(kernel::emitter_count(g.params), 0u);
 }
 
 TEST(EmitterList, AnUnusedEmissiveMaterialMakesNoLight) {

@@ -47,14 +47,17 @@ struct GridScene {
         k.cylinders = cylinders;
         k.grid_cell_starts = grid.cell_starts;
         k.grid_refs = grid.refs;
-        k.params.counts = uvec4(std::uint32_t(spheres.size()), std::uint32_t(triangles.size()), 0u, 1u);
-        k.params.more_counts = uvec4(std::uint32_t(rings.size()), std::uint32_t(cylinders.size()), 0u, 0u);
-        k.params.limits.x = 0xFFFFFFFFu;
-        k.params.grid_min = vec4(vec3(grid.lo), 0.0f);
-        k.params.grid_max = vec4(vec3(grid.hi), 0.0f);
-        k.params.grid_cell = vec4(vec3(grid.cell), 0.0f);
-        k.params.grid_inv_cell = vec4(vec3(1.0 / grid.cell), 0.0f);
-        k.params.grid_res = uvec4(grid.resolution[0], grid.resolution[1], grid.resolution[2], 0u);
+        kernel::set_sphere_count(k.params, std::uint32_t(spheres.size()));
+        kernel::set_triangle_count(k.params, std::uint32_t(triangles.size()));
+        kernel::set_material_count(k.params, 1u);
+        kernel::set_ring_count(k.params, std::uint32_t(rings.size()));
+        kernel::set_cylinder_count(k.params, std::uint32_t(cylinders.size()));
+        kernel::set_loop_budget(k.params, 0xFFFFFFFFu);
+        kernel::set_grid_min(k.params, vec3(grid.lo));
+        kernel::set_grid_max(k.params, vec3(grid.hi));
+        kernel::set_grid_cell(k.params, vec3(grid.cell));
+        kernel::set_grid_inv_cell(k.params, vec3(1.0 / grid.cell));
+        kernel::set_grid_resolution(k.params, glm::uvec3(grid.resolution[0], grid.resolution[1], grid.resolution[2]));
         k.work_reset();
         return k;
     }
@@ -426,7 +429,7 @@ TEST(GridTraversal, RaysThatMissTheGridVisitNoCell) {
 TEST(GridTraversal, NonFiniteRaysTerminateWithoutAHit) {
     GridScene s = cube_scene();
     Kernel k = s.kernel(true);
-    k.params.limits.x = kernel::DEFAULT_LOOP_BUDGET;
+    kernel::set_loop_budget(k.params, kernel::DEFAULT_LOOP_BUDGET);
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float inf = std::numeric_limits<float>::infinity();
     const std::vector<Kernel::Ray> rays = {

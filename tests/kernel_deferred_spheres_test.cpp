@@ -57,8 +57,8 @@ Kernel brute_force(const std::vector<Sphere>& spheres) {
     k.HAS_TRIANGLES = false;
     k.HAS_AREA_LIGHTS = false;
     k.spheres = spheres;
-    k.params.counts = uvec4(static_cast<std::uint32_t>(spheres.size()), 0u, 0u, 0u);
-    k.params.limits.x = kernel::DEFAULT_LOOP_BUDGET;
+    kernel::set_sphere_count(k.params, static_cast<std::uint32_t>(spheres.size()));
+    kernel::set_loop_budget(k.params, kernel::DEFAULT_LOOP_BUDGET);
     return k;
 }
 

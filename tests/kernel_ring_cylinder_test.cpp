@@ -284,9 +284,10 @@ struct Scene {
         k.materials = materials;
         k.rings = rings;
         k.cylinders = cylinders;
-        k.params.counts = uvec4(0u, 0u, 0u, std::uint32_t(materials.size()));
-        k.params.more_counts = uvec4(std::uint32_t(rings.size()), std::uint32_t(cylinders.size()), 0u, 0u);
-        k.params.limits.x = kernel::DEFAULT_LOOP_BUDGET;
+        kernel::set_material_count(k.params, std::uint32_t(materials.size()));
+        kernel::set_ring_count(k.params, std::uint32_t(rings.size()));
+        kernel::set_cylinder_count(k.params, std::uint32_t(cylinders.size()));
+        kernel::set_loop_budget(k.params, kernel::DEFAULT_LOOP_BUDGET);
         return k;
     }
 };
@@ -400,7 +401,7 @@ TEST(CylinderHitRecord, EveryTestIsCountedAndBudgeted) {
     k.closest_hit(ray(vec3(-5, 1, 0), vec3(1, 0, 0)), INFINITY_T);
     EXPECT_EQ(k.g_intersection_tests, 2u);  // one ring, one cylinder
     // The loop budget stops the walk: with room for nothing, nothing is tested.
-    k.params.limits.x = 1u;
+    kernel::set_loop_budget(k.params, 1u);
     k.work_reset();
     EXPECT_EQ(k.closest_hit(ray(vec3(-5, 1, 0), vec3(1, 0, 0)), INFINITY_T).t, INFINITY_T);
     EXPECT_TRUE(k.budget_exhausted());

@@ -77,9 +77,11 @@ struct TestScene {
         k.spheres = spheres;
         k.triangles = triangles;
         k.lights = lights;
-        k.params.counts = uvec4(static_cast<std::uint32_t>(spheres.size()), static_cast<std::uint32_t>(triangles.size()),
-                                static_cast<std::uint32_t>(lights.size()), static_cast<std::uint32_t>(materials.size()));
-        k.params.limits.x = kernel::DEFAULT_LOOP_BUDGET;
+        kernel::set_sphere_count(k.params, static_cast<std::uint32_t>(spheres.size()));
+        kernel::set_triangle_count(k.params, static_cast<std::uint32_t>(triangles.size()));
+        kernel::set_light_count(k.params, static_cast<std::uint32_t>(lights.size()));
+        kernel::set_material_count(k.params, static_cast<std::uint32_t>(materials.size()));
+        kernel::set_loop_budget(k.params, kernel::DEFAULT_LOOP_BUDGET);
         return k;
     }
 };
@@ -279,8 +281,8 @@ TEST(ClosestHit, CountsBoundTheArrays) {
     const TestScene scene = nearest_scene();
     Kernel k = scene.kernel();
     // Only the first triangle (t = 7) and the first two spheres (t = 9, behind) count.
-    k.params.counts.x = 2;
-    k.params.counts.y = 1;
+    kernel::set_sphere_count(k.params, 2);
+    kernel::set_triangle_count(k.params, 1);
     const Kernel::Hit h = k.closest_hit(kDownZ, INFINITY_T);
     EXPECT_EQ(h.t, 7.0f);
     EXPECT_EQ(h.material, 3u);
@@ -437,7 +439,7 @@ TEST(ShadeLocal, AmbientAndEmissionAddToTheLight) {
     ShadeSetup s;
     s.scene.materials[0].emission_fresnel = vec4(0.5f, 0.25f, 0.125f, 0.0f);
     Kernel k = s.scene.kernel();  // ambient and emission on
-    k.params.ambient = vec4(0.5f, 1.0f, 2.0f, 0.0f);
+    kernel::set_ambient_light(k.params, vec3(0.5f, 1.0f, 2.0f));
     const Kernel::Hit hit = k.closest_hit(s.eye_ray, INFINITY_T);
     ASSERT_TRUE(hit.front_face);
     std::uint32_t shadow_rays = 0;
@@ -554,12 +556,14 @@ TestScene tiny_view() {
 
 Kernel tiny_kernel(const TestScene& scene) {
     Kernel k = scene.kernel();
-    k.params.cam_eye = vec4(0.0f);
-    k.params.cam_corner = vec4(-1.0f, 1.0f, -1.0f, 0.0f);
-    k.params.cam_right = vec4(0.5f, 0.0f, 0.0f, 0.0f);
-    k.params.cam_down = vec4(0.0f, -0.5f, 0.0f, 0.0f);
-    k.params.background = vec4(kBackground, 0.0f);
-    k.params.image = uvec4(4, 4, 1, 0);
+    kernel::set_camera_eye(k.params, vec3(0.0f));
+    kernel::set_camera_corner(k.params, vec3(-1.0f, 1.0f, -1.0f));
+    kernel::set_camera_right(k.params, vec3(0.5f, 0.0f, 0.0f));
+    kernel::set_camera_down(k.params, vec3(0.0f, -0.5f, 0.0f));
+    kernel::set_background(k.params, vec3(kBackground));
+    kernel::set_image_width(k.params, 4);
+    kernel::set_image_height(k.params, 4);
+    kernel::set_aa_per_side(k.params, 1);
     k.HAS_JITTER = false;
     k.HAS_AMBIENT = false;
     k.HAS_GLOBAL = false;  // local mode: these tests check the paper's shading
@@ -598,7 +602,7 @@ TEST(RenderSample, EachSampleStartsWithAFullBudget) {
     Kernel k = tiny_kernel(scene);
     // A budget that one sample fits in many times over, but not a hundred samples:
     // the count must start afresh with every sample.
-    k.params.limits.x = 100;
+    kernel::set_loop_budget(k.params, 100);
     for (std::uint32_t i = 0; i < 100; ++i) {
         ASSERT_FALSE(k.render_sample(2, 2, i).truncated) << "sample " << i;
     }
@@ -636,7 +640,7 @@ TEST(AccumulateSample, TruncatedSampleAddsNoRadianceAndNoSampleCount) {
 
     // A sphere pixel needs at least one sphere test and one light iteration: a budget
     // of one cannot cover it, however loop entries are charged.
-    k.params.limits.x = 1;
+    kernel::set_loop_budget(k.params, 1);
     const Kernel::SampleResult cut = k.render_sample(1, 1, 1);
     EXPECT_TRUE(cut.truncated);
     k.accumulate_sample(cut, accum, counters);
@@ -647,7 +651,7 @@ TEST(AccumulateSample, TruncatedSampleAddsNoRadianceAndNoSampleCount) {
     EXPECT_EQ(counters.rays[kernel::RAYS_SHADOW], 1u + cut.shadow_rays);
 
     // With no budget at all even a background pixel is cut.
-    k.params.limits.x = 0;
+    kernel::set_loop_budget(k.params, 0);
     const Kernel::SampleResult none = k.render_sample(0, 0, 2);
     EXPECT_TRUE(none.truncated);
     k.accumulate_sample(none, accum, counters);
@@ -656,7 +660,7 @@ TEST(AccumulateSample, TruncatedSampleAddsNoRadianceAndNoSampleCount) {
     EXPECT_EQ(counters.work[kernel::WORK_TRUNCATED], 2u);
 
     // The budget restored, the next sample counts again.
-    k.params.limits.x = kernel::DEFAULT_LOOP_BUDGET;
+    kernel::set_loop_budget(k.params, kernel::DEFAULT_LOOP_BUDGET);
     k.accumulate_sample(k.render_sample(1, 1, 3), accum, counters);
     EXPECT_EQ(samples_summed(accum), 2u);
     EXPECT_EQ(counters.work[kernel::WORK_TRUNCATED], 2u);

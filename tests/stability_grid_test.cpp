@@ -117,7 +117,9 @@ INSTANTIATE_TEST_SUITE_P(Case6, GridEqualsBruteForce, ::testing::ValuesIn(case6_
 
 // A cell plane exactly as the walk computes it (grid.glsl: grid_min + k * grid_cell,
 // in float).
-float cell_plane(const kernel::Params& p, int axis, int k) { return p.grid_min[axis] + float(k) * p.grid_cell[axis]; }
+float cell_plane(const kernel::Params& p, int axis, int k) {
+    return kernel::grid_min(p)[axis] + float(k) * kernel::grid_cell(p)[axis];
+}
 
 
 using Cells = std::vector<glm::ivec3>;
@@ -190,7 +192,7 @@ TEST(SignedZero, RaysWalkTheSameCells) {
     Kernel brute = make_kernel(gpu);
     brute.HAS_GRID = false;
     const kernel::Params& p = gpu.params;
-    const glm::uvec3 res(p.grid_res.x, p.grid_res.y, p.grid_res.z);
+    const glm::uvec3 res = kernel::grid_resolution(p);
 
     std::mt19937 rng(6);
     std::uniform_real_distribution<float> inside(-3.2f, 3.2f);
@@ -347,7 +349,7 @@ Scene eye_at(const Place& place) {
         const Scene s = boundary_scene(eye);
         const SceneGpu gpu = build_scene_gpu(s, AccelPolicy{});
         const vec3 want = place(gpu.params);
-        const vec3 got(gpu.params.cam_eye);
+        const vec3 got = kernel::camera_eye(gpu.params);
         if (got == want) return s;
         eye += glm::dvec3(want) - glm::dvec3(got);
     }
@@ -369,9 +371,9 @@ class EyeOnGridBoundary : public ::testing::TestWithParam<BoundaryCase> {};
 TEST_P(EyeOnGridBoundary, GridEqualsBruteForceOnBothBackends) {
     const Scene scene = eye_at(GetParam().place);
     const kernel::Params p = build_scene_gpu(scene, AccelPolicy{}).params;
+    const vec3 eye = kernel::camera_eye(p), lo = kernel::grid_min(p), hi = kernel::grid_max(p), cell = kernel::grid_cell(p);
     std::printf("eye (%.9g, %.9g, %.9g), grid (%.9g, %.9g, %.9g) to (%.9g, %.9g, %.9g), cells %.9g x %.9g x %.9g\n",
-                p.cam_eye.x, p.cam_eye.y, p.cam_eye.z, p.grid_min.x, p.grid_min.y, p.grid_min.z, p.grid_max.x,
-                p.grid_max.y, p.grid_max.z, p.grid_cell.x, p.grid_cell.y, p.grid_cell.z);
+                eye.x, eye.y, eye.z, lo.x, lo.y, lo.z, hi.x, hi.y, hi.z, cell.x, cell.y, cell.z);
     const RenderOutcome cpu = expect_grid_equals_brute_force(scene, false);
     expect_grid_equals_brute_force(scene, true);
     EXPECT_GT(cpu.stats.eye_hits, 0u) << "the eye sees nothing: the case tests nothing";
@@ -380,15 +382,15 @@ TEST_P(EyeOnGridBoundary, GridEqualsBruteForceOnBothBackends) {
 INSTANTIATE_TEST_SUITE_P(
     Case6, EyeOnGridBoundary,
     ::testing::Values(
-        BoundaryCase{"grid_corner_low", [](const kernel::Params& p) { return vec3(p.grid_min); }},
-        BoundaryCase{"grid_corner_high", [](const kernel::Params& p) { return vec3(p.grid_max); }},
+        BoundaryCase{"grid_corner_low", [](const kernel::Params& p) { return kernel::grid_min(p); }},
+        BoundaryCase{"grid_corner_high", [](const kernel::Params& p) { return kernel::grid_max(p); }},
         BoundaryCase{"grid_edge_on_a_cell_plane",
-                     [](const kernel::Params& p) { return vec3(p.grid_min.x, p.grid_max.y, cell_plane(p, 2, 2)); }},
+                     [](const kernel::Params& p) { return vec3(kernel::grid_min(p).x, kernel::grid_max(p).y, cell_plane(p, 2, 2)); }},
         BoundaryCase{"grid_face_on_a_cell_edge",
                      [](const kernel::Params& p) {
-                         return vec3(p.grid_max.x, cell_plane(p, 1, 1), cell_plane(p, 2, 3));
+                         return vec3(kernel::grid_max(p).x, cell_plane(p, 1, 1), cell_plane(p, 2, 3));
                      }},
-        BoundaryCase{"grid_face", [](const kernel::Params& p) { return vec3(p.grid_min.x, 0.3f, -0.2f); }},
+        BoundaryCase{"grid_face", [](const kernel::Params& p) { return vec3(kernel::grid_min(p).x, 0.3f, -0.2f); }},
         BoundaryCase{"inner_cell_corner",
                      [](const kernel::Params& p) {
                          return vec3(cell_plane(p, 0, 2), cell_plane(p, 1, 2), cell_plane(p, 2, 2));
@@ -414,9 +416,10 @@ TEST(TeapotInStadium, DoesNotDegenerate) {
     for (const kernel::Sphere& s : gpu.spheres) {
         glm::uvec3 c;
         for (int a = 0; a < 3; ++a) {
-            c[a] = std::uint32_t(std::floor((s.center_radius[a] - p.grid_min[a]) / p.grid_cell[a]));
+            c[a] = std::uint32_t(std::floor((s.center_radius[a] - kernel::grid_min(p)[a]) / kernel::grid_cell(p)[a]));
         }
-        cluster_cells.push_back((c.z * p.grid_res.y + c.y) * p.grid_res.x + c.x);
+        const glm::uvec3 res = kernel::grid_resolution(p);
+        cluster_cells.push_back((c.z * res.y + c.y) * res.x + c.x);
     }
     std::sort(cluster_cells.begin(), cluster_cells.end());
     cluster_cells.erase(std::unique(cluster_cells.begin(), cluster_cells.end()), cluster_cells.end());
@@ -425,7 +428,7 @@ TEST(TeapotInStadium, DoesNotDegenerate) {
     const RenderStats& s = cpu.stats;
     std::printf("%zu primitives; grid %ux%ux%u (cells %.0f wide), %llu references; the cluster's centres lie in "
                 "%zu cell(s); tests per ray %.1f (grid) vs %.1f (brute force), cells per ray %.2f\n",
-                primitives, s.grid.resolution[0], s.grid.resolution[1], s.grid.resolution[2], double(p.grid_cell.x),
+                primitives, s.grid.resolution[0], s.grid.resolution[1], s.grid.resolution[2], double(kernel::grid_cell(p).x),
                 static_cast<unsigned long long>(s.grid.references), cluster_cells.size(),
                 s.per_ray(s.intersection_tests), brute.stats.per_ray(brute.stats.intersection_tests),
                 s.per_ray(s.cells_visited));

@@ -81,9 +81,9 @@ Tally trace_everything(const Scene& scene) {
     kernel::Kernel k = make_kernel(gpu);
     const float nan = std::numeric_limits<float>::quiet_NaN();
     // In the kernel's coordinates, whatever the host made them.
-    const vec3 lo(gpu.params.grid_min), hi(gpu.params.grid_max);
+    const vec3 lo = kernel::grid_min(gpu.params), hi = kernel::grid_max(gpu.params);
     const std::vector<vec3> origins = {
-        vec3(gpu.params.cam_eye),  // the eye, outside the grid
+        kernel::camera_eye(gpu.params),  // the eye, outside the grid
         (lo + hi) * 0.5f,          // inside it
         lo,                        // on a corner of it
         vec3(nan, lo.y, lo.z),
@@ -95,10 +95,10 @@ Tally trace_everything(const Scene& scene) {
         for (float x : c) {
             for (float y : c) {
                 for (float z : c) {
-                    k.params.cam_eye = vec4(origin, 0.0f);
-                    k.params.cam_corner = vec4(x, y, z, 0.0f);
-                    k.params.cam_right = vec4(0.0f);
-                    k.params.cam_down = vec4(0.0f);
+                    kernel::set_camera_eye(k.params, origin);
+                    kernel::set_camera_corner(k.params, vec3(x, y, z));
+                    kernel::set_camera_right(k.params, vec3(0.0f));
+                    kernel::set_camera_down(k.params, vec3(0.0f));
                     const auto s = k.render_sample(0, 0, 0);
                     EXPECT_FALSE(s.truncated) << "a loop did not end by itself: origin (" << origin.x << ", "
                                               << origin.y << ", " << origin.z << "), direction (" << x << ", " << y
@@ -144,9 +144,9 @@ TEST(UnboundedInput, LocalRayTreeAndGridEndForAnyDirection) {
 TEST(UnboundedInput, AnExponentialRayTreeIsStoppedAndCounted) {
     const SceneGpu gpu = build_scene_gpu(every_loop_scene(R"("max_depth": 64, "min_weight": 0)"));
     kernel::Kernel k = make_kernel(gpu);
-    k.params.cam_right = vec4(0.0f);
-    k.params.cam_down = vec4(0.0f);
-    k.params.cam_corner = vec4(0.0f, 0.0f, -1.0f, 0.0f);  // through the glass cylinder, between mirrors
+    kernel::set_camera_right(k.params, vec3(0.0f));
+    kernel::set_camera_down(k.params, vec3(0.0f));
+    kernel::set_camera_corner(k.params, vec3(0.0f, 0.0f, -1.0f));  // through the glass cylinder, between mirrors
     const auto s = k.render_sample(0, 0, 0);
     EXPECT_TRUE(s.truncated);
     kernel::PixelSum sum{};

@@ -32,15 +32,19 @@ const glm::vec4 kBackground(0.25f, 0.5f, 0.75f, 0.0f);
 SceneGpu tiny_scene() {
     SceneGpu scene;
     kernel::Params& p = scene.params;
-    p.cam_eye = glm::vec4(0.0f);
-    p.cam_corner = glm::vec4(-1.0f, 1.0f, -1.0f, 0.0f);
-    p.cam_right = glm::vec4(2.0f / kSize, 0.0f, 0.0f, 0.0f);
-    p.cam_down = glm::vec4(0.0f, -2.0f / kSize, 0.0f, 0.0f);
-    p.ambient = glm::vec4(0.0f);
-    p.background = kBackground;
-    p.image = glm::uvec4(kSize, kSize, 1, 0);
-    p.counts = glm::uvec4(1, 0, 0, 1);
-    p.limits = glm::uvec4(kernel::DEFAULT_LOOP_BUDGET, 5, 0, 0);
+    kernel::set_camera_eye(p, glm::vec3(0.0f));
+    kernel::set_camera_corner(p, glm::vec3(-1.0f, 1.0f, -1.0f));
+    kernel::set_camera_right(p, glm::vec3(2.0f / kSize, 0.0f, 0.0f));
+    kernel::set_camera_down(p, glm::vec3(0.0f, -2.0f / kSize, 0.0f));
+    kernel::set_ambient_light(p, glm::vec3(0.0f));
+    kernel::set_background(p, glm::vec3(kBackground));
+    kernel::set_image_width(p, kSize);
+    kernel::set_image_height(p, kSize);
+    kernel::set_aa_per_side(p, 1);
+    kernel::set_sphere_count(p, 1);
+    kernel::set_material_count(p, 1);
+    kernel::set_loop_budget(p, kernel::DEFAULT_LOOP_BUDGET);
+    kernel::set_max_depth(p, 5);
     scene.features.set(Feature::HAS_SPHERES, true);
     kernel::Material material{};
     material.diffuse_kd = glm::vec4(0.8f, 0.2f, 0.2f, 1.0f);
@@ -166,7 +170,7 @@ TEST(VulkanBackend, SplitRangesGiveTheSameSums) {
     const std::unique_ptr<Backend> backend = lavapipe();
     SceneGpu scene = tiny_scene();
     scene.features.set(Feature::HAS_JITTER, true);  // make the samples differ
-    scene.params.image.w = 7;
+    kernel::set_sample_seed(scene.params, 7);
     const RenderResult whole = backend->render(scene, SampleRange{0, 2});
     const RenderResult first = backend->render(scene, SampleRange{0, 1});
     const RenderResult second = backend->render(scene, SampleRange{1, 1});
@@ -205,8 +209,8 @@ TEST(VulkanBackend, TallImagesAreDispatchedInBandsCoveringEveryRowOnce) {
     // 4 x 200 pixels: 25 workgroup rows, four bands of at most 8. Every pixel must
     // receive each sample exactly once, and progress moves band by band.
     SceneGpu scene = tiny_scene();
-    scene.params.image.y = 200;
-    scene.params.cam_down = glm::vec4(0.0f, -2.0f / 200.0f, 0.0f, 0.0f);
+    kernel::set_image_height(scene.params, 200);
+    kernel::set_camera_down(scene.params, glm::vec3(0.0f, -2.0f / 200.0f, 0.0f));
     const std::unique_ptr<Backend> backend = lavapipe();
     const std::uint32_t samples = 3;
     std::vector<std::uint32_t> reported;
@@ -236,7 +240,9 @@ SceneGpu glowing_triangle_scene(bool has_triangles) {
     scene.features.set(Feature::HAS_SPHERES, false);
     scene.features.set(Feature::HAS_TRIANGLES, has_triangles);
     scene.features.set(Feature::HAS_EMISSION, true);
-    scene.params.counts = glm::uvec4(0, 1, 0, 1);
+    kernel::set_sphere_count(scene.params, 0);
+    kernel::set_triangle_count(scene.params, 1);
+    kernel::set_material_count(scene.params, 1);
     scene.materials[0].emission_fresnel = glm::vec4(1.0f, 0.5f, 0.125f, 0.0f);
     // At z = -2 the view spans [-2, 2] in x and y; the front face, cross(p1 - p0,
     // p2 - p0) = +z, looks at the camera.

@@ -13,7 +13,6 @@
 
 #include "gpu/band_batcher.hpp"
 #include "gpu/batch_timer.hpp"
-#include "gpu/grid_spheres.hpp"
 #include "gpu/vulkan_buffer.hpp"
 #include "gpu/vulkan_context.hpp"
 #include "gpu/vulkan_pipeline.hpp"
@@ -57,51 +56,40 @@ std::optional<VulkanBuffer> array_buffer(const VulkanContext& context, const cha
     return buffer;
 }
 
-// The grid spheres' copies (grid_spheres.hpp), written straight into the buffer.
-std::optional<VulkanBuffer> grid_spheres_buffer(const VulkanContext& context, const SceneGpu& scene) {
-    const std::size_t count = grid_sphere_copy_count(scene);
-    if (count == 0) {
-        return std::nullopt;
-    }
-    std::optional<VulkanBuffer> buffer;
-    buffer.emplace(context, "grid spheres", count * sizeof(glm::vec4), kBindingUsage);
-    buffer->upload_with(buffer->size(),
-                        [&](void* target) { write_grid_sphere_copies(scene, static_cast<glm::vec4*>(target)); });
-    return buffer;
+// The scene's arrays, one buffer per SCENE_BUFFER line of kernel/bindings.glsl.
+std::array<std::optional<VulkanBuffer>, kBindingCount> upload_scene_buffers(const VulkanContext& context,
+                                                                            const SceneGpu& scene) {
+    std::array<std::optional<VulkanBuffer>, kBindingCount> buffers;
+#define SCENE_BUFFER(binding, name, Element, load, format) \
+    buffers[binding] = array_buffer(context, #name, scene.name);
+#include "kernel/bindings.glsl"
+    return buffers;
 }
 
 // The kernel trusts the counts in Params; an index past a buffer's end would be an
 // out-of-bounds read on the device, so the counts are checked here, once.
 void check_counts(const SceneGpu& scene) {
     const kernel::Params& p = scene.params;
-    auto fail = [](const char* what, std::size_t count, std::size_t size) {
-        throw GpuError(std::string("scene: params count of ") + what + " (" + std::to_string(count) +
-                       ") exceeds its buffer (" + std::to_string(size) + ")");
+    auto check = [](const char* what, std::size_t count, std::size_t size) {
+        if (count > size) {
+            throw GpuError(std::string("scene: params count of ") + what + " (" + std::to_string(count) +
+                           ") exceeds its buffer (" + std::to_string(size) + ")");
+        }
     };
-    if (scene.features.has(Feature::HAS_SPHERES) && p.counts.x > scene.spheres.size()) {
-        fail("spheres", p.counts.x, scene.spheres.size());
+    const FeatureSet& f = scene.features;
+    if (f.has(Feature::HAS_SPHERES)) check("spheres", kernel::sphere_count(p), scene.spheres.size());
+    if (f.has(Feature::HAS_TRIANGLES)) check("triangles", kernel::triangle_count(p), scene.triangles.size());
+    if (f.has(Feature::HAS_POINT_LIGHTS)) check("point lights", kernel::light_count(p), scene.lights.size());
+    if (f.has(Feature::HAS_RINGS)) check("rings", kernel::ring_count(p), scene.rings.size());
+    if (f.has(Feature::HAS_CYLINDERS)) check("cylinders", kernel::cylinder_count(p), scene.cylinders.size());
+    if (f.has(Feature::HAS_AREA_LIGHTS)) {
+        check("emitters", kernel::emitter_count(p), scene.emitters.size());
+        if (kernel::emitter_count(p) == 0) throw GpuError("scene: area lights on, but params count no emitters");
     }
-    if (scene.features.has(Feature::HAS_TRIANGLES) && p.counts.y > scene.triangles.size()) {
-        fail("triangles", p.counts.y, scene.triangles.size());
-    }
-    if (scene.features.has(Feature::HAS_POINT_LIGHTS) && p.counts.z > scene.lights.size()) {
-        fail("point lights", p.counts.z, scene.lights.size());
-    }
-    if (scene.features.has(Feature::HAS_RINGS) && p.more_counts.x > scene.rings.size()) {
-        fail("rings", p.more_counts.x, scene.rings.size());
-    }
-    if (scene.features.has(Feature::HAS_CYLINDERS) && p.more_counts.y > scene.cylinders.size()) {
-        fail("cylinders", p.more_counts.y, scene.cylinders.size());
-    }
-    if (scene.features.has(Feature::HAS_AREA_LIGHTS) &&
-        (p.area_lights.x == 0 || p.area_lights.x > scene.emitters.size())) {
-        fail("emitters", p.area_lights.x, scene.emitters.size());
-    }
-    if (p.counts.w > scene.materials.size()) {
-        fail("materials", p.counts.w, scene.materials.size());
-    }
-    if (scene.features.has(Feature::HAS_GRID)) {
-        const std::uint64_t cells = std::uint64_t(p.grid_res.x) * p.grid_res.y * p.grid_res.z;
+    check("materials", kernel::material_count(p), scene.materials.size());
+    if (f.has(Feature::HAS_GRID)) {
+        const glm::uvec3 res = kernel::grid_resolution(p);
+        const std::uint64_t cells = std::uint64_t(res.x) * res.y * res.z;
         if (scene.grid_cell_starts.size() != cells + 1 || scene.grid_cell_starts.back() != scene.grid_refs.size()) {
             throw GpuError("scene: the grid's cell starts do not match its resolution and references");
         }
@@ -142,23 +130,10 @@ public:
           // Stands in for every array the scene leaves out: the shader still declares
           // the binding, but with the feature off nothing reads it.
           dummy_(context, "unused", 16, kBindingUsage),
-          materials_(array_buffer(context, "materials", scene.materials)),
-          spheres_(array_buffer(context, "spheres", scene.spheres)),
-          triangles_(array_buffer(context, "triangles", scene.triangles)),
-          lights_(array_buffer(context, "lights", scene.lights)),
-          emitters_(array_buffer(context, "emitters", scene.emitters)),
-          cell_starts_(array_buffer(context, "grid cell starts", scene.grid_cell_starts)),
-          refs_(array_buffer(context, "grid refs", scene.grid_refs)),
-          rings_(array_buffer(context, "rings", scene.rings)),
-          cylinders_(array_buffer(context, "cylinders", scene.cylinders)),
-          grid_spheres_(grid_spheres_buffer(context, scene)),
           sums_(context, "sums", scene.pixel_count() * sizeof(kernel::PixelSum), kBindingUsage),
           counters_(context, "counters", scene.pixel_count() * sizeof(kernel::Counters), kBindingUsage),
-          views_(write_descriptors(context.device(), pipeline_.set,
-                                   {&params_, or_dummy(materials_), or_dummy(spheres_), or_dummy(triangles_),
-                                    or_dummy(lights_), &sums_, &counters_, or_dummy(cell_starts_),
-                                    or_dummy(refs_), or_dummy(rings_), or_dummy(cylinders_),
-                                    or_dummy(emitters_), or_dummy(grid_spheres_)})),
+          scene_buffers_(upload_scene_buffers(context, scene)),
+          views_(write_descriptors(context.device(), pipeline_.set, bound_buffers())),
           timer_(context),
           batcher_(((groups_y_ + kBandGroups - 1) / kBandGroups), kTargetSubmitSeconds, kMaxBatch) {
         params_.upload(&scene.params, sizeof(kernel::Params));
@@ -170,7 +145,17 @@ public:
     RenderResult render(SampleRange samples, const ProgressCallback& progress) override;
 
 private:
-    const VulkanBuffer* or_dummy(const std::optional<VulkanBuffer>& b) const { return b ? &*b : &dummy_; }
+    // The buffer of each binding (kernel/bindings.glsl), the dummy for an empty array.
+    std::array<const VulkanBuffer*, kBindingCount> bound_buffers() const {
+        std::array<const VulkanBuffer*, kBindingCount> buffers{};
+        for (std::uint32_t i = 0; i < kBindingCount; ++i) {
+            buffers[i] = scene_buffers_[i] ? &*scene_buffers_[i] : &dummy_;
+        }
+        buffers[index(Binding::params)] = &params_;
+        buffers[index(Binding::sums)] = &sums_;
+        buffers[index(Binding::counters)] = &counters_;
+        return buffers;
+    }
 
     const VulkanContext& context_;
     std::uint32_t width_, height_, groups_x_, groups_y_;
@@ -178,10 +163,9 @@ private:
     Pipeline pipeline_;
     VulkanBuffer params_;
     VulkanBuffer dummy_;
-    std::optional<VulkanBuffer> materials_, spheres_, triangles_, lights_, emitters_, cell_starts_, refs_, rings_,
-        cylinders_, grid_spheres_;
     VulkanBuffer sums_;
     VulkanBuffer counters_;
+    std::array<std::optional<VulkanBuffer>, kBindingCount> scene_buffers_;  // by binding; empty: none
     std::vector<BufferView> views_;
     BatchTimer timer_;
     // Dispatches per submission, from the bands' measured costs; kept from pass to
@@ -264,16 +248,9 @@ public:
     explicit VulkanBackend(const VulkanOptions& options) : context_(options) {}
 
     std::string name() const override { return "vulkan"; }
-    std::vector<BufferSize> derived_buffers(const SceneGpu& scene) const override {
-        const std::size_t copies = grid_sphere_copy_count(scene);
-        if (copies == 0) {
-            return {};
-        }
-        return {{"grid_sphere_copies", copies * sizeof(glm::vec4)}};
-    }
     AccelPolicy accel_policy() const override {
         // The grid arrays are uint texel buffers: bounded by the texel count a view
-        // may have (the spheres' copies, one 16-byte texel per reference, too) and,
+        // may have and,
         // for a device that would need them as storage buffers, by
         // maxStorageBufferRange.
         const VkPhysicalDeviceLimits& l = context_.properties().limits;

@@ -12,16 +12,35 @@ namespace vkrt::gpu {
 
 namespace {
 
-// The texel formats of the bindings (all storage texel buffers, kBindingUsage).
-VkFormat texel_format(std::uint32_t binding) {
-    switch (binding) {
-    case kGridCellStarts:
-    case kGridRefs: return VK_FORMAT_R32_UINT;  // one uint a texel
-    default: return VK_FORMAT_R32G32B32A32_UINT;
-    }
+constexpr VkFormat kFormat_rgba32ui = VK_FORMAT_R32G32B32A32_UINT;
+constexpr VkFormat kFormat_r32ui = VK_FORMAT_R32_UINT;
+
+// Dense numbering: binding i is the i-th line of the table.
+constexpr bool bindings_dense() {
+    std::uint32_t expected = 0;
+    bool dense = true;
+#define PARAMS_BUFFER(binding, name) dense = dense && binding == expected++;
+#define SCENE_BUFFER(binding, name, Element, load, format) dense = dense && binding == expected++;
+#define OUTPUT_BUFFER(binding, name, Element, format) dense = dense && binding == expected++;
+#include "kernel/bindings.glsl"
+    return dense;
 }
+static_assert(bindings_dense(), "kernel/bindings.glsl: bindings must be numbered 0, 1, 2, ... in order");
 
 }  // namespace
+
+VkFormat texel_format(std::uint32_t binding) {
+    switch (binding) {
+#define PARAMS_BUFFER(binding, name) \
+    case binding: return kFormat_rgba32ui;
+#define SCENE_BUFFER(binding, name, Element, load, format) \
+    case binding: return kFormat_##format;
+#define OUTPUT_BUFFER(binding, name, Element, format) \
+    case binding: return kFormat_##format;
+#include "kernel/bindings.glsl"
+    default: return VK_FORMAT_UNDEFINED;
+    }
+}
 
 Pipeline make_compute_pipeline(VkDevice device, std::span<const std::uint32_t> spirv,
                                std::span<const VkDescriptorType> types, std::uint32_t push_bytes,

@@ -13,13 +13,24 @@ namespace vkrt::gpu {
 
 class VulkanBuffer;
 
-// Binding numbers of shaders/render.comp, dense: the set layout has one binding per
-// number below kBindingCount. A binding whose feature the scene leaves out gets the
-// dummy buffer.
-enum Binding : std::uint32_t {
-    kParams, kMaterials, kSpheres, kTriangles, kLights, kSums, kCounters, kGridCellStarts, kGridRefs, kRings,
-    kCylinders, kEmitters, kGridSpheres, kBindingCount
+// The bindings of shaders/render.comp, one per line of kernel/bindings.glsl, named as
+// there. A binding whose feature the scene leaves out gets the dummy buffer.
+enum class Binding : std::uint32_t {
+#define PARAMS_BUFFER(binding, name) name = binding,
+#define SCENE_BUFFER(binding, name, Element, load, format) name = binding,
+#define OUTPUT_BUFFER(binding, name, Element, format) name = binding,
+#include "kernel/bindings.glsl"
 };
+constexpr std::uint32_t kBindingCount = 0
+#define PARAMS_BUFFER(binding, name) +1
+#define SCENE_BUFFER(binding, name, Element, load, format) +1
+#define OUTPUT_BUFFER(binding, name, Element, format) +1
+#include "kernel/bindings.glsl"
+    ;
+constexpr std::uint32_t index(Binding b) { return static_cast<std::uint32_t>(b); }
+// Each binding's texel format, by binding number.
+VkFormat texel_format(std::uint32_t binding);
+
 constexpr std::uint32_t kLocalSize = 8;   // local_size_x and _y of render.comp
 constexpr std::uint32_t kPushBytes = 16;  // uvec4 pass
 

@@ -29,15 +29,8 @@ kernel::Kernel make_kernel(const SceneGpu& scene) {
 #include "kernel/features.glsl"
 #undef FEATURE
     k.params = scene.params;
-    k.materials = scene.materials;
-    k.spheres = scene.spheres;
-    k.triangles = scene.triangles;
-    k.lights = scene.lights;
-    k.emitters = scene.emitters;
-    k.grid_cell_starts = scene.grid_cell_starts;
-    k.grid_refs = scene.grid_refs;
-    k.rings = scene.rings;
-    k.cylinders = scene.cylinders;
+#define SCENE_BUFFER(binding, name, Element, load, format) k.name = scene.name;
+#include "kernel/bindings.glsl"
     return k;
 }
 

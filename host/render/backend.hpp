@@ -73,9 +73,6 @@ public:
     virtual AccelPolicy accel_policy() const = 0;
     // Messages the Vulkan validation layer reported so far (0 when it is off).
     virtual std::uint32_t validation_messages() const { return 0; }
-    // Buffers this backend derives from the scene and uploads beside its own arrays
-    // (SceneGpu::built_buffers), for the stats report.
-    virtual std::vector<BufferSize> derived_buffers(const SceneGpu& /*scene*/) const { return {}; }
 };
 
 }  // namespace vkrt

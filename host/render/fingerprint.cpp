@@ -51,10 +51,12 @@ bool is_acceleration_feature(std::uint32_t id) {
 std::uint64_t scene_fingerprint(const SceneGpu& scene) {
     kernel::Params params = scene.params;
     // The grid's box, cells and resolution (see the header for why).
-    params.grid_min = params.grid_max = params.grid_cell = params.grid_inv_cell = kernel::vec4(0.0f);
-    params.grid_res = kernel::uvec4(0u);
+    for (auto* set : {kernel::set_grid_min, kernel::set_grid_max, kernel::set_grid_cell, kernel::set_grid_inv_cell}) {
+        set(params, kernel::vec3(0.0f));
+    }
+    kernel::set_grid_resolution(params, kernel::uvec3(0u));
     Fnv1a h;
-    h.add(&params, sizeof params);  // vec4 members only: no padding bytes
+    h.add(&params, sizeof params);  // texels only: no padding bytes
     for (std::uint32_t id = 0; id < kFeatureCount; ++id) {
         const std::uint8_t on = !is_acceleration_feature(id) && scene.features.has(id) ? 1 : 0;
         h.add(&on, 1);

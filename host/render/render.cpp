@@ -98,9 +98,8 @@ RenderStats collect_stats(const SceneGpu& scene, const Backend& backend, const R
     s.longest_submit_seconds = result.longest_submit_seconds;
     s.features = scene.features;
     s.buffers = scene.built_buffers();
-    for (BufferSize& b : backend.derived_buffers(scene)) s.buffers.push_back(std::move(b));
     s.validation_messages = backend.validation_messages();
-    s.loop_budget = scene.params.limits.x;
+    s.loop_budget = kernel::loop_budget(scene.params);
     s.grid = scene.grid;
     return s;
 }

@@ -19,7 +19,9 @@
 namespace vkrt {
 namespace {
 
+using kernel::uvec3;
 using kernel::uvec4;
+using kernel::vec3;
 using kernel::vec4;
 
 // Brute force tests the spheres a ray starts near after its loop over them
@@ -75,10 +77,10 @@ void set_camera(const Camera& cam, bool corners, const dvec3& origin, kernel::Pa
     // Ray (x, y) of the corner grid goes through corner (x - 0.5, y - 0.5) + the
     // sample's offset of 0.5: the image's pixel corner (x, y).
     if (corners) corner -= (step_right + step_down) * 0.5;
-    p.cam_eye = to_vec4(cam.eye - origin);
-    p.cam_corner = to_vec4(corner);
-    p.cam_right = to_vec4(step_right);
-    p.cam_down = to_vec4(step_down);
+    kernel::set_camera_eye(p, vec3(cam.eye - origin));
+    kernel::set_camera_corner(p, vec3(corner));
+    kernel::set_camera_right(p, vec3(step_right));
+    kernel::set_camera_down(p, vec3(step_down));
 }
 
 kernel::Material flatten(const Material& m) {
@@ -161,8 +163,9 @@ void add_emitters(const Scene& scene, SceneGpu& g) {
     // Exactly 1, whatever the rounding of the sum: the kernel's search for the first
     // fraction above a number in [0, 1) must always end on an emitter.
     if (!g.emitters.empty()) g.emitters.back().cdf_area.x = 1.0f;
-    g.params.area_lights = uvec4(g.emitters.size(), scene.render.light_samples, 0u, 0u);
-    g.params.emitter_area = vec4(static_cast<float>(total), 0.0f, 0.0f, 0.0f);
+    kernel::set_emitter_count(g.params, static_cast<std::uint32_t>(g.emitters.size()));
+    kernel::set_light_samples(g.params, scene.render.light_samples);
+    kernel::set_emitter_area(g.params, static_cast<float>(total));
 }
 
 template <class T>
@@ -274,11 +277,11 @@ void add_grid(const Scene& scene, const AccelPolicy& policy, SceneGpu& g) {
     Grid grid = build_grid(GridPrimitives{g.spheres, g.triangles, g.rings, g.cylinders}, request, note);
     note_kinds(grid, policy, request.loose_kinds, g);
     kernel::Params& p = g.params;
-    p.grid_min = to_vec4(grid.lo);
-    p.grid_max = to_vec4(grid.hi);
-    p.grid_cell = to_vec4(grid.cell);
-    p.grid_inv_cell = to_vec4(1.0 / grid.cell);
-    p.grid_res = uvec4(grid.resolution[0], grid.resolution[1], grid.resolution[2], 0u);
+    kernel::set_grid_min(p, vec3(grid.lo));
+    kernel::set_grid_max(p, vec3(grid.hi));
+    kernel::set_grid_cell(p, vec3(grid.cell));
+    kernel::set_grid_inv_cell(p, vec3(1.0 / grid.cell));
+    kernel::set_grid_resolution(p, uvec3(grid.resolution[0], grid.resolution[1], grid.resolution[2]));
     g.grid.used = true;
     g.grid.resolution = grid.resolution;
     g.grid.cells = grid.cell_count();
@@ -295,18 +298,10 @@ void add_grid(const Scene& scene, const AccelPolicy& policy, SceneGpu& g) {
 
 std::vector<BufferSize> SceneGpu::built_buffers() const {
     std::vector<BufferSize> out;
-    auto add = [&](const char* name, std::size_t size) {
-        if (size != 0) out.push_back({name, size});
-    };
-    add("materials", bytes(materials));
-    add("spheres", bytes(spheres));
-    add("triangles", bytes(triangles));
-    add("point_lights", bytes(lights));
-    add("rings", bytes(rings));
-    add("cylinders", bytes(cylinders));
-    add("emitters", bytes(emitters));
-    add("grid_cell_starts", bytes(grid_cell_starts));
-    add("grid_refs", bytes(grid_refs));
+#define SCENE_BUFFER(binding, name, Element, load, format) \
+    if (!name.empty()) out.push_back({#name, bytes(name)});
+#include "kernel/bindings.glsl"
+    std::sort(out.begin(), out.end(), [](const BufferSize& a, const BufferSize& b) { return a.name < b.name; });
     return out;
 }
 
@@ -321,17 +316,22 @@ SceneGpu build_scene_gpu(const Scene& scene, const AccelPolicy& policy) {
     g.origin = kernel_origin(scene.camera.eye);
     const dvec3& o = g.origin;
     set_camera(scene.camera, r.corners, o, p);
-    p.ambient = to_vec4(r.ambient);
-    p.background = to_vec4(r.background);
-    p.image = r.corners ? uvec4(scene.camera.width + 1, scene.camera.height + 1, 1u, r.seed)
-                        : uvec4(scene.camera.width, scene.camera.height, r.aa, r.seed);
-    p.limits = uvec4(r.loop_budget != 0 ? r.loop_budget : kernel::DEFAULT_LOOP_BUDGET, r.max_depth, 0u, 0u);
-    p.ray_tree = vec4(static_cast<float>(r.min_weight), 0.0f, 0.0f, 0.0f);
+    kernel::set_ambient_light(p, vec3(r.ambient));
+    kernel::set_background(p, vec3(r.background));
+    kernel::set_image_width(p, r.corners ? scene.camera.width + 1 : scene.camera.width);
+    kernel::set_image_height(p, r.corners ? scene.camera.height + 1 : scene.camera.height);
+    kernel::set_aa_per_side(p, r.corners ? 1u : r.aa);
+    kernel::set_sample_seed(p, r.seed);
+    kernel::set_loop_budget(p, r.loop_budget != 0 ? r.loop_budget : kernel::DEFAULT_LOOP_BUDGET);
+    kernel::set_max_depth(p, r.max_depth);
+    kernel::set_min_ray_weight(p, static_cast<float>(r.min_weight));
     const std::uint32_t estimator = r.estimator == Estimator::Paper ? kernel::ESTIMATOR_PAPER : kernel::ESTIMATOR_PATH;
     const std::uint32_t hemisphere = r.hemisphere == Hemisphere::Angles    ? kernel::HEMISPHERE_ANGLES
                                      : r.hemisphere == Hemisphere::Uniform ? kernel::HEMISPHERE_UNIFORM
                                                                            : kernel::HEMISPHERE_COSINE;
-    p.global = uvec4(estimator, hemisphere, 0u, r.max_bounces);
+    kernel::set_estimator(p, estimator);
+    kernel::set_hemisphere_rule(p, hemisphere);
+    kernel::set_max_bounces(p, r.max_bounces);
 
     // Buffers only the left-out features read are not built (and so not uploaded).
     const bool any_geometry = scene.primitive_count() != 0;
@@ -363,8 +363,12 @@ SceneGpu build_scene_gpu(const Scene& scene, const AccelPolicy& policy) {
             g.lights.push_back(kernel::PointLight(to_vec4(l.position - o), to_vec4(l.color * l.intensity)));
         }
     }
-    p.counts = uvec4(g.spheres.size(), g.triangles.size(), g.lights.size(), g.materials.size());
-    p.more_counts = uvec4(g.rings.size(), g.cylinders.size(), 0u, 0u);
+    kernel::set_sphere_count(p, static_cast<std::uint32_t>(g.spheres.size()));
+    kernel::set_triangle_count(p, static_cast<std::uint32_t>(g.triangles.size()));
+    kernel::set_ring_count(p, static_cast<std::uint32_t>(g.rings.size()));
+    kernel::set_cylinder_count(p, static_cast<std::uint32_t>(g.cylinders.size()));
+    kernel::set_light_count(p, static_cast<std::uint32_t>(g.lights.size()));
+    kernel::set_material_count(p, static_cast<std::uint32_t>(g.materials.size()));
     if (g.features.has(Feature::HAS_AREA_LIGHTS)) add_emitters(scene, g);
     // Every emissive primitive kind has its sampler, so the list is empty only if no
     // primitive emits; the kernel's search must never see an empty list.

@@ -27,15 +27,10 @@ struct SceneGpu {
     // kernel computes is at origin + that point in the scene.
     dvec3 origin{0.0};
     FeatureSet features;
-    std::vector<kernel::Material> materials;
-    std::vector<kernel::Sphere> spheres;
-    std::vector<kernel::Triangle> triangles;
-    std::vector<kernel::PointLight> lights;
-    std::vector<kernel::Ring> rings;
-    std::vector<kernel::Cylinder> cylinders;
-    std::vector<kernel::Emitter> emitters;        // empty without HAS_AREA_LIGHTS
-    std::vector<std::uint32_t> grid_cell_starts;  // empty without the grid
-    std::vector<std::uint32_t> grid_refs;
+    // One array per scene buffer of kernel/bindings.glsl (materials, spheres, ...,
+    // grid_refs), uploaded as it is. An array only left-out features read stays empty.
+#define SCENE_BUFFER(binding, name, Element, load, format) std::vector<kernel::Element> name;
+#include "kernel/bindings.glsl"
     GridStats grid;
     std::uint32_t samples_per_pixel = 1;
     // The SPD rule (render.corners): the kernel traces one ray through each pixel
@@ -44,8 +39,8 @@ struct SceneGpu {
     bool corners = false;
 
     // The grid of rays the kernel traces: the image, or its corners.
-    std::uint32_t width() const { return params.image.x; }
-    std::uint32_t height() const { return params.image.y; }
+    std::uint32_t width() const { return kernel::image_width(params); }
+    std::uint32_t height() const { return kernel::image_height(params); }
     std::size_t pixel_count() const { return std::size_t(width()) * height(); }
 
     // The scene buffers that were built (non-empty), with their sizes.

@@ -1,11 +1,9 @@
 // The whole kernel, in dependency order. Included by shaders/render.comp and, inside
 // the reference Kernel struct, by host/ref/kernel.hpp. Before including it, a host
-// declares the feature flags (features.glsl), `params`, and the accessors
-// load_material, load_sphere, load_triangle, load_light, load_ring, load_cylinder and
-// load_emitter (uint index -> struct), the grid's load_cell_start and load_ref
-// (uint index -> uint), and load_grid_sphere (uint position, uint index -> vec4: the
-// center and radius of the sphere that reference `position` lists, sphere `index`;
-// each host reads whichever of the two it reads faster).
+// declares the feature flags (features.glsl), `params` (a Params), its buffers
+// (bindings.glsl) and LOAD_ELEMENT (loads.glsl).
+#include "param_access.glsl"
+#include "loads.glsl"
 #include "rng.glsl"
 #include "ray.glsl"
 #include "intersect.glsl"

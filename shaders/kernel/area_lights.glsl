@@ -33,7 +33,7 @@ vec3 shade_area_lights(Ray ray, Hit hit, Material m, INOUT(Rng) rng, INOUT(uint)
     if (!(reflects > 0.0f)) {
         return vec3(0.0f);
     }
-    uint samples = params.area_lights.y;
+    uint samples = light_samples();
     vec3 sum = vec3(0.0f);
     loop_enter();
     for (uint i = 0u; i < samples; ++i) {
@@ -52,5 +52,5 @@ vec3 shade_area_lights(Ray ray, Hit hit, Material m, INOUT(Rng) rng, INOUT(uint)
                    (cos_emitter / r2);
         }
     }
-    return sum * (params.emitter_area.x / (PI * float(max(samples, 1u))));
+    return sum * (emitter_area() / (PI * float(max(samples, 1u))));
 }

@@ -36,11 +36,11 @@ void loop_enter() {
 
 bool loop_tick() {
     g_loop_iterations += 1u;
-    return g_loop_iterations <= params.limits.x;
+    return g_loop_iterations <= loop_budget();
 }
 
 bool budget_exhausted() {
-    return g_loop_iterations > params.limits.x;
+    return g_loop_iterations > loop_budget();
 }
 
 // True when the driver's own loop cap may have cut this invocation's loops: its
@@ -55,7 +55,7 @@ bool budget_exhausted() {
 // runs once. Its trip count comes from the params, which the compilers cannot see,
 // so it is not unrolled away. Always false on the reference, which has no such cap.
 bool driver_cut_loops() {
-    uint want = min(params.limits.x, 2u);
+    uint want = min(loop_budget(), 2u);
     uint runs = 0u;
     do {
         runs += 1u;

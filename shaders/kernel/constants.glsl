@@ -14,7 +14,7 @@ const uint WORK_TRUNCATED = 2u;   // samples stopped by the loop budget
 const uint WORK_NONFINITE = 3u;   // samples discarded for a NaN or infinite value
 // Counters.tree:
 const uint TREE_EYE_HITS = 0u;       // eye rays that hit something (an SPD count)
-const uint TREE_DROPPED_WEIGHT = 1u; // secondary rays not traced: weight below params.ray_tree.x
+const uint TREE_DROPPED_WEIGHT = 1u; // secondary rays not traced: weight below min_ray_weight()
 const uint TREE_DROPPED_STACK = 2u;  // secondary rays not traced: the pending-ray stack was full
 const uint TREE_DECISIONS = 3u;      // sum of the samples' decision hashes (budget.glsl)
 // Counters.paths (global mode, global.glsl):

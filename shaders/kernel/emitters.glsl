@@ -18,7 +18,7 @@ struct EmitterPoint {
 // fraction is exactly 1, so there always is one.
 uint pick_emitter(float u) {
     uint lo = 0u;
-    uint hi = params.area_lights.x - 1u;
+    uint hi = emitter_count() - 1u;
     loop_enter();
     while (lo < hi) {
         if (!loop_tick()) {

@@ -1,7 +1,7 @@
 // Global illumination (render.mode "global"): one Monte Carlo sample of the radiance
 // reaching the eye along a ray, by the paper's estimator or by path tracing
-// (params.global: x estimator, y hemisphere, z unused by the kernel (next-event
-// estimation is the HAS_AREA_LIGHTS feature in this mode), w max_bounces). GLSL has
+// (estimator() and hemisphere_rule(); next-event
+// estimation is the HAS_AREA_LIGHTS feature in this mode). GLSL has
 // no recursion: every bounce is one iteration of a loop, and one tick of the
 // invocation's loop budget.
 //
@@ -27,7 +27,7 @@ vec3 hit_point(Ray ray, float t) {
 bool path_hit(Ray ray, uint bounce, vec3 beta, INOUT(SampleResult) s, INOUT(Hit) hit) {
     hit = closest_hit(ray, INFINITY_T);
     if (!(hit.t < INFINITY_T)) {
-        s.radiance += beta * vec3(params.background);
+        s.radiance += beta * background();
         return false;
     }
     if (bounce == 0u) {
@@ -55,7 +55,7 @@ float power_heuristic(float pdf_this, float pdf_other) {
 // the total emitting area, emitters.glsl) picks a point at squared distance r2 whose
 // emitting face is seen at cosine cos_emitter.
 float light_pdf(float r2, float cos_emitter) {
-    return min(r2 / (cos_emitter * params.emitter_area.x), INFINITY_T);
+    return min(r2 / (cos_emitter * emitter_area()), INFINITY_T);
 }
 
 // Direct light at a path vertex through its smooth lobes: every point light (the
@@ -70,7 +70,7 @@ vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smoo
     vec3 shadow_origin = offset_ray_origin(p, hit.geo_normal);
     if (HAS_POINT_LIGHTS) {
         loop_enter();
-        for (uint i = 0u; i < params.counts.z; ++i) {
+        for (uint i = 0u; i < light_count(); ++i) {
             if (!loop_tick()) {
                 break;
             }
@@ -91,7 +91,7 @@ vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smoo
         float cos_emitter = -dot(y.normal, l);
         if (light_reaches(hit, shadow_origin, l, y.position, cos_emitter > 0.0f, s.shadow_rays)) {
             float pdf_light = light_pdf(r2, cos_emitter);
-            float pdf_bsdf = p_smooth * pdf_smooth(lobes, frame, wo, l, params.global.y);
+            float pdf_bsdf = p_smooth * pdf_smooth(lobes, frame, wo, l, hemisphere_rule());
             sum += eval_smooth(lobes, hit.normal, wo, l) * y.emission *
                    (dot(hit.normal, l) * power_heuristic(pdf_light, pdf_bsdf) / pdf_light);
         }
@@ -139,7 +139,7 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
     // The solid-angle density of the last bounce when it sampled the smooth lobes;
     // 0 after the eye or a delta lobe, whose hits on an emitter count in full.
     float pdf_prev = 0.0f;
-    uint hemisphere = params.global.y;
+    uint hemisphere = hemisphere_rule();
     vec4 media = vec4(0.0f);  // in air
     loop_enter();
     for (uint bounce = 0u; loop_tick(); bounce += 1u) {
@@ -156,7 +156,7 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
             }
             s.radiance += beta * vec3(m.emission_fresnel) * w;
         }
-        if (bounce >= params.global.w) {
+        if (bounce >= max_bounces()) {
             return;
         }
         Lobes lobes = material_lobes(m);
@@ -220,7 +220,7 @@ vec3 paper_gl(Ray start, uint bounces, INOUT(Rng) rng, INOUT(SampleResult) s) {
         s.bounce_rays += 1u;
         Hit hit = closest_hit(ray, INFINITY_T);
         if (!(hit.t < INFINITY_T)) {
-            return attenuation * vec3(params.background);
+            return attenuation * background();
         }
         Material m = load_material(hit.material);
         if (HAS_EMISSION && hit.front_face && any(greaterThan(vec3(m.emission_fresnel), vec3(0.0f)))) {
@@ -230,7 +230,7 @@ vec3 paper_gl(Ray start, uint bounces, INOUT(Rng) rng, INOUT(SampleResult) s) {
         // Drawn one statement each: C++ leaves the order of a call's arguments open.
         float u1 = rng_next(rng);
         float u2 = rng_next(rng);
-        vec3 d = from_basis(basis_around(hit.normal), sample_hemisphere(params.global.y, u1, u2));
+        vec3 d = from_basis(basis_around(hit.normal), sample_hemisphere(hemisphere_rule(), u1, u2));
         if (!any(greaterThan(attenuation, vec3(0.0f))) || !(dot(d, hit.geo_normal) > 0.0f)) {
             return vec3(0.0f);
         }
@@ -267,7 +267,7 @@ void paper_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
         if (!(total > 0.0f)) {
             return;  // a black surface: its local term, and the sample, is 0
         }
-        if (bounce >= params.global.w) {
+        if (bounce >= max_bounces()) {
             s.dropped = true;  // no bounce left for gl(): it returns 0
             return;
         }
@@ -278,11 +278,11 @@ void paper_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
         float u2 = rng_next(rng);
         if (pick < w_smooth || !(w_smooth < total)) {
             note_decision(12u);
-            vec3 d = from_basis(basis_around(hit.normal), sample_hemisphere(params.global.y, u1, u2));
+            vec3 d = from_basis(basis_around(hit.normal), sample_hemisphere(hemisphere_rule(), u1, u2));
             float cos_theta = dot(d, hit.normal);
             vec3 g = vec3(0.0f);
             if (cos_theta > 0.0f && dot(d, hit.geo_normal) > 0.0f) {
-                g = paper_gl(Ray(offset_ray_origin(p, hit.geo_normal), d), params.global.w - bounce, rng, s);
+                g = paper_gl(Ray(offset_ray_origin(p, hit.geo_normal), d), max_bounces() - bounce, rng, s);
             }
             if (!any(greaterThan(g, vec3(0.0f)))) {
                 s.dropped = true;
@@ -298,7 +298,7 @@ void paper_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
 }
 
 void global_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
-    if (params.global.x == ESTIMATOR_PAPER) {
+    if (estimator() == ESTIMATOR_PAPER) {
         paper_sample(eye, rng, s);
     } else {
         path_sample(eye, rng, s);

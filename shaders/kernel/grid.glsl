@@ -33,7 +33,7 @@ struct GridWalk {
 // change gives the same value again.
 vec3 grid_t_next(Ray ray, GridWalk w) {
     vec3 boundary = vec3(w.cell + max(w.step, ivec3(0)));   // the far face in the ray's direction
-    precise vec3 x = vec3(params.grid_min) + boundary * vec3(params.grid_cell);
+    precise vec3 x = grid_min() + boundary * grid_cell();
     precise vec3 t = (x - ray.origin) * w.inv_dir;
     return mix(t, vec3(INFINITY_T), equal(w.step, ivec3(0)));
 }
@@ -45,8 +45,8 @@ GridWalk grid_walk_start(Ray ray, float t_max) {
     if (isnan(sum) || isinf(sum)) {
         return w;
     }
-    vec3 lo = vec3(params.grid_min);
-    vec3 hi = vec3(params.grid_max);
+    vec3 lo = grid_min();
+    vec3 hi = grid_max();
     bvec3 parallel = lessThan(abs(ray.dir), vec3(GRID_PARALLEL));
     // A ray parallel to a slab lies inside it for all t, or never: outside when its
     // distance beyond the slab, picked on the parallel axes only, is positive.
@@ -66,12 +66,12 @@ GridWalk grid_walk_start(Ray ray, float t_max) {
         return w;
     }
     precise vec3 p = ray.origin + t_start * ray.dir;
-    ivec3 res = ivec3(params.grid_res);
+    ivec3 res = ivec3(grid_resolution());
     // The clamp absorbs rounding: p may land a hair outside the box or the cell. A
     // cell entered too early costs a few tests; one entered too late is covered by
     // the padding of the boxes the host binned.
     // Clamped while still float: converting a float beyond int's range is undefined.
-    w.cell = ivec3(clamp(floor((p - lo) * vec3(params.grid_inv_cell)), vec3(0.0f), vec3(res - 1)));
+    w.cell = ivec3(clamp(floor((p - lo) * grid_inv_cell()), vec3(0.0f), vec3(res - 1)));
     w.t_next = grid_t_next(ray, w);
     w.t_end = t_end;
     w.inside = true;
@@ -90,7 +90,7 @@ bool grid_walk_step(Ray ray, INOUT(GridWalk) w) {
     bool y = !x && w.t_next.y == t;
     bool z = !x && !y;
     w.cell += mix(ivec3(0), w.step, bvec3(x, y, z));
-    if (any(lessThan(w.cell, ivec3(0))) || any(greaterThanEqual(w.cell, ivec3(params.grid_res)))) {
+    if (any(lessThan(w.cell, ivec3(0))) || any(greaterThanEqual(w.cell, ivec3(grid_resolution())))) {
         return false;
     }
     w.t_next = grid_t_next(ray, w);
@@ -98,5 +98,5 @@ bool grid_walk_step(Ray ray, INOUT(GridWalk) w) {
 }
 
 uint grid_cell_index(ivec3 cell) {
-    return (uint(cell.z) * params.grid_res.y + uint(cell.y)) * params.grid_res.x + uint(cell.x);
+    return (uint(cell.z) * grid_resolution().y + uint(cell.y)) * grid_resolution().x + uint(cell.x);
 }

@@ -1,8 +1,9 @@
 // Buffer layouts shared by the compute shader and the C++ host.
 // vec4/uvec4 members only, so GLSL and C++ agree on every offset without padding
 // rules to remember (std140 and std430 coincide for such structs), and each member is
-// one 16-byte texel of the texel buffers render.comp reads them from;
-// host/kernel_types.hpp static_asserts the sizes.
+// one 16-byte texel of the texel buffers the kernel reads them from;
+// host/kernel_types.hpp static_asserts the sizes. Beside each struct,
+// Name_FROM_TEXELS(buffer, i) assembles element i from its texels (kernel/loads.glsl).
 // Unused .w lanes are documented as such and written as 0 by the host.
 
 // A sphere: centre in xyz, radius in w; meta.x = material index.
@@ -10,6 +11,7 @@ struct Sphere {
     vec4 center_radius;
     uvec4 meta;
 };
+#define Sphere_FROM_TEXELS(b, i) Sphere(fetch_vec4(b, 2u * (i)), fetch_texel(b, 2u * (i) + 1u))
 
 // A triangle stores its own vertices (no index indirection: one fetch per primitive).
 // Vertex normals are used only when meta.y != 0 (the scene gave normals); the front
@@ -23,6 +25,10 @@ struct Triangle {
     vec4 n2;
     uvec4 meta;
 };
+#define Triangle_FROM_TEXELS(b, i)                                                                      \
+    Triangle(fetch_vec4(b, 7u * (i)), fetch_vec4(b, 7u * (i) + 1u), fetch_vec4(b, 7u * (i) + 2u),        \
+             fetch_vec4(b, 7u * (i) + 3u), fetch_vec4(b, 7u * (i) + 4u), fetch_vec4(b, 7u * (i) + 5u),   \
+             fetch_texel(b, 7u * (i) + 6u))
 
 // A ring (annulus) in the plane through `center` perpendicular to `normal`: the points
 // whose distance from the centre lies in [inner, outer] (inner 0: a disc). The normal
@@ -33,6 +39,7 @@ struct Ring {
     vec4 normal_outer;  // xyz unit normal (front side), w outer radius
     uvec4 meta;
 };
+#define Ring_FROM_TEXELS(b, i) Ring(fetch_vec4(b, 3u * (i)), fetch_vec4(b, 3u * (i) + 1u), fetch_texel(b, 3u * (i) + 2u))
 
 // A cylinder around the segment from `base` to `top`: the side, and with capped != 0
 // the two end discs. The ends are stored rather than an axis and a length, so the host
@@ -44,6 +51,8 @@ struct Cylinder {
     vec4 top_capped;   // xyz centre of the top disc, w = 1 capped, 0 open
     uvec4 meta;
 };
+#define Cylinder_FROM_TEXELS(b, i) \
+    Cylinder(fetch_vec4(b, 3u * (i)), fetch_vec4(b, 3u * (i) + 1u), fetch_texel(b, 3u * (i) + 2u))
 
 // Material fields as in the scene file (docs/scene-format.md).
 struct Material {
@@ -54,12 +63,16 @@ struct Material {
     vec4 emission_fresnel;   // rgb emitted radiance (front face only), w = 1: Fresnel-weighted
                              // reflection/refraction, 0: the constant weights reflect and transmit
 };
+#define Material_FROM_TEXELS(b, i)                                                                   \
+    Material(fetch_vec4(b, 5u * (i)), fetch_vec4(b, 5u * (i) + 1u), fetch_vec4(b, 5u * (i) + 2u),     \
+             fetch_vec4(b, 5u * (i) + 3u), fetch_vec4(b, 5u * (i) + 4u))
 
 // A point light: position in xyz; rgb = colour * intensity.
 struct PointLight {
     vec4 position;
     vec4 radiance;
 };
+#define PointLight_FROM_TEXELS(b, i) PointLight(fetch_vec4(b, 2u * (i)), fetch_vec4(b, 2u * (i) + 1u))
 
 // One emissive primitive: a primitive whose material has nonzero emission
 // (kernel/emitters.glsl samples them, host/scene/scene_gpu.cpp lists them). Emitters
@@ -70,42 +83,23 @@ struct Emitter {
                      // y = the part of a cylinder (CYLINDER_SIDE, _BASE_CAP, _TOP_CAP), z/w unused
     vec4 cdf_area;   // x = area of the emitters up to and including this one / total area, y = area, z/w unused
 };
+#define Emitter_FROM_TEXELS(b, i) Emitter(fetch_texel(b, 2u * (i)), fetch_vec4(b, 2u * (i) + 1u))
 
-// Per-render constants. The camera is given as direction vectors relative to the eye:
-// the ray through continuous image position (x, y), in pixels from the top-left
-// corner, has direction cam_corner + x * cam_right + y * cam_down.
+// Per-render constants: PARAM_TEXELS texels, each value named in kernel/params.glsl
+// and read through its accessor (camera_eye(), max_depth(), ...), never by lane.
+const uint PARAM_TEXELS = 16u;
 struct Params {
-    vec4 cam_eye;
-    vec4 cam_corner;
-    vec4 cam_right;
-    vec4 cam_down;
-    vec4 ambient;      // rgb ambient light, w unused
-    vec4 background;   // rgb radiance of rays that hit nothing, w unused
-    uvec4 image;       // x width, y height, z aa (sub-pixels per side), w seed
-    uvec4 counts;      // x spheres, y triangles, z point lights, w materials
-    uvec4 limits;      // x loop-iteration budget per invocation, y max_depth (reflection and
-                       // refraction generations after the eye ray), z/w unused
-    // The uniform grid (kernel/grid.glsl, host/accel/grid.cpp), when HAS_GRID: cell
-    // (i, j, k) spans grid_min + (i, j, k) * grid_cell to grid_min + (i+1, j+1, k+1) *
-    // grid_cell. grid_max is the box the rays are clipped to.
-    vec4 grid_min;       // xyz, w unused
-    vec4 grid_max;       // xyz, w unused
-    vec4 grid_cell;      // xyz cell size, w unused
-    vec4 grid_inv_cell;  // xyz 1 / cell size, w unused
-    uvec4 grid_res;      // xyz cells per axis, w unused
-    // Counts of the primitive kinds that came after `counts` was full.
-    uvec4 more_counts;   // x rings, y cylinders, z/w unused
-    // The reflection/refraction tree (sample.glsl): x the weight below which a
-    // secondary ray is dropped (0: never), yzw unused.
-    vec4 ray_tree;
-    // Area lights (kernel/area_lights.glsl), when HAS_AREA_LIGHTS: the Emitter list
-    // and the shadow rays each hit sends toward it.
-    uvec4 area_lights;   // x emitters, y light samples per hit, z/w unused
-    vec4 emitter_area;   // x total area of the emitters, y/z/w unused
-    // Global mode (global.glsl), when HAS_GLOBAL: x estimator (ESTIMATOR_*), y the
-    // hemisphere rule (HEMISPHERE_*), z unused, w max_bounces.
-    uvec4 global;
+    uvec4 texels[PARAM_TEXELS];
 };
+// A value of type T from the bits of its lanes, and back (the accessors' halves).
+#define PARAM_FROM_BITS_uint(bits) (bits)
+#define PARAM_FROM_BITS_uvec3(bits) (bits)
+#define PARAM_FROM_BITS_float(bits) uintBitsToFloat(bits)
+#define PARAM_FROM_BITS_vec3(bits) uintBitsToFloat(bits)
+#define PARAM_TO_BITS_uint(value) (value)
+#define PARAM_TO_BITS_uvec3(value) (value)
+#define PARAM_TO_BITS_float(value) floatBitsToUint(value)
+#define PARAM_TO_BITS_vec3(value) floatBitsToUint(value)
 
 // Per-pixel sums of sample radiance (sums.glsl): each channel's exact sum as a 96-bit
 // fixed-point integer in xyz, least significant word first, in units of 2^-40.

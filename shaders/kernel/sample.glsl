@@ -25,9 +25,9 @@ struct RayQueue {
 };
 
 // Queues a secondary ray, unless its weight is below the threshold
-// (params.ray_tree.x; 0 keeps every ray, as the SPD rules ask). True if queued.
+// (min_ray_weight(); 0 keeps every ray, as the SPD rules ask). True if queued.
 bool queue_ray(PendingRay r, INOUT(RayQueue) q, INOUT(SampleResult) s) {
-    bool light = max(r.weight.x, max(r.weight.y, r.weight.z)) < params.ray_tree.x;
+    bool light = max(r.weight.x, max(r.weight.y, r.weight.z)) < min_ray_weight();
     note_decision(light ? 5u : 4u);
     if (light) {
         s.dropped_weight += 1u;
@@ -59,7 +59,7 @@ void spawn_children(PendingRay cur, Hit hit, INOUT(RayQueue) q, INOUT(SampleResu
     vec3 transmit = vec3(m.transmit_ior);
     bool transmits = HAS_REFRACTION && any(greaterThan(transmit, vec3(0.0f)));
     bool reflects = (HAS_REFLECTION && any(greaterThan(reflect_weight, vec3(0.0f)))) || transmits;
-    if (!reflects || cur.depth >= params.limits.y) {
+    if (!reflects || cur.depth >= max_depth()) {
         return;
     }
     precise vec3 p = cur.ray.origin + hit.t * cur.ray.dir;
@@ -97,7 +97,7 @@ Hit trace_and_shade(PendingRay r, INOUT(Rng) rng, INOUT(SampleResult) s) {
         }
         s.radiance += r.weight * shade_local(r.ray, hit, rng, s.shadow_rays);
     } else {
-        s.radiance += r.weight * vec3(params.background);
+        s.radiance += r.weight * background();
     }
     return hit;
 }
@@ -129,7 +129,7 @@ void trace_ray_tree(PendingRay eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
 SampleResult render_sample(uint px, uint py, uint sample_index) {
     work_reset();
     SampleResult s = SampleResult(vec3(0.0f), 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, false, false);
-    Rng rng = rng_start(py * params.image.x + px, sample_index, params.image.w);
+    Rng rng = rng_start(py * image_width() + px, sample_index, sample_seed());
     vec2 sub = subpixel_position(sample_index, rng);
     PendingRay eye = PendingRay(camera_ray(float(px) + sub.x, float(py) + sub.y), vec3(1.0f), 0u, vec4(0.0f));
     // A scene without mirrors or glass skips the tree's loop and its stack.

@@ -28,25 +28,17 @@ void set_sphere_nearest(uint index, float t, INOUT(Nearest) nearest) {
     }
 }
 
-// The center and radius of sphere `index`: in the grid walk (in_grid) from where the
-// backend reads a grid sphere fastest, given the reference's position too
-// (load_grid_sphere, render.comp says why), elsewhere from the sphere array. in_grid is
-// a constant at every call, so each use compiles to one read.
-vec4 sphere_center_radius(uint index, uint position, bool in_grid) {
-    return in_grid ? load_grid_sphere(position, index) : load_sphere(index).center_radius;
-}
-
-void test_sphere(Ray ray, uint index, uint position, bool in_grid, INOUT(Nearest) nearest) {
+void test_sphere(Ray ray, uint index, INOUT(Nearest) nearest) {
     g_intersection_tests += 1u;
-    vec4 s = sphere_center_radius(index, position, in_grid);
+    vec4 s = load_sphere(index).center_radius;
     set_sphere_nearest(index, intersect_sphere(ray, vec3(s), s.w, 0.0f, nearest.t), nearest);
 }
 
 // A shadow ray's sphere test: whether the sphere blocks it, not where (sphere_blocks).
 // A blocker sets only the reference; the trace ends there.
-void test_sphere_blocks(Ray ray, uint index, uint position, bool in_grid, INOUT(Nearest) nearest) {
+void test_sphere_blocks(Ray ray, uint index, INOUT(Nearest) nearest) {
     g_intersection_tests += 1u;
-    vec4 s = sphere_center_radius(index, position, in_grid);
+    vec4 s = load_sphere(index).center_radius;
     if (sphere_blocks(ray, vec3(s), s.w, nearest.t)) {
         nearest.ref = (REF_SPHERE << REF_KIND_SHIFT) | index;
     }
@@ -56,11 +48,11 @@ void test_sphere_blocks(Ray ray, uint index, uint position, bool in_grid, INOUT(
 // any_hit, whether it meets it at all. The sphere is read inside each test: read by the
 // caller and passed in, the reference backend's sphere loops ran up to 1.1x slower
 // (SPD balls by brute force 0.61-0.62 s against 0.66-0.67 s, three alternated rounds).
-void test_sphere_for(Ray ray, uint index, uint position, bool in_grid, bool any_hit, INOUT(Nearest) nearest) {
+void test_sphere_for(Ray ray, uint index, bool any_hit, INOUT(Nearest) nearest) {
     if (any_hit) {
-        test_sphere_blocks(ray, index, position, in_grid, nearest);
+        test_sphere_blocks(ray, index, nearest);
     } else {
-        test_sphere(ray, index, position, in_grid, nearest);
+        test_sphere(ray, index, nearest);
     }
 }
 
@@ -186,7 +178,7 @@ bool test_cell(Ray ray, uint i, uint end, bool any_hit, bool with_spheres, bool 
     if (with_spheres && (ref >> REF_KIND_SHIFT) == REF_SPHERE) {
         loop_enter();
         do {
-            test_sphere_for(ray, ref & REF_INDEX_MASK, i, true, any_hit, nearest);
+            test_sphere_for(ray, ref & REF_INDEX_MASK, any_hit, nearest);
             ref = next_ref(i, end);
         } while (loop_tick() && (ref >> REF_KIND_SHIFT) == REF_SPHERE && !blocker_found(any_hit, nearest));
         if (trace_done(any_hit, nearest)) {
@@ -314,7 +306,7 @@ void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
         do {
             deferred.count = 0u;
             loop_enter();
-            for (uint i = 0u; i < params.counts.x && loop_tick() && !blocker_found(any_hit, nearest); ++i) {
+            for (uint i = 0u; i < sphere_count() && loop_tick() && !blocker_found(any_hit, nearest); ++i) {
                 test_sphere_or_defer(ray, i, nearest, deferred);
             }
             if (!trace_done(any_hit, nearest)) {
@@ -328,8 +320,8 @@ void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
     }
     if (HAS_SPHERES && (!DEFERRED_SPHERES || any_hit)) {
         loop_enter();
-        for (uint i = 0u; i < params.counts.x && loop_tick() && !blocker_found(any_hit, nearest); ++i) {
-            test_sphere_for(ray, i, 0u, false, any_hit, nearest);   // position: unused outside the grid
+        for (uint i = 0u; i < sphere_count() && loop_tick() && !blocker_found(any_hit, nearest); ++i) {
+            test_sphere_for(ray, i, any_hit, nearest);
         }
         if (trace_done(any_hit, nearest)) {
             return;
@@ -337,7 +329,7 @@ void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
     }
     if (HAS_TRIANGLES) {
         loop_enter();
-        for (uint i = 0u; i < params.counts.y && loop_tick() && !blocker_found(any_hit, nearest); ++i) {
+        for (uint i = 0u; i < triangle_count() && loop_tick() && !blocker_found(any_hit, nearest); ++i) {
             test_triangle(ray, i, nearest);
         }
         if (trace_done(any_hit, nearest)) {
@@ -346,7 +338,7 @@ void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
     }
     if (HAS_RINGS) {
         loop_enter();
-        for (uint i = 0u; i < params.more_counts.x && loop_tick() && !blocker_found(any_hit, nearest); ++i) {
+        for (uint i = 0u; i < ring_count() && loop_tick() && !blocker_found(any_hit, nearest); ++i) {
             test_ring(ray, i, nearest);
         }
         if (trace_done(any_hit, nearest)) {
@@ -355,7 +347,7 @@ void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
     }
     if (HAS_CYLINDERS) {
         loop_enter();
-        for (uint i = 0u; i < params.more_counts.y && loop_tick() && !blocker_found(any_hit, nearest); ++i) {
+        for (uint i = 0u; i < cylinder_count() && loop_tick() && !blocker_found(any_hit, nearest); ++i) {
             test_cylinder(ray, i, nearest);
         }
     }

@@ -13,14 +13,14 @@ vec3 shade_local(Ray ray, Hit hit, INOUT(Rng) rng, INOUT(uint) shadow_rays) {
         color += vec3(m.emission_fresnel);
     }
     if (HAS_AMBIENT) {
-        color += vec3(params.ambient) * diffuse;
+        color += ambient_light() * diffuse;
     }
     if (HAS_POINT_LIGHTS) {
         precise vec3 p = ray.origin + hit.t * ray.dir;
         vec3 shadow_origin = offset_ray_origin(p, hit.geo_normal);
         vec3 to_eye = -ray.dir;
         loop_enter();
-        for (uint i = 0u; i < params.counts.z; ++i) {
+        for (uint i = 0u; i < light_count(); ++i) {
             if (!loop_tick()) {
                 break;
             }

@@ -1,0 +1,59 @@
+// The per-render constants, each declared once, here, and read by name: the kernel
+// calls max_depth(), the host writes it with set_max_depth(params, value)
+// (host/kernel_types.hpp). Params is PARAM_TEXELS 16-byte texels of four 32-bit
+// lanes, uploaded as they are; a float lane holds the float's bits. No two values
+// share a lane (host/kernel_types.hpp checks it when it compiles).
+//
+//   PARAM(type, name, texel, lane)   a uint or float in lane x, y, z or w of a texel
+//   PARAM3(type, name, texel)        a vec3 or uvec3 in lanes xyz of a texel, w unused
+//
+// The file that includes this one defines the two macros; they are undefined at the end.
+
+// The camera (kernel/camera.glsl): the ray through continuous image position (x, y),
+// in pixels from the top-left corner, leaves camera_eye() in direction
+// camera_corner() + x * camera_right() + y * camera_down(). Positions are relative to
+// the flattened scene's origin (docs/decisions/0008-eye-centred-coordinates.md).
+PARAM3(vec3, camera_eye, 0)
+PARAM3(vec3, camera_corner, 1)
+PARAM3(vec3, camera_right, 2)
+PARAM3(vec3, camera_down, 3)
+PARAM3(vec3, ambient_light, 4)       // rgb, local shading's ambient term
+PARAM3(vec3, background, 5)          // rgb radiance of rays that hit nothing
+
+PARAM(uint, image_width, 6, x)
+PARAM(uint, image_height, 6, y)
+PARAM(uint, aa_per_side, 6, z)       // an aa x aa grid of samples per pixel
+PARAM(uint, sample_seed, 6, w)
+
+// How many entries of each scene array the kernel reads.
+PARAM(uint, sphere_count, 7, x)
+PARAM(uint, triangle_count, 7, y)
+PARAM(uint, ring_count, 7, z)
+PARAM(uint, cylinder_count, 7, w)
+PARAM(uint, light_count, 8, x)       // point lights
+PARAM(uint, material_count, 8, y)
+PARAM(uint, emitter_count, 8, z)     // emissive primitives, for area lights (kernel/emitters.glsl)
+PARAM(uint, light_samples, 8, w)     // shadow rays each hit sends toward the emitters
+
+// Bounds on one invocation's work (kernel/budget.glsl) and on the ray tree (sample.glsl).
+PARAM(uint, loop_budget, 9, x)       // loop iterations before the sample is given up
+PARAM(uint, max_depth, 9, y)         // reflection and refraction generations after the eye ray
+PARAM(float, min_ray_weight, 9, z)   // secondary rays of a smaller weight are dropped (0: none)
+PARAM(float, emitter_area, 9, w)     // total area of the emitters
+
+// Global illumination (kernel/global.glsl).
+PARAM(uint, estimator, 10, x)        // ESTIMATOR_*
+PARAM(uint, hemisphere_rule, 10, y)  // HEMISPHERE_*
+PARAM(uint, max_bounces, 10, z)      // scattering events after the first hit
+
+// The uniform grid (kernel/grid.glsl, host/accel/grid.cpp): cell (i, j, k) spans
+// grid_min() + (i, j, k) * grid_cell() to grid_min() + (i+1, j+1, k+1) * grid_cell();
+// grid_max() bounds the box rays are clipped to.
+PARAM3(vec3, grid_min, 11)
+PARAM3(vec3, grid_max, 12)
+PARAM3(vec3, grid_cell, 13)
+PARAM3(vec3, grid_inv_cell, 14)      // 1 / grid_cell(), per axis
+PARAM3(uvec3, grid_resolution, 15)   // cells per axis
+
+#undef PARAM3
+#undef PARAM
