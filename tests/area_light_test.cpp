@@ -20,10 +20,10 @@
 
 #include "gpu/vulkan_backend.hpp"
 #include "image/compare.hpp"
-#include "ref/kernel.hpp"
-#include "ref/ref_backend.hpp"
+#include "kernel/kernel.hpp"
+#include "cpu/cpu_backend.hpp"
 #include "render/pixel_sums.hpp"
-#include "scene/scene_gpu.hpp"
+#include "flatten/flat_scene.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -332,12 +332,12 @@ TEST(AreaLight, BothBackendsGiveTheSameSoftShadow) {
 // thread count; another seed gives another image.
 TEST(AreaLight, SameSeedSameImageAcrossRunsAndThreadCounts) {
     const Scene scene = test::load_at_size(test::source_dir() / "scenes" / "area_light.json", 40, 30);
-    const SceneGpu gpu = build_scene_gpu(scene);
+    const FlatScene gpu = flatten_scene(scene);
     ASSERT_TRUE(gpu.features.has(Feature::HAS_AREA_LIGHTS));
     const SampleRange all{0, gpu.samples_per_pixel};
-    const RenderResult one = make_reference_backend(1)->render(gpu, all);
-    const RenderResult two = make_reference_backend(2)->render(gpu, all);
-    const RenderResult again = make_reference_backend(3)->render(gpu, all);
+    const RenderResult one = make_cpu_backend(1)->render(gpu, all);
+    const RenderResult two = make_cpu_backend(2)->render(gpu, all);
+    const RenderResult again = make_cpu_backend(3)->render(gpu, all);
     ASSERT_EQ(one.sums.size(), two.sums.size());
     for (std::size_t p = 0; p < one.sums.size(); ++p) {
         ASSERT_EQ(one.sums[p], two.sums[p]) << "pixel " << p;
@@ -346,7 +346,7 @@ TEST(AreaLight, SameSeedSameImageAcrossRunsAndThreadCounts) {
     }
     Scene reseeded = scene;
     reseeded.render.seed += 1;
-    const RenderResult other = make_reference_backend(2)->render(build_scene_gpu(reseeded), all);
+    const RenderResult other = make_cpu_backend(2)->render(flatten_scene(reseeded), all);
     std::size_t lit = 0;
     std::size_t differing = 0;
     for (std::size_t p = 0; p < one.sums.size(); ++p) {
@@ -361,8 +361,8 @@ TEST(AreaLight, SameSeedSameImageAcrossRunsAndThreadCounts) {
 // numbers come from the sample's own stream.
 TEST(AreaLight, SplitSamplesDrawTheSameLightSamples) {
     const Scene scene = test::load_at_size(test::source_dir() / "scenes" / "area_light.json", 32, 24);
-    const SceneGpu gpu = build_scene_gpu(scene);
-    auto backend = make_reference_backend(2);
+    const FlatScene gpu = flatten_scene(scene);
+    auto backend = make_cpu_backend(2);
     const RenderResult whole = backend->render(gpu, SampleRange{0, 5});
     const RenderResult first = backend->render(gpu, SampleRange{0, 2});
     const RenderResult rest = backend->render(gpu, SampleRange{2, 3});
@@ -376,9 +376,9 @@ TEST(AreaLight, SplitSamplesDrawTheSameLightSamples) {
 
 // A reference kernel over the emitter list the host builds for `s`.
 struct EmitterKernel {
-    SceneGpu gpu;
+    FlatScene gpu;
     kernel::Kernel k;
-    explicit EmitterKernel(const Scene& s) : gpu(build_scene_gpu(s)) {
+    explicit EmitterKernel(const Scene& s) : gpu(flatten_scene(s)) {
         k.params = gpu.params;
         k.materials = gpu.materials;
         k.spheres = gpu.spheres;
@@ -471,7 +471,7 @@ TEST(EmitterList, OneEntryPerEmissivePrimitiveWithAreaFractions) {
     add_lamp(s, 0, 0, 2, 1, 2);                     // two triangles of area 1 each
     s.spheres.push_back(Sphere{{0, 1, 0}, 0.5, 1});  // area pi
     s.spheres.push_back(Sphere{{2, 1, 0}, 0.5, 0});  // not emissive
-    const SceneGpu g = build_scene_gpu(s);
+    const FlatScene g = flatten_scene(s);
     ASSERT_TRUE(g.features.has(Feature::HAS_AREA_LIGHTS));
     ASSERT_EQ(g.emitters.size(), 3u);
     const double total = 2.0 + kPi;
@@ -495,7 +495,7 @@ TEST(EmitterList, NoLightSamplesNoAreaLights) {
     Scene s = floor_scene(1.0);
     add_lamp(s, 0, 0, 2, 1, 2);
     s.render.light_samples = 0;
-    const SceneGpu g = build_scene_gpu(s);
+    const FlatScene g = flatten_scene(s);
     EXPECT_FALSE(g.features.has(Feature::HAS_AREA_LIGHTS));
     EXPECT_TRUE(g.features.has(Feature::HAS_EMISSION));  // the lamp is still seen
     EXPECT_FALSE(g.features.has(Feature::HAS_SHADOWS));  // nothing casts any
@@ -505,7 +505,7 @@ TEST(EmitterList, NoLightSamplesNoAreaLights) {
 
 TEST(EmitterList, AnUnusedEmissiveMaterialMakesNoLight) {
     Scene s = floor_scene(1.0);  // material 1 emits, but nothing uses it
-    const SceneGpu g = build_scene_gpu(s);
+    const FlatScene g = flatten_scene(s);
     EXPECT_FALSE(g.features.has(Feature::HAS_AREA_LIGHTS));
     EXPECT_TRUE(g.emitters.empty());
 }

@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scene/scene_gpu.hpp"
+#include "flatten/flat_scene.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -32,7 +32,7 @@ Scene spheres_only() {
 }
 
 TEST(Features, SpheresOnlySceneLeavesTrianglesOut) {
-    const SceneGpu g = build_scene_gpu(spheres_only());
+    const FlatScene g = flatten_scene(spheres_only());
     EXPECT_TRUE(g.features.has(Feature::HAS_SPHERES));
     EXPECT_FALSE(g.features.has(Feature::HAS_TRIANGLES));
     EXPECT_FALSE(g.features.has(Feature::HAS_SMOOTH_NORMALS));
@@ -47,10 +47,10 @@ TEST(Features, SpheresOnlySceneLeavesTrianglesOut) {
 TEST(Features, ShadowsOffLeavesShadowCodeOut) {
     Scene s = spheres_only();
     s.render.shadows = false;
-    EXPECT_FALSE(build_scene_gpu(s).features.has(Feature::HAS_SHADOWS));
+    EXPECT_FALSE(flatten_scene(s).features.has(Feature::HAS_SHADOWS));
     s.lights.clear();
     s.render.shadows = true;
-    const SceneGpu g = build_scene_gpu(s);
+    const FlatScene g = flatten_scene(s);
     EXPECT_FALSE(g.features.has(Feature::HAS_SHADOWS));
     EXPECT_FALSE(g.features.has(Feature::HAS_POINT_LIGHTS));
     EXPECT_TRUE(g.lights.empty());
@@ -61,9 +61,9 @@ TEST(Features, TrianglesWithNormalsKeepSmoothNormals) {
     Triangle t;
     t.vertices = {dvec3(0, 0, 0), dvec3(1, 0, 0), dvec3(0, 1, 0)};
     s.triangles.push_back(t);
-    EXPECT_FALSE(build_scene_gpu(s).features.has(Feature::HAS_SMOOTH_NORMALS));
+    EXPECT_FALSE(flatten_scene(s).features.has(Feature::HAS_SMOOTH_NORMALS));
     s.triangles[0].normals = std::array<dvec3, 3>{dvec3(0, 0, 1), dvec3(0, 0, 1), dvec3(0, 0, 1)};
-    const SceneGpu g = build_scene_gpu(s);
+    const FlatScene g = flatten_scene(s);
     EXPECT_TRUE(g.features.has(Feature::HAS_SMOOTH_NORMALS));
     EXPECT_EQ(g.triangles.size(), 1u);
 }
@@ -72,14 +72,14 @@ TEST(Features, TrianglesWithNormalsKeepSmoothNormals) {
 // with the grid, or fewer spheres, the loop tests them in place.
 TEST(Features, DeferredSpheresOnlyForBruteForceOverManySpheres) {
     Scene s = spheres_only();
-    EXPECT_FALSE(build_scene_gpu(s).features.has(Feature::DEFERRED_SPHERES));  // one sphere
+    EXPECT_FALSE(flatten_scene(s).features.has(Feature::DEFERRED_SPHERES));  // one sphere
     for (int i = 1; i < 7; ++i) s.spheres.push_back(Sphere{{3.0 * i, 0, 0}, 1, 0});
     s.render.grid.mode = GridMode::Off;
-    EXPECT_FALSE(build_scene_gpu(s).features.has(Feature::DEFERRED_SPHERES));  // seven
+    EXPECT_FALSE(flatten_scene(s).features.has(Feature::DEFERRED_SPHERES));  // seven
     s.spheres.push_back(Sphere{{21.0, 0, 0}, 1, 0});
-    EXPECT_TRUE(build_scene_gpu(s).features.has(Feature::DEFERRED_SPHERES));  // eight
+    EXPECT_TRUE(flatten_scene(s).features.has(Feature::DEFERRED_SPHERES));  // eight
     s.render.grid.mode = GridMode::On;
-    const SceneGpu grid = build_scene_gpu(s);
+    const FlatScene grid = flatten_scene(s);
     ASSERT_TRUE(grid.grid.used);
     EXPECT_FALSE(grid.features.has(Feature::DEFERRED_SPHERES));
 }

@@ -12,11 +12,11 @@
 #include <fmt/format.h>
 #include <glm/glm.hpp>
 
-#include "ref/kernel.hpp"
-#include "ref/ref_backend.hpp"
+#include "kernel/kernel.hpp"
+#include "cpu/cpu_backend.hpp"
 #include "render/render.hpp"
 #include "scene/load_scene.hpp"
-#include "scene/scene_gpu.hpp"
+#include "flatten/flat_scene.hpp"
 #include "test_support.hpp"
 
 namespace vkrt {
@@ -142,7 +142,7 @@ INSTANTIATE_TEST_SUITE_P(
 // error from the samples themselves, for path tracing with next-event estimation.
 TEST(FurnacePixel, EachPixelWithinFourStandardErrorsOfItsOwnSamples) {
     const Scene scene = furnace(furnace_render("", 4), 8, 6);
-    const SceneGpu gpu = build_scene_gpu(scene);
+    const FlatScene gpu = flatten_scene(scene);
     kernel::Kernel k = make_kernel(gpu);
     for (std::uint32_t pixel : {0u, 13u, 47u}) {
         double sum = 0.0, sum2 = 0.0;
@@ -172,13 +172,13 @@ TEST(GlobalPointLight, LambertianPlaneShowsRhoOverPiTimesIrradiance) {
       "objects": [ { "type": "quad", "corner": [-50, 0, -50], "edge1": [0, 0, 100], "edge2": [100, 0, 0],
                      "material": "matte" } ]
     })");
-    const SceneGpu gpu = build_scene_gpu(scene);
+    const FlatScene gpu = flatten_scene(scene);
     kernel::Kernel k = make_kernel(gpu);
     const RenderOutcome cpu = test::render_cpu(scene);
     const RenderOutcome vulkan = test::render_vulkan(scene);
     for (auto [x, y] : {std::pair{3u, 20u}, {16u, 12u}, {28u, 6u}, {0u, 23u}, {20u, 14u}}) {
         // Where the pixel's centre ray meets the plane, in double.
-        // The kernel's coordinates are centred on the eye (SceneGpu::origin).
+        // The kernel's coordinates are centred on the eye (FlatScene::origin).
         const kernel::Kernel::Ray ray = k.camera_ray(float(x) + 0.5f, float(y) + 0.5f);
         const glm::dvec3 origin = glm::dvec3(ray.origin) + gpu.origin, dir(ray.dir);
         ASSERT_LT(dir.y, 0.0) << "the pixel sees the plane";
@@ -202,7 +202,7 @@ struct PixelMeans {
 };
 
 PixelMeans pixel_means(const Scene& scene) {
-    const SceneGpu gpu = build_scene_gpu(scene);
+    const FlatScene gpu = flatten_scene(scene);
     kernel::Kernel k = make_kernel(gpu);
     PixelMeans out;
     const double n = gpu.samples_per_pixel;

@@ -17,10 +17,10 @@
 #include <fmt/format.h>
 
 #include "image/compare.hpp"
-#include "kernel_types.hpp"
+#include "kernel/types.hpp"
 #include "render/fingerprint.hpp"
 #include "scene/load_scene.hpp"
-#include "scene/scene_gpu.hpp"
+#include "flatten/flat_scene.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -151,7 +151,7 @@ TEST_P(GridImage, GridAndBruteForceGiveTheSameImage) {
 }
 
 // A kind with fewer primitives than the threshold is left out of the grid's cells and
-// tested once per ray among its loose primitives (scene_gpu.cpp, loose_kinds): here
+// tested once per ray among its loose primitives (flatten/flat_scene.cpp, loose_kinds): here
 // a floor quad 200 wide, a ring and a cylinder beside 48 spheres in a 4-unit
 // cluster. The grid's box is then the cluster's, not the floor's, and the image is
 // brute force's on both backends.
@@ -164,7 +164,7 @@ TEST(GridKinds, FewOfAKindAreTestedOutsideTheGrid) {
     const Scene scene = cluster_on_a_floor("grid_kinds", spheres + R"(
         {"type": "ring", "center": [3, 0.01, 2], "normal": [0, 1, 0], "inner": 0.2, "outer": 0.8, "material": "m"},
         {"type": "cylinder", "base": [-3, 0, 2], "top": [-3, 1.5, 2], "radius": 0.4, "capped": true, "material": "m"},)");
-    const SceneGpu gpu = build_scene_gpu(scene, AccelPolicy{32, 0xFFFFFFFFu});
+    const FlatScene gpu = flatten_scene(scene, AccelPolicy{32, 0xFFFFFFFFu});
     ASSERT_TRUE(gpu.grid.used);
     EXPECT_TRUE(gpu.features.has(Feature::GRID_SPHERES));
     EXPECT_FALSE(gpu.features.has(Feature::GRID_TRIANGLES));
@@ -193,7 +193,7 @@ TEST(GridKinds, FewOfAKindAreTestedOutsideTheGrid) {
 
     // Partials rendered with and without the grid still merge (render/fingerprint.hpp).
     EXPECT_EQ(scene_fingerprint(gpu),
-              scene_fingerprint(build_scene_gpu(with_grid(scene, GridMode::Off), AccelPolicy{32, 0xFFFFFFFFu})));
+              scene_fingerprint(flatten_scene(with_grid(scene, GridMode::Off), AccelPolicy{32, 0xFFFFFFFFu})));
     expect_brute_forces_image(scene);
 }
 
@@ -204,7 +204,7 @@ TEST(GridKinds, FewOfAKindAreTestedOutsideTheGrid) {
 // the references before cell 0's, and the image is brute force's on both backends.
 TEST(GridLoose, AFloorUnderAClusterIsTestedPerRay) {
     const Scene scene = cluster_on_a_floor("grid_loose", triangles_and_spheres(0.2));
-    const SceneGpu gpu = build_scene_gpu(scene, AccelPolicy{32, 0xFFFFFFFFu});
+    const FlatScene gpu = flatten_scene(scene, AccelPolicy{32, 0xFFFFFFFFu});
     ASSERT_TRUE(gpu.grid.used);
     EXPECT_TRUE(gpu.features.has(Feature::GRID_TRIANGLES));
     EXPECT_TRUE(gpu.features.has(Feature::LOOSE_TRIANGLES));
@@ -218,11 +218,11 @@ TEST(GridLoose, AFloorUnderAClusterIsTestedPerRay) {
     EXPECT_LT(kernel::grid_max(gpu.params).x + gpu.origin.x, 2.3f);
 
     EXPECT_EQ(scene_fingerprint(gpu),
-              scene_fingerprint(build_scene_gpu(with_grid(scene, GridMode::Off), AccelPolicy{32, 0xFFFFFFFFu})));
+              scene_fingerprint(flatten_scene(with_grid(scene, GridMode::Off), AccelPolicy{32, 0xFFFFFFFFu})));
     // A resolution from the scene asks for a grid over everything.
     Scene given = scene;
     given.render.grid.resolution = {8, 8, 8};
-    const SceneGpu everything = build_scene_gpu(given, AccelPolicy{32, 0xFFFFFFFFu});
+    const FlatScene everything = flatten_scene(given, AccelPolicy{32, 0xFFFFFFFFu});
     EXPECT_FALSE(everything.features.has(Feature::LOOSE_TRIANGLES));
     EXPECT_EQ(everything.grid_cell_starts.front(), 0u);
     expect_brute_forces_image(scene);
@@ -234,7 +234,7 @@ TEST(GridLoose, AFloorUnderAClusterIsTestedPerRay) {
 TEST(GridSpheres, ALooseSphereListedAwayFromItsIndexRenders) {
     const Scene scene = cluster_on_a_floor("grid_spheres", triangles_and_spheres(0.1, 0.002) + R"(
         {"type": "sphere", "center": [0, -2, -20], "radius": 8, "material": "m"},)");
-    const SceneGpu gpu = build_scene_gpu(scene, AccelPolicy{32, 0xFFFFFFFFu});
+    const FlatScene gpu = flatten_scene(scene, AccelPolicy{32, 0xFFFFFFFFu});
     ASSERT_TRUE(gpu.grid.used);
     ASSERT_TRUE(gpu.features.has(Feature::GRID_SPHERES));
     bool loose_sphere_elsewhere = false;
@@ -253,7 +253,7 @@ TEST(GridSpheres, OnlyLooseSpheresRender) {
     const Scene scene = cluster_on_a_floor("grid_loose_spheres", triangles_and_spheres(0.0) + R"(
         {"type": "sphere", "center": [-0.5, 1.2, 0.3], "radius": 0.35, "material": "m"},
         {"type": "sphere", "center": [0.9, 0.8, -0.6], "radius": 0.25, "material": "m"},)");
-    const SceneGpu gpu = build_scene_gpu(scene, AccelPolicy{32, 0xFFFFFFFFu});
+    const FlatScene gpu = flatten_scene(scene, AccelPolicy{32, 0xFFFFFFFFu});
     ASSERT_TRUE(gpu.grid.used);
     ASSERT_FALSE(gpu.features.has(Feature::GRID_SPHERES));
     ASSERT_TRUE(gpu.features.has(Feature::LOOSE_SPHERES));

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "accel/grid.hpp"
-#include "ref/kernel.hpp"
+#include "kernel/kernel.hpp"
 
 namespace {
 

@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "ref/kernel.hpp"
+#include "kernel/kernel.hpp"
 
 namespace {
 
@@ -175,7 +175,7 @@ TEST(DeferredSpheres, RoundedAndDeferredHitsBoundEachOther) {
     EXPECT_TRUE(deferred_won);
 }
 
-// With DEFERRED_SPHERES off (few spheres: host/scene/scene_gpu.cpp) the loop tests
+// With DEFERRED_SPHERES off (few spheres: host/flatten/flat_scene.cpp) the loop tests
 // each sphere in place, once: the same nearest hit and the same blocker.
 TEST(DeferredSpheres, OffTheLoopTestsInPlaceWithTheSameResult) {
     const std::vector<Sphere> spheres = scene_spheres(touching_directions());

@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "ref/kernel.hpp"
+#include "kernel/kernel.hpp"
 
 namespace {
 

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "ref/kernel.hpp"
+#include "kernel/kernel.hpp"
 
 namespace {
 

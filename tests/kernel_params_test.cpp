@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "ref/kernel.hpp"
+#include "kernel/kernel.hpp"
 
 namespace {
 

@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "ref/kernel.hpp"
+#include "kernel/kernel.hpp"
 
 namespace {
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <set>
 
-#include "ref/kernel.hpp"
-#include "scene/scene_gpu.hpp"
+#include "kernel/kernel.hpp"
+#include "flatten/flat_scene.hpp"
 
 namespace {
 
@@ -26,7 +26,7 @@ Kernel kernel_for_camera(std::uint32_t aa = 1, bool jitter = false) {
     scene.render.aa = aa;
     scene.render.jitter = jitter;
     Kernel k;
-    k.params = vkrt::build_scene_gpu(scene).params;
+    k.params = vkrt::flatten_scene(scene).params;
     k.HAS_JITTER = jitter;
     return k;
 }

@@ -15,7 +15,7 @@
 #include <limits>
 #include <vector>
 
-#include "ref/kernel.hpp"
+#include "kernel/kernel.hpp"
 #include "render/pixel_sums.hpp"
 
 namespace {

@@ -8,7 +8,7 @@
 #include <limits>
 #include <random>
 
-#include "ref/kernel.hpp"
+#include "kernel/kernel.hpp"
 
 namespace {
 

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "gpu/vulkan_backend.hpp"
-#include "ref/ref_backend.hpp"
+#include "cpu/cpu_backend.hpp"
 #include "render/pass_plan.hpp"
 #include "render/pixel_sums.hpp"
 #include "render/progressive.hpp"
@@ -73,7 +73,7 @@ TEST(PassPlan, ATimeBudgetIsMetToHalfASample) {
 // and a later first sample renders the later indices (split rendering).
 void expect_passes_equal_one_render(Backend& backend) {
     const Scene scene = test::load_at_size(test::source_dir() / "scenes" / "spheres_triangles.json", 32, 24);
-    const SceneGpu gpu = build_scene_gpu(scene, backend.accel_policy());
+    const FlatScene gpu = flatten_scene(scene, backend.accel_policy());
     const RenderResult whole = backend.render(gpu, SampleRange{3, 9});
     const std::unique_ptr<RenderSession> session = backend.begin(gpu);
     ProgressiveRender render(*session, {SampleRange{3, 9}, std::nullopt});
@@ -92,7 +92,7 @@ void expect_passes_equal_one_render(Backend& backend) {
 }
 
 TEST(Progressive, ReferencePassesEqualOneRender) {
-    auto backend = make_reference_backend();
+    auto backend = make_cpu_backend();
     expect_passes_equal_one_render(*backend);
 }
 
@@ -104,9 +104,9 @@ TEST(Progressive, VulkanPassesEqualOneRender) {
 
 // Checkpoints cut passes: with stop_at, a pass never runs past it.
 TEST(Progressive, PassesStopAtCheckpoints) {
-    auto backend = make_reference_backend();
+    auto backend = make_cpu_backend();
     const Scene scene = test::load_at_size(test::source_dir() / "scenes" / "spheres_triangles.json", 8, 6);
-    const SceneGpu gpu = build_scene_gpu(scene);
+    const FlatScene gpu = flatten_scene(scene);
     const std::unique_ptr<RenderSession> session = backend->begin(gpu);
     ProgressiveRender render(*session, {SampleRange{0, 7}, std::nullopt});
     std::vector<std::uint32_t> done;

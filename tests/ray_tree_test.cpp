@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "ref/ref_backend.hpp"
-#include "scene/scene_gpu.hpp"
+#include "cpu/cpu_backend.hpp"
+#include "flatten/flat_scene.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -138,7 +138,7 @@ TEST(RayTree, AGlassSlabShiftsARayWithoutTurningIt) {
     scene.materials = {material(dvec3(0.0), dvec3(0.0), dvec3(1.0), 1.5)};
     add_quad(scene, {-50, 0, 50}, {100, 0, 0}, {0, 0, -100}, 0);
     add_quad(scene, {-50, -d, -50}, {100, 0, 0}, {0, 0, 100}, 0);
-    const SceneGpu gpu = build_scene_gpu(scene);
+    const FlatScene gpu = flatten_scene(scene);
     Kernel k = make_kernel(gpu);
 
     const double theta = glm::radians(40.0);
@@ -180,7 +180,7 @@ TEST(RayTree, TotalInternalReflectionSpawnsOnlyTheReflection) {
     Scene scene = empty_scene();
     scene.materials = {material(dvec3(0.0), dvec3(0.0), dvec3(0.8, 0.9, 1.0), 1.5)};
     scene.spheres.push_back(Sphere{{0, 0, 0}, 1.0, 0});
-    const SceneGpu gpu = build_scene_gpu(scene);
+    const FlatScene gpu = flatten_scene(scene);
     Kernel k = make_kernel(gpu);
     // From inside, meeting the surface at sin(theta) = 0.9 > 1 / 1.5.
     const Kernel::PendingRay ray{Kernel::Ray(vec3(0.0f, 0.9f, 0.0f), vec3(1, 0, 0)), vec3(1.0f), 0u, glm::vec4(0.0f)};
@@ -206,7 +206,7 @@ TEST(RayTree, APerfectMirrorShowsTheLitPlaneExactly) {
     add_quad(scene, {-20, 0, 20}, {40, 0, 0}, {0, 0, -40}, 0);
     add_quad(scene, {-20, 2, -20}, {40, 0, 0}, {0, 0, 40}, 1);
     scene.lights.push_back(PointLight{{0, 1, 0}, {1, 1, 1}, 2.0});
-    const SceneGpu gpu = build_scene_gpu(scene);
+    const FlatScene gpu = flatten_scene(scene);
     Kernel k = make_kernel(gpu);
     const Kernel::SampleResult r = k.render_sample(0, 0, 0);
     EXPECT_EQ(r.reflection_rays, 1u);
@@ -244,7 +244,7 @@ TEST(RayTree, GlassCastsAnOpaqueShadow) {
     add_quad(scene, {-20, 0, 20}, {40, 0, 0}, {0, 0, -40}, 0);
     scene.spheres.push_back(Sphere{{0, 1.5, 0}, 0.4, 1});
     scene.lights.push_back(PointLight{{0, 10, 0}, {1, 1, 1}, 1.0});
-    const SceneGpu gpu = build_scene_gpu(scene);
+    const FlatScene gpu = flatten_scene(scene);
     Kernel k = make_kernel(gpu);
     // A ray straight down through the ball reaches the floor's shadowed centre.
     const Kernel::Ray down(vec3(0.0f, 1.0f, 0.0f), vec3(0, -1, 0));
@@ -274,7 +274,7 @@ Scene facing_mirrors(double reflectance, std::uint32_t max_depth, double min_wei
 
 TEST(RayTree, DepthLimitAndWeightThresholdAreObeyedAndCounted) {
     {
-        const SceneGpu gpu = build_scene_gpu(facing_mirrors(1.0, 5, 0.0));
+        const FlatScene gpu = flatten_scene(facing_mirrors(1.0, 5, 0.0));
         const Kernel::SampleResult r = make_kernel(gpu).render_sample(0, 0, 0);
         EXPECT_EQ(r.reflection_rays, 5u);
         EXPECT_EQ(r.dropped_weight, 0u);
@@ -283,14 +283,14 @@ TEST(RayTree, DepthLimitAndWeightThresholdAreObeyedAndCounted) {
     }
     {
         // Weights 0.1, 0.01, then 0.001 under the threshold 0.005: two traced, one dropped.
-        const SceneGpu gpu = build_scene_gpu(facing_mirrors(0.1, 5, 0.005));
+        const FlatScene gpu = flatten_scene(facing_mirrors(0.1, 5, 0.005));
         const Kernel::SampleResult r = make_kernel(gpu).render_sample(0, 0, 0);
         EXPECT_EQ(r.reflection_rays, 2u);
         EXPECT_EQ(r.dropped_weight, 1u);
     }
     {
         // max_depth 0: the eye ray alone (the feature is left out altogether).
-        const SceneGpu gpu = build_scene_gpu(facing_mirrors(1.0, 0, 0.0));
+        const FlatScene gpu = flatten_scene(facing_mirrors(1.0, 0, 0.0));
         EXPECT_FALSE(gpu.features.has(Feature::HAS_REFLECTION));
         EXPECT_EQ(make_kernel(gpu).render_sample(0, 0, 0).reflection_rays, 0u);
     }
@@ -310,7 +310,7 @@ TEST(RayTree, AFullStackDropsRaysAndSaysSo) {
     add_quad(scene, {1, -10, -10}, {0, 20, 0}, {0, 0, 20}, 1);
     add_quad(scene, {-1, -10, -10}, {0, 0, 20}, {0, 20, 0}, 1);
     scene.render.loop_budget = 65000;
-    const SceneGpu gpu = build_scene_gpu(scene);
+    const FlatScene gpu = flatten_scene(scene);
     const Kernel::SampleResult r = make_kernel(gpu).render_sample(0, 0, 0);
     EXPECT_FALSE(r.truncated);
     EXPECT_GT(r.dropped_stack, 0u) << r.reflection_rays << " reflection, " << r.refraction_rays << " refraction";
@@ -318,7 +318,7 @@ TEST(RayTree, AFullStackDropsRaysAndSaysSo) {
     EXPECT_TRUE(std::isfinite(r.radiance.x));
     // At max_depth 8 the stack is just deep enough.
     scene.render.max_depth = kernel::RAY_STACK_SIZE;
-    const SceneGpu deep8 = build_scene_gpu(scene);
+    const FlatScene deep8 = flatten_scene(scene);
     EXPECT_EQ(make_kernel(deep8).render_sample(0, 0, 0).dropped_stack, 0u);
 }
 
@@ -329,7 +329,7 @@ TEST(DecisionHash, DifferentDecisionsHashDifferently) {
     scene.materials = {material(dvec3(0.5)), material(dvec3(0.0), dvec3(0.0), dvec3(1.0), 1.5)};
     scene.spheres.push_back(Sphere{{0, 0, 0}, 1.0, 1});
     scene.spheres.push_back(Sphere{{5, 0, 0}, 1.0, 0});
-    const SceneGpu gpu = build_scene_gpu(scene);
+    const FlatScene gpu = flatten_scene(scene);
     Kernel k = make_kernel(gpu);
     auto hash = [&](auto&& run) {
         k.work_reset();
@@ -371,9 +371,9 @@ TEST(Corners, EachCornerRayGoesThroughItsPixelCorner) {
     scene.camera.height = 4;
     scene.materials = {material(dvec3(0.5))};
     scene.spheres.push_back(Sphere{{0, 0, 0}, 1.0, 0});
-    Kernel plain = make_kernel(build_scene_gpu(scene));
+    Kernel plain = make_kernel(flatten_scene(scene));
     scene.render.corners = true;
-    const SceneGpu gpu = build_scene_gpu(scene);
+    const FlatScene gpu = flatten_scene(scene);
     EXPECT_EQ(gpu.width(), 7u);
     EXPECT_EQ(gpu.height(), 5u);
     EXPECT_EQ(gpu.samples_per_pixel, 1u);
@@ -416,15 +416,15 @@ TEST(Corners, EachPixelAveragesItsFourCornersLeavingOutLostOnes) {
 
 TEST(RayTree, FeaturesFollowTheMaterials) {
     Scene scene = facing_mirrors(0.5, 5, 0.0);
-    SceneGpu gpu = build_scene_gpu(scene);
+    FlatScene gpu = flatten_scene(scene);
     EXPECT_TRUE(gpu.features.has(Feature::HAS_REFLECTION));
     EXPECT_FALSE(gpu.features.has(Feature::HAS_REFRACTION));
     scene.materials[0] = material(dvec3(0.5), dvec3(0.0), dvec3(0.5));
-    gpu = build_scene_gpu(scene);
+    gpu = flatten_scene(scene);
     EXPECT_FALSE(gpu.features.has(Feature::HAS_REFLECTION));
     EXPECT_TRUE(gpu.features.has(Feature::HAS_REFRACTION));
     scene.materials[0] = material(dvec3(0.5));
-    gpu = build_scene_gpu(scene);
+    gpu = flatten_scene(scene);
     EXPECT_FALSE(gpu.features.has(Feature::HAS_REFLECTION));
     EXPECT_FALSE(gpu.features.has(Feature::HAS_REFRACTION));
 }

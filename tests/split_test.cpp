@@ -7,9 +7,9 @@
 #include <memory>
 
 #include "gpu/vulkan_backend.hpp"
-#include "ref/ref_backend.hpp"
+#include "cpu/cpu_backend.hpp"
 #include "render/pixel_sums.hpp"
-#include "scene/scene_gpu.hpp"
+#include "flatten/flat_scene.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -19,7 +19,7 @@ using namespace vkrt;
 void expect_split_invariant(Backend& backend) {
     // Jittered antialiasing, so every sample index draws different random numbers.
     const Scene scene = test::load_at_size(test::source_dir() / "scenes" / "spheres_triangles.json", 32, 24);
-    const SceneGpu gpu = build_scene_gpu(scene);
+    const FlatScene gpu = flatten_scene(scene);
     ASSERT_TRUE(gpu.features.has(Feature::HAS_JITTER));
 
     const RenderResult whole = backend.render(gpu, SampleRange{0, 5});
@@ -46,7 +46,7 @@ void expect_split_invariant(Backend& backend) {
 // the passes add up to the one-call render.
 void expect_session_passes_add_up(Backend& backend) {
     const Scene scene = test::load_at_size(test::source_dir() / "scenes" / "spheres_triangles.json", 32, 24);
-    const SceneGpu gpu = build_scene_gpu(scene);
+    const FlatScene gpu = flatten_scene(scene);
     const RenderResult whole = backend.render(gpu, SampleRange{0, 5});
 
     const std::unique_ptr<RenderSession> session = backend.begin(gpu);
@@ -65,12 +65,12 @@ void expect_session_passes_add_up(Backend& backend) {
 }
 
 TEST(Split, ReferenceBackend) {
-    auto backend = make_reference_backend();
+    auto backend = make_cpu_backend();
     expect_split_invariant(*backend);
 }
 
 TEST(Split, ReferenceSessionPasses) {
-    auto backend = make_reference_backend();
+    auto backend = make_cpu_backend();
     expect_session_passes_add_up(*backend);
 }
 

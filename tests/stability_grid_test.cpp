@@ -45,11 +45,11 @@
 
 #include <fmt/format.h>
 
-#include "ref/kernel.hpp"
-#include "ref/ref_backend.hpp"
+#include "kernel/kernel.hpp"
+#include "cpu/cpu_backend.hpp"
 #include "render/render.hpp"
 #include "scene/load_scene.hpp"
-#include "scene/scene_gpu.hpp"
+#include "flatten/flat_scene.hpp"
 #include "test_support.hpp"
 
 namespace vkrt {
@@ -187,7 +187,7 @@ TEST(SignedZero, RaysWalkTheSameCells) {
     // components +0, -0, denormal or tiny) must visit the same cells in the same order
     // and get the same closest hit and shadow answer, which must be brute force's.
     const Scene scene = load_scene(kCases / "case6_signed_zero_light_plus.json");
-    const SceneGpu gpu = build_scene_gpu(scene, AccelPolicy{});
+    const FlatScene gpu = flatten_scene(scene, AccelPolicy{});
     Kernel grid = make_kernel(gpu);
     Kernel brute = make_kernel(gpu);
     brute.HAS_GRID = false;
@@ -271,7 +271,7 @@ TEST(SignedZero, LightGivesTheSameImageAndCells) {
         // The premises, checked: x = 0 and z = 0 are cell planes; the centre pixel's
         // eye ray runs straight down and hits the floor at x = z = +0, so its shadow
         // ray toward each twin's light has the components named.
-        const SceneGpu gpu = build_scene_gpu(plus, AccelPolicy{});
+        const FlatScene gpu = flatten_scene(plus, AccelPolicy{});
         ASSERT_EQ(cell_plane(gpu.params, 0, 2), 0.0f);
         ASSERT_EQ(cell_plane(gpu.params, 2, 2), 0.0f);
         Kernel k = make_kernel(gpu);
@@ -282,8 +282,8 @@ TEST(SignedZero, LightGivesTheSameImageAndCells) {
         EXPECT_EQ(p, vec3(0.0f));
         const Scene minus = load_scene(kCases / "case6_signed_zero_light_minus.json");
         const Scene denormal = load_scene(kCases / "case6_signed_zero_light_denormal.json");
-        const vec3 l_minus = vec3(build_scene_gpu(minus, AccelPolicy{}).lights.at(0).position) - p;
-        const vec3 l_denormal = vec3(build_scene_gpu(denormal, AccelPolicy{}).lights.at(0).position) - p;
+        const vec3 l_minus = vec3(flatten_scene(minus, AccelPolicy{}).lights.at(0).position) - p;
+        const vec3 l_denormal = vec3(flatten_scene(denormal, AccelPolicy{}).lights.at(0).position) - p;
         EXPECT_TRUE(std::signbit(l_minus.x) && l_minus.x == 0.0f && std::signbit(l_minus.z) && l_minus.z == 0.0f)
             << "the loader lost the sign of -0.0";
         EXPECT_EQ(std::fpclassify(l_denormal.x), FP_SUBNORMAL);
@@ -347,7 +347,7 @@ Scene eye_at(const Place& place) {
     glm::dvec3 eye(0.3, 0.2, 0.1);
     for (int round = 0; round < 8; ++round) {
         const Scene s = boundary_scene(eye);
-        const SceneGpu gpu = build_scene_gpu(s, AccelPolicy{});
+        const FlatScene gpu = flatten_scene(s, AccelPolicy{});
         const vec3 want = place(gpu.params);
         const vec3 got = kernel::camera_eye(gpu.params);
         if (got == want) return s;
@@ -370,7 +370,7 @@ class EyeOnGridBoundary : public ::testing::TestWithParam<BoundaryCase> {};
 
 TEST_P(EyeOnGridBoundary, GridEqualsBruteForceOnBothBackends) {
     const Scene scene = eye_at(GetParam().place);
-    const kernel::Params p = build_scene_gpu(scene, AccelPolicy{}).params;
+    const kernel::Params p = flatten_scene(scene, AccelPolicy{}).params;
     const vec3 eye = kernel::camera_eye(p), lo = kernel::grid_min(p), hi = kernel::grid_max(p), cell = kernel::grid_cell(p);
     std::printf("eye (%.9g, %.9g, %.9g), grid (%.9g, %.9g, %.9g) to (%.9g, %.9g, %.9g), cells %.9g x %.9g x %.9g\n",
                 eye.x, eye.y, eye.z, lo.x, lo.y, lo.z, hi.x, hi.y, hi.z, cell.x, cell.y, cell.z);
@@ -408,7 +408,7 @@ TEST(TeapotInStadium, DoesNotDegenerate) {
     // walk must still end every ray within the loop budget and test no more than brute
     // force does, and the references must not blow up.
     const Scene scene = load_scene(kCases / "case6_teapot_in_stadium.json");
-    const SceneGpu gpu = build_scene_gpu(scene, AccelPolicy{});
+    const FlatScene gpu = flatten_scene(scene, AccelPolicy{});
     const std::size_t primitives = gpu.spheres.size() + gpu.triangles.size();
     // Which cells hold the cluster's spheres.
     std::vector<std::uint32_t> cluster_cells;

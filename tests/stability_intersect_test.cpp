@@ -23,11 +23,11 @@
 
 #include <fmt/format.h>
 
-#include "ref/kernel.hpp"
-#include "ref/ref_backend.hpp"
+#include "kernel/kernel.hpp"
+#include "cpu/cpu_backend.hpp"
 #include "render/render.hpp"
 #include "scene/load_scene.hpp"
-#include "scene/scene_gpu.hpp"
+#include "flatten/flat_scene.hpp"
 #include "test_support.hpp"
 
 namespace vkrt {
@@ -522,7 +522,7 @@ TEST_P(StabilityScene, FiniteAgreeingAndMatchingTheAnalyticMask) {
     test::expect_sane(vulkan);
     EXPECT_EQ(cpu.stats.eye_hits, vulkan.stats.eye_hits);
     EXPECT_LE(test::max_abs_difference(cpu.image, vulkan.image), 1e-5f);
-    const SceneGpu gpu = build_scene_gpu(scene);
+    const FlatScene gpu = flatten_scene(scene);
     Kernel k = make_kernel(gpu);
     std::size_t hits = 0, band = 0, wrong = 0, backends_differ = 0;
     for (std::uint32_t y = 0; y < scene.camera.height; ++y) {
@@ -584,7 +584,7 @@ TEST(DegenerateTriangles, ChangeNothingInAScene) {
     straight.camera.width = 63;
     straight.camera.height = 47;
     {
-        const SceneGpu gpu = build_scene_gpu(straight);
+        const FlatScene gpu = flatten_scene(straight);
         Kernel k = make_kernel(gpu);
         std::size_t on_axes = 0;
         for (std::uint32_t y = 0; y < 47; ++y) {

@@ -19,11 +19,11 @@
 
 #include <fmt/format.h>
 
-#include "ref/kernel.hpp"
-#include "ref/ref_backend.hpp"
+#include "kernel/kernel.hpp"
+#include "cpu/cpu_backend.hpp"
 #include "render/pixel_sums.hpp"
 #include "scene/load_scene.hpp"
-#include "scene/scene_gpu.hpp"
+#include "flatten/flat_scene.hpp"
 #include "test_support.hpp"
 
 namespace vkrt {
@@ -76,7 +76,7 @@ struct Tally {
 // (0, 0): with cam_right = cam_down = 0 the eye ray's direction is
 // unit_vector(cam_corner), whatever the pixel.
 Tally trace_everything(const Scene& scene) {
-    const SceneGpu gpu = build_scene_gpu(scene);
+    const FlatScene gpu = flatten_scene(scene);
     EXPECT_FALSE(gpu.grid_cell_starts.empty()) << "the grid must be on";
     kernel::Kernel k = make_kernel(gpu);
     const float nan = std::numeric_limits<float>::quiet_NaN();
@@ -142,7 +142,7 @@ TEST(UnboundedInput, LocalRayTreeAndGridEndForAnyDirection) {
 // "Bounded work per invocation"). There the loop budget is the mechanism, and the
 // sample must be stopped, counted as truncated and kept out of the pixel.
 TEST(UnboundedInput, AnExponentialRayTreeIsStoppedAndCounted) {
-    const SceneGpu gpu = build_scene_gpu(every_loop_scene(R"("max_depth": 64, "min_weight": 0)"));
+    const FlatScene gpu = flatten_scene(every_loop_scene(R"("max_depth": 64, "min_weight": 0)"));
     kernel::Kernel k = make_kernel(gpu);
     kernel::set_camera_right(k.params, vec3(0.0f));
     kernel::set_camera_down(k.params, vec3(0.0f));

@@ -13,7 +13,7 @@
 
 #include <fmt/format.h>
 
-#include "ref/kernel.hpp"
+#include "kernel/kernel.hpp"
 #include "render/render.hpp"
 #include "scene/load_scene.hpp"
 #include "test_support.hpp"

@@ -22,7 +22,7 @@
 #include "image/image.hpp"
 #include "render/render.hpp"
 #include "scene/load_scene.hpp"
-#include "scene/scene_gpu.hpp"
+#include "flatten/flat_scene.hpp"
 #include "test_support.hpp"
 
 namespace vkrt {
@@ -44,7 +44,7 @@ struct Ray64 {
 };
 
 // The eye ray through continuous image position (x, y), from the camera alone: the
-// same frame as the host builds (host/scene/scene_gpu.cpp), kept in double.
+// same frame as the host builds (host/flatten/flat_scene.cpp), kept in double.
 Ray64 eye_ray(const Camera& c, double x, double y) {
     const dvec3 forward = glm::normalize(c.look_at - c.eye);
     const dvec3 right = glm::normalize(glm::cross(forward, glm::normalize(c.up)));
@@ -250,7 +250,7 @@ struct ShadowCounts {
 
 ShadowCounts count_shadows(const Scene& s, const Image& image, int surface, int occluder, bool labels) {
     ShadowCounts n;
-    const dvec3 origin = build_scene_gpu(s).origin;
+    const dvec3 origin = flatten_scene(s).origin;
     for (std::uint32_t py = 0; py < s.camera.height; ++py) {
         for (std::uint32_t px = 0; px < s.camera.width; ++px) {
             const PixelExpectation pe = expect_pixel(s, origin, px, py);
@@ -360,7 +360,7 @@ struct MaskCounts {
 MaskCounts compare_mask(const Scene& s, const Image& image, int material) {
     const std::uint32_t w = s.camera.width, h = s.camera.height;
     std::vector<int> mask(std::size_t(w) * h);
-    const dvec3 origin = build_scene_gpu(s).origin;
+    const dvec3 origin = flatten_scene(s).origin;
     for (std::uint32_t py = 0; py < h; ++py) {
         for (std::uint32_t px = 0; px < w; ++px) {
             mask[py * w + px] = expect_at(s, origin, px + 0.5, py + 0.5).material;
@@ -446,7 +446,7 @@ double same_8bit(const Image& a, const Image& b) {
 // Case 1's scene at scale 1, translated by (1e6, 1e6, 1e6), camera and light
 // included: the same 8-bit image on at least 99.9% of pixels, with and without the
 // grid, on both backends. Translated by an offset that is no multiple of 64, the eye
-// lands elsewhere in the kernel's 64-grid (scene_gpu.cpp), so kernel coordinates are
+// lands elsewhere in the kernel's 64-grid (flatten/flat_scene.cpp), so kernel coordinates are
 // up to 32 larger and so is the self-intersection offset; with this scene's light at a
 // grazing 1/1000, the sheet's shadow edge moves by the offset times 1000: 99.28% of
 // pixels equal, against 94.60% before camera-relative coordinates. AcneAtScale holds

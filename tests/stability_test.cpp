@@ -10,11 +10,11 @@
 
 #include <fmt/format.h>
 
-#include "ref/kernel.hpp"
-#include "ref/ref_backend.hpp"
+#include "kernel/kernel.hpp"
+#include "cpu/cpu_backend.hpp"
 #include "render/render.hpp"
 #include "scene/load_scene.hpp"
-#include "scene/scene_gpu.hpp"
+#include "flatten/flat_scene.hpp"
 #include "test_support.hpp"
 
 namespace vkrt {
@@ -142,7 +142,7 @@ struct MeanAndError {
 // The image's mean radiance (red) over all samples, and its standard error, through
 // the reference kernel; every pixel sees the floor, so samples are comparable.
 MeanAndError image_mean(const Scene& scene) {
-    const SceneGpu gpu = build_scene_gpu(scene);
+    const FlatScene gpu = flatten_scene(scene);
     kernel::Kernel k = make_kernel(gpu);
     double sum = 0.0, sum2 = 0.0, n = 0.0;
     for (std::uint32_t y = 0; y < scene.camera.height; ++y) {

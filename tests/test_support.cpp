@@ -16,7 +16,7 @@
 #include <zlib.h>
 
 #include "gpu/vulkan_backend.hpp"
-#include "ref/ref_backend.hpp"
+#include "cpu/cpu_backend.hpp"
 #include "scene/load_scene.hpp"
 
 namespace vkrt::test {
@@ -106,7 +106,7 @@ std::string expect_one_error(const ProgramRun& run, const std::vector<std::strin
 }
 
 RenderOutcome render_cpu(const Scene& scene) {
-    auto backend = make_reference_backend();
+    auto backend = make_cpu_backend();
     return render_scene(scene, *backend);
 }
 

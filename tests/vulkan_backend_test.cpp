@@ -16,7 +16,7 @@
 #include "render/pixel_sums.hpp"
 #include "render_comp_spv.h"
 #include "gpu/spirv_specialize.hpp"
-#include "scene/features.hpp"
+#include "flatten/features.hpp"
 
 #include <spirv-tools/libspirv.hpp>
 
@@ -29,8 +29,8 @@ const glm::vec4 kBackground(0.25f, 0.5f, 0.75f, 0.0f);
 // A 4x4 image with a 90 degree field of view looking down -z at a sphere of radius
 // 1.5 three units away: the sphere covers exactly the central 2x2 pixels (their
 // centres are 19.5 degrees off axis, the sphere's rim 30, the next pixels 38 or more).
-SceneGpu tiny_scene() {
-    SceneGpu scene;
+FlatScene tiny_scene() {
+    FlatScene scene;
     kernel::Params& p = scene.params;
     kernel::set_camera_eye(p, glm::vec3(0.0f));
     kernel::set_camera_corner(p, glm::vec3(-1.0f, 1.0f, -1.0f));
@@ -140,7 +140,7 @@ TEST(VulkanBackend, TinyRenderHasExactSums) {
     testing::internal::CaptureStderr();
     {
         const std::unique_ptr<Backend> backend = lavapipe();
-        const SceneGpu scene = tiny_scene();
+        const FlatScene scene = tiny_scene();
         const std::uint32_t samples = 2;
         const RenderResult r = backend->render(scene, SampleRange{0, samples});
         ASSERT_EQ(r.width, kSize);
@@ -168,7 +168,7 @@ TEST(VulkanBackend, TinyRenderHasExactSums) {
 
 TEST(VulkanBackend, SplitRangesGiveTheSameSums) {
     const std::unique_ptr<Backend> backend = lavapipe();
-    SceneGpu scene = tiny_scene();
+    FlatScene scene = tiny_scene();
     scene.features.set(Feature::HAS_JITTER, true);  // make the samples differ
     kernel::set_sample_seed(scene.params, 7);
     const RenderResult whole = backend->render(scene, SampleRange{0, 2});
@@ -208,7 +208,7 @@ TEST(VulkanBackend, ManySamplesSpanSeveralBatches) {
 TEST(VulkanBackend, TallImagesAreDispatchedInBandsCoveringEveryRowOnce) {
     // 4 x 200 pixels: 25 workgroup rows, four bands of at most 8. Every pixel must
     // receive each sample exactly once, and progress moves band by band.
-    SceneGpu scene = tiny_scene();
+    FlatScene scene = tiny_scene();
     kernel::set_image_height(scene.params, 200);
     kernel::set_camera_down(scene.params, glm::vec3(0.0f, -2.0f / 200.0f, 0.0f));
     const std::unique_ptr<Backend> backend = lavapipe();
@@ -234,8 +234,8 @@ TEST(VulkanBackend, TallImagesAreDispatchedInBandsCoveringEveryRowOnce) {
 // buffers and counts (counts.y = 1, the triangle uploaded) must give pure
 // background, because the specialization constant leaves the triangle loop out of
 // the pipeline rather than the host leaving the data out.
-SceneGpu glowing_triangle_scene(bool has_triangles) {
-    SceneGpu scene = tiny_scene();
+FlatScene glowing_triangle_scene(bool has_triangles) {
+    FlatScene scene = tiny_scene();
     scene.spheres.clear();
     scene.features.set(Feature::HAS_SPHERES, false);
     scene.features.set(Feature::HAS_TRIANGLES, has_triangles);
@@ -281,7 +281,7 @@ TEST(VulkanBackend, SpecializationConstantsCompileTrianglesOut) {
 // lavapipe has only mapped memory, so without this switch CI would never run the
 // staging copies a discrete GPU takes.
 TEST(VulkanBackend, StagingPathMatchesMappedPath) {
-    const SceneGpu scene = tiny_scene();
+    const FlatScene scene = tiny_scene();
     const RenderResult mapped = lavapipe()->render(scene, SampleRange{0, 3});
     ASSERT_EQ(setenv("VKRT_VULKAN_FORCE_STAGING", "1", 1), 0);
     const std::unique_ptr<Backend> backend = lavapipe();

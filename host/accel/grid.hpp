@@ -12,7 +12,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "kernel_types.hpp"
+#include "kernel/types.hpp"
 
 namespace vkrt {
 

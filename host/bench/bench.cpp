@@ -19,7 +19,7 @@
 #include "bench/support.hpp"
 #include "bench/table.hpp"
 #include "app/source_tree.hpp"
-#include "kernel_types.hpp"
+#include "kernel/types.hpp"
 #include "render/render.hpp"
 #include "scene/limits.hpp"
 #include "scene/json_scene_loader.hpp"

@@ -10,7 +10,7 @@
 
 #include "bench/bench.hpp"
 #include "gpu/vulkan_backend.hpp"
-#include "ref/ref_backend.hpp"
+#include "cpu/cpu_backend.hpp"
 
 namespace vkrt::bench {
 namespace {
@@ -32,7 +32,7 @@ std::string read_first_value(const char* file, const std::string& key) {
 std::vector<std::unique_ptr<Backend>> make_backends(const BenchArgs& args) {
     std::vector<std::unique_ptr<Backend>> backends;
     if (args.backend != "cpu") backends.push_back(make_vulkan_backend(VulkanOptions{args.device, false}));
-    if (args.backend != "vulkan") backends.push_back(make_reference_backend());
+    if (args.backend != "vulkan") backends.push_back(make_cpu_backend());
     return backends;
 }
 

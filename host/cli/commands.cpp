@@ -16,7 +16,7 @@
 #include "image/compare.hpp"
 #include "probe/cpu_float_probe.hpp"
 #include "probe/float_profile.hpp"
-#include "ref/ref_backend.hpp"
+#include "cpu/cpu_backend.hpp"
 #include "render/partial_file.hpp"
 #include "render/render.hpp"
 #include "render/sample_ranges.hpp"
@@ -31,7 +31,7 @@ namespace {
 
 std::unique_ptr<Backend> make_backend(const RenderArgs& args) {
     if (args.backend == "cpu") {
-        return make_reference_backend(args.threads);
+        return make_cpu_backend(args.threads);
     }
     return make_vulkan_backend(VulkanOptions{args.device, args.validate});
 }

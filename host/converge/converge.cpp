@@ -16,7 +16,7 @@
 #include "gpu/vulkan_backend.hpp"
 #include "image/error_metrics.hpp"
 #include "image/image.hpp"
-#include "ref/ref_backend.hpp"
+#include "cpu/cpu_backend.hpp"
 #include "render/partial_file.hpp"
 #include "render/progressive.hpp"
 #include "render/render.hpp"
@@ -46,7 +46,7 @@ struct Row {
 };
 
 std::unique_ptr<Backend> make_named_backend(const std::string& name, const ConvergeArgs& args) {
-    if (name == "cpu") return make_reference_backend(args.threads);
+    if (name == "cpu") return make_cpu_backend(args.threads);
     return make_vulkan_backend(VulkanOptions{args.device, args.validate});
 }
 
@@ -135,7 +135,7 @@ Image load_reference(const std::string& file, const Scene& scene) {
 std::vector<Row> run_curve(const ConvergeArgs& args, Scene scene, const Curve& curve, Backend& backend,
                            const Image& reference, std::uint64_t& truncated) {
     if (curve.spec) curve.spec->apply(scene.render);
-    const SceneGpu gpu = build_scene_gpu(scene, backend.accel_policy());
+    const FlatScene gpu = flatten_scene(scene, backend.accel_policy());
     const std::unique_ptr<RenderSession> session = backend.begin(gpu);
     const std::uint32_t limit = args.spp.value_or(args.until ? limits::kMaxSpp : kDefaultConvergeSpp);
     ProgressiveRender render(*session, {SampleRange{0, limit}, args.until});

@@ -58,7 +58,7 @@ std::optional<VulkanBuffer> array_buffer(const VulkanContext& context, const cha
 
 // The scene's arrays, one buffer per SCENE_BUFFER line of kernel/bindings.glsl.
 std::array<std::optional<VulkanBuffer>, kBindingCount> upload_scene_buffers(const VulkanContext& context,
-                                                                            const SceneGpu& scene) {
+                                                                            const FlatScene& scene) {
     std::array<std::optional<VulkanBuffer>, kBindingCount> buffers;
 #define SCENE_BUFFER(binding, name, Element, load, format) \
     buffers[binding] = array_buffer(context, #name, scene.name);
@@ -68,7 +68,7 @@ std::array<std::optional<VulkanBuffer>, kBindingCount> upload_scene_buffers(cons
 
 // The kernel trusts the counts in Params; an index past a buffer's end would be an
 // out-of-bounds read on the device, so the counts are checked here, once.
-void check_counts(const SceneGpu& scene) {
+void check_counts(const FlatScene& scene) {
     const kernel::Params& p = scene.params;
     auto check = [](const char* what, std::size_t count, std::size_t size) {
         if (count > size) {
@@ -97,7 +97,7 @@ void check_counts(const SceneGpu& scene) {
 }
 
 // Refuses, before anything is created, a scene this device cannot dispatch.
-void check_dispatchable(const VulkanContext& context, const SceneGpu& scene) {
+void check_dispatchable(const VulkanContext& context, const FlatScene& scene) {
     const std::uint32_t width = scene.width();
     const std::uint32_t height = scene.height();
     if (scene.pixel_count() == 0) {
@@ -118,7 +118,7 @@ void check_dispatchable(const VulkanContext& context, const SceneGpu& scene) {
 // about 0.5 s (the default scene: 0.45-0.49 s), more than a pass of a small image.
 class VulkanSession final : public RenderSession {
 public:
-    VulkanSession(const VulkanContext& context, const SceneGpu& scene)
+    VulkanSession(const VulkanContext& context, const FlatScene& scene)
         : context_(context),
           width_(scene.width()),
           height_(scene.height()),
@@ -259,7 +259,7 @@ public:
     std::string device_name() const override { return context_.properties().deviceName; }
     std::uint32_t validation_messages() const override { return context_.validation_messages(); }
 
-    std::unique_ptr<RenderSession> begin(const SceneGpu& scene) override {
+    std::unique_ptr<RenderSession> begin(const FlatScene& scene) override {
         check_dispatchable(context_, scene);
         return std::make_unique<VulkanSession>(context_, scene);
     }

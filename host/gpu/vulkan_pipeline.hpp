@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "gpu/vulkan_context.hpp"
-#include "scene/features.hpp"
+#include "flatten/features.hpp"
 
 namespace vkrt::gpu {
 

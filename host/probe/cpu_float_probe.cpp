@@ -1,6 +1,6 @@
 #include "probe/cpu_float_probe.hpp"
 
-#include "ref/kernel.hpp"
+#include "kernel/kernel.hpp"
 
 namespace vkrt::probe {
 

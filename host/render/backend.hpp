@@ -11,8 +11,8 @@
 #include <glm/vec4.hpp>
 
 #include "accel/accel_policy.hpp"
-#include "kernel_types.hpp"
-#include "scene/scene_gpu.hpp"
+#include "kernel/types.hpp"
+#include "flatten/flat_scene.hpp"
 
 namespace vkrt {
 
@@ -43,7 +43,7 @@ struct RenderResult {
 // One scene made ready to render: on Vulkan the pipeline specialised for it and its
 // buffers uploaded, which costs far more than a small pass of samples. A
 // progressive render keeps one session and renders pass after pass through it.
-// The session borrows the SceneGpu it was begun with and the Backend that began it:
+// The session borrows the FlatScene it was begun with and the Backend that began it:
 // both must outlive it.
 class RenderSession {
 public:
@@ -60,10 +60,10 @@ public:
     virtual ~Backend() = default;
     virtual std::string name() const = 0;         // "vulkan" or "cpu"
     virtual std::string device_name() const = 0;  // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
-    virtual std::unique_ptr<RenderSession> begin(const SceneGpu& scene) = 0;
+    virtual std::unique_ptr<RenderSession> begin(const FlatScene& scene) = 0;
     // One range in a session of its own, set-up included in setup_seconds: for
     // callers that render a scene once.
-    RenderResult render(const SceneGpu& scene, SampleRange samples, const ProgressCallback& progress = {}) {
+    RenderResult render(const FlatScene& scene, SampleRange samples, const ProgressCallback& progress = {}) {
         const std::unique_ptr<RenderSession> session = begin(scene);
         RenderResult result = session->render(samples, progress);
         result.setup_seconds = session->setup_seconds();

@@ -48,7 +48,7 @@ bool is_acceleration_feature(std::uint32_t id) {
 
 }  // namespace
 
-std::uint64_t scene_fingerprint(const SceneGpu& scene) {
+std::uint64_t scene_fingerprint(const FlatScene& scene) {
     kernel::Params params = scene.params;
     // The grid's box, cells and resolution (see the header for why).
     for (auto* set : {kernel::set_grid_min, kernel::set_grid_max, kernel::set_grid_cell, kernel::set_grid_inv_cell}) {

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "scene/scene_gpu.hpp"
+#include "flatten/flat_scene.hpp"
 
 namespace vkrt {
 
@@ -15,7 +15,7 @@ namespace vkrt {
 // identical images with and without it), so partials rendered with --grid on, off,
 // or on backends that choose differently still merge. So is DEFERRED_SPHERES, the
 // order in which brute force tests spheres (tests/kernel_deferred_spheres_test.cpp).
-std::uint64_t scene_fingerprint(const SceneGpu& scene);
+std::uint64_t scene_fingerprint(const FlatScene& scene);
 
 // Sixteen lower-case hex digits, as partial files store it.
 std::string format_fingerprint(std::uint64_t fingerprint);

@@ -69,7 +69,7 @@ Image resolve_image(const RenderResult& result, bool corners) {
     return image;
 }
 
-RenderStats collect_stats(const SceneGpu& scene, const Backend& backend, const RenderResult& result) {
+RenderStats collect_stats(const FlatScene& scene, const Backend& backend, const RenderResult& result) {
     RenderStats s;
     s.backend = backend.name();
     s.device = backend.device_name();
@@ -108,7 +108,7 @@ RenderOutcome render_scene(const Scene& scene, Backend& backend, const RenderPla
                            const ProgressiveCallback& progress) {
     using clock = std::chrono::steady_clock;
     const auto start = clock::now();
-    const SceneGpu gpu = build_scene_gpu(scene, backend.accel_policy());
+    const FlatScene gpu = flatten_scene(scene, backend.accel_policy());
     const auto flattened = clock::now();
     const std::unique_ptr<RenderSession> session = backend.begin(gpu);
     const SampleRange samples{plan.first_sample, plan.samples.value_or(gpu.samples_per_pixel)};

@@ -1,6 +1,6 @@
 #pragma once
 // The one path from a scene to an image, used by the program and the tests alike:
-// Scene -> SceneGpu -> backend -> per-pixel sums -> averaged linear image + stats.
+// Scene -> FlatScene -> backend -> per-pixel sums -> averaged linear image + stats.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -13,7 +13,7 @@
 #include "render/backend.hpp"
 #include "render/progressive.hpp"
 #include "scene/scene.hpp"
-#include "scene/scene_gpu.hpp"
+#include "flatten/flat_scene.hpp"
 
 namespace vkrt {
 
@@ -41,7 +41,7 @@ struct RenderStats {
     std::uint64_t truncated_samples = 0;  // stopped by the loop budget: the image is wrong there
     std::uint64_t nonfinite_samples = 0;  // discarded for NaN or infinity
     std::uint64_t clamped_samples = 0;    // a channel above SUM_SAMPLE_MAX (kernel/sums.glsl), clamped
-    double flatten_seconds = 0.0;         // Scene -> SceneGpu
+    double flatten_seconds = 0.0;         // Scene -> FlatScene
     double setup_seconds = 0.0;           // backend set-up (pipelines, uploads)
     double render_seconds = 0.0;
     double pass_seconds = 0.0;            // wall clock of the passes, read-back and accumulation included
@@ -85,7 +85,7 @@ struct RenderPlan {
 // rays (the result is one row and one column larger than the image).
 Image resolve_image(const RenderResult& result, bool corners = false);
 
-RenderStats collect_stats(const SceneGpu& scene, const Backend& backend, const RenderResult& result);
+RenderStats collect_stats(const FlatScene& scene, const Backend& backend, const RenderResult& result);
 
 // Renders the plan's samples in progressive passes through one backend session.
 RenderOutcome render_scene(const Scene& scene, Backend& backend, const RenderPlan& plan = {},

@@ -1,7 +1,7 @@
 #pragma once
 // The validated, in-memory scene: what a loader produces and everything downstream
 // reads (docs/architecture.md, principle 2). Values stay in double here; they become float only
-// when host/scene/scene_gpu.cpp flattens them for a backend.
+// when host/flatten/flat_scene.cpp flattens them for a backend.
 #include <array>
 #include <cstddef>
 #include <cstdint>

@@ -1,5 +1,5 @@
 // The whole kernel, in dependency order. Included by shaders/render.comp and, inside
-// the reference Kernel struct, by host/ref/kernel.hpp. Before including it, a host
+// the reference Kernel struct, by host/kernel/kernel.hpp. Before including it, a host
 // declares the feature flags (features.glsl), `params` (a Params), its buffers
 // (bindings.glsl) and LOAD_ELEMENT (loads.glsl).
 #include "param_access.glsl"

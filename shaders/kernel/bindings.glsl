@@ -1,8 +1,8 @@
 // Every buffer of the kernel, declared once. From this list render.comp declares its
-// images, kernel/loads.glsl defines the loaders the kernel calls, SceneGpu
-// (host/scene/scene_gpu.hpp) holds one array per scene buffer, host/gpu numbers the
+// images, kernel/loads.glsl defines the loaders the kernel calls, FlatScene
+// (host/flatten/flat_scene.hpp) holds one array per scene buffer, host/gpu numbers the
 // descriptor set and picks each view's format, and the reference backend's Kernel
-// (host/ref/kernel.hpp) holds a span of each scene array. On the device each is a
+// (host/kernel/kernel.hpp) holds a span of each scene array. On the device each is a
 // storage texel buffer (docs/decisions/0001-texel-buffers.md), image <name>_texels.
 //
 //   PARAMS_BUFFER(binding, name)                        the one Params (kernel/params.glsl)

@@ -1,5 +1,5 @@
 // Primary rays. The host builds the camera vectors in double precision
-// (host/scene/scene_gpu.cpp); the kernel only combines them.
+// (host/flatten/flat_scene.cpp); the kernel only combines them.
 
 // The ray through continuous image position (x, y), in pixels from the top-left
 // corner of the image (row 0 at the top).

@@ -1,5 +1,5 @@
 // Points on the area lights: the emissive primitives of the Emitter list
-// (layout.glsl; built by host/scene/scene_gpu.cpp). An emitter is picked with
+// (layout.glsl; built by host/flatten/flat_scene.cpp). An emitter is picked with
 // probability proportional to its area, then a point uniformly on it, so the point
 // is uniform over the total emitting area, of density 1 / total area whichever
 // emitter it lies on: the estimator (area_lights.glsl) needs no per-emitter pdf.

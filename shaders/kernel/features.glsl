@@ -2,8 +2,8 @@
 // Each side defines FEATURE(id, NAME) before including this file:
 //   GLSL   -> a boolean specialization constant with constant_id = id (default true),
 //   kernel -> a bool member of the reference Kernel struct,
-//   host   -> the Feature enum and its names (host/scene/features.hpp).
-// Ids are dense, 0 to count - 1 (host/scene/features.hpp checks).
+//   host   -> the Feature enum and its names (host/flatten/features.hpp).
+// Ids are dense, 0 to count - 1 (host/flatten/features.hpp checks).
 // A feature that is false is compiled out of the pipeline by the driver, and the
 // buffers only it reads are neither built nor uploaded.
 FEATURE(0, HAS_SPHERES)
@@ -25,7 +25,7 @@ FEATURE(15, HAS_GLOBAL)       // global illumination (global.glsl) instead of th
 // With HAS_GRID, the kinds the grid's cells list, and the kinds among its loose
 // primitives, which are tested once per ray instead: a kind with few primitives as a
 // whole, and the few primitives of other kinds whose boxes would stretch the grid's
-// (host/scene/scene_gpu.cpp, host/accel/grid.cpp, docs/grid.md).
+// (host/flatten/flat_scene.cpp, host/accel/grid.cpp, docs/grid.md).
 FEATURE(16, GRID_SPHERES)
 FEATURE(17, GRID_TRIANGLES)
 FEATURE(18, GRID_RINGS)
@@ -36,5 +36,5 @@ FEATURE(22, LOOSE_RINGS)
 FEATURE(23, LOOSE_CYLINDERS)
 // Without the grid, whether the sphere loop tests the spheres a ray starts near
 // after it (scene.glsl, DeferredSpheres) rather than in place: on from
-// kDeferredSpheresFrom spheres (host/scene/scene_gpu.cpp), where it pays on lavapipe.
+// kDeferredSpheresFrom spheres (host/flatten/flat_scene.cpp), where it pays on lavapipe.
 FEATURE(24, DEFERRED_SPHERES)

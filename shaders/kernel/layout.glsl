@@ -2,7 +2,7 @@
 // vec4/uvec4 members only, so GLSL and C++ agree on every offset without padding
 // rules to remember (std140 and std430 coincide for such structs), and each member is
 // one 16-byte texel of the texel buffers the kernel reads them from;
-// host/kernel_types.hpp static_asserts the sizes. Beside each struct,
+// host/kernel/types.hpp static_asserts the sizes. Beside each struct,
 // Name_FROM_TEXELS(buffer, i) assembles element i from its texels (kernel/loads.glsl).
 // Unused .w lanes are documented as such and written as 0 by the host.
 
@@ -75,7 +75,7 @@ struct PointLight {
 #define PointLight_FROM_TEXELS(b, i) PointLight(fetch_vec4(b, 2u * (i)), fetch_vec4(b, 2u * (i) + 1u))
 
 // One emissive primitive: a primitive whose material has nonzero emission
-// (kernel/emitters.glsl samples them, host/scene/scene_gpu.cpp lists them). Emitters
+// (kernel/emitters.glsl samples them, host/flatten/flat_scene.cpp lists them). Emitters
 // are chosen with probability proportional to their area, through the cumulative
 // fractions in cdf_area.x, the last of which is exactly 1.
 struct Emitter {

@@ -1,8 +1,8 @@
 // The per-render constants, each declared once, here, and read by name: the kernel
 // calls max_depth(), the host writes it with set_max_depth(params, value)
-// (host/kernel_types.hpp). Params is PARAM_TEXELS 16-byte texels of four 32-bit
+// (host/kernel/types.hpp). Params is PARAM_TEXELS 16-byte texels of four 32-bit
 // lanes, uploaded as they are; a float lane holds the float's bits. No two values
-// share a lane (host/kernel_types.hpp checks it when it compiles).
+// share a lane (host/kernel/types.hpp checks it when it compiles).
 //
 //   PARAM(type, name, texel, lane)   a uint or float in lane x, y, z or w of a texel
 //   PARAM3(type, name, texel)        a vec3 or uvec3 in lanes xyz of a texel, w unused

@@ -14,7 +14,7 @@
 // shows at the radiance of a scene; a radiance smaller than that is summed as 0.
 // Samples that had to be clamped are counted (PixelSum.green.w).
 //
-// Included at namespace scope by host/kernel_types.hpp and by shaders/render.comp,
+// Included at namespace scope by host/kernel/types.hpp and by shaders/render.comp,
 // so that the host merges partial sums with the very functions the kernel adds with.
 // There they live in a header, so C++ defines HOST_INLINE as `inline`.
 #ifndef HOST_INLINE

@@ -8,7 +8,7 @@
 // thread.
 #include <span>
 
-#include "kernel_types.hpp"
+#include "kernel/types.hpp"
 
 namespace vkrt::kernel {
 
@@ -22,7 +22,7 @@ struct Kernel {
 
     // What render.comp's main() reads from its params buffer.
     Params params{};
-    // One span per buffer the kernel reads (kernel/bindings.glsl): the arrays of SceneGpu.
+    // One span per buffer the kernel reads (kernel/bindings.glsl): the arrays of FlatScene.
 #define SCENE_BUFFER(binding, name, Element, load, format) std::span<const Element> name;
 #include "kernel/bindings.glsl"
 

@@ -1,4 +1,4 @@
-#include "scene/features.hpp"
+#include "flatten/features.hpp"
 
 #include "scene/vec_math.hpp"
 

@@ -1,4 +1,4 @@
-#include "scene/scene_gpu.hpp"
+#include "flatten/flat_scene.hpp"
 
 #include "scene/vec_math.hpp"
 
@@ -107,7 +107,7 @@ kernel::Triangle flatten(const Triangle& t, const dvec3& origin) {
 // with the running fraction of the total area that lets the kernel pick one with
 // probability proportional to its area. A point picked uniformly on the chosen one
 // is then uniform over all emitting area, of density 1 / total area.
-void add_emitters(const Scene& scene, SceneGpu& g) {
+void add_emitters(const Scene& scene, FlatScene& g) {
     struct Found {
         std::uint32_t ref;
         double area;
@@ -214,7 +214,7 @@ constexpr std::size_t kMaxStretching = 32;
 // listed when no kind reaches the threshold (a grid forced on a small scene), and
 // when the scene gives the resolution: that asks for one particular grid, over the
 // whole scene (the README compares SPD balls with published figures for such grids).
-std::array<bool, 4> loose_kinds(const AccelPolicy& policy, bool resolution_given, const SceneGpu& g) {
+std::array<bool, 4> loose_kinds(const AccelPolicy& policy, bool resolution_given, const FlatScene& g) {
     const std::array<std::size_t, 4> counts{g.spheres.size(), g.triangles.size(), g.rings.size(), g.cylinders.size()};
     const bool any_large = std::any_of(counts.begin(), counts.end(),
                                        [&](std::size_t n) { return n >= policy.brute_force_below; });
@@ -228,7 +228,7 @@ std::array<bool, 4> loose_kinds(const AccelPolicy& policy, bool resolution_given
 // The features that say which kinds the cells list (GRID_) and which the loose
 // references hold (LOOSE_), and the stats' account of the loose ones: a kind loose
 // as a whole as "triangles: 2", some of a listed kind as "triangles: 2 of 49294".
-void note_kinds(const Grid& grid, const AccelPolicy& policy, const std::array<bool, 4>& whole, SceneGpu& g) {
+void note_kinds(const Grid& grid, const AccelPolicy& policy, const std::array<bool, 4>& whole, FlatScene& g) {
     struct Kind {
         Feature listed, loose;
         const char* name;
@@ -263,7 +263,7 @@ void note_kinds(const Grid& grid, const AccelPolicy& policy, const std::array<bo
     g.grid.outside.insert(g.grid.outside.end(), stretching.begin(), stretching.end());
 }
 
-void add_grid(const Scene& scene, const AccelPolicy& policy, SceneGpu& g) {
+void add_grid(const Scene& scene, const AccelPolicy& policy, FlatScene& g) {
     const auto start = std::chrono::steady_clock::now();
     GridRequest request;
     request.resolution = scene.render.grid.resolution;
@@ -296,7 +296,7 @@ void add_grid(const Scene& scene, const AccelPolicy& policy, SceneGpu& g) {
 
 }  // namespace
 
-std::vector<BufferSize> SceneGpu::built_buffers() const {
+std::vector<BufferSize> FlatScene::built_buffers() const {
     std::vector<BufferSize> out;
 #define SCENE_BUFFER(binding, name, Element, load, format) \
     if (!name.empty()) out.push_back({#name, bytes(name)});
@@ -305,8 +305,8 @@ std::vector<BufferSize> SceneGpu::built_buffers() const {
     return out;
 }
 
-SceneGpu build_scene_gpu(const Scene& scene, const AccelPolicy& policy) {
-    SceneGpu g;
+FlatScene flatten_scene(const Scene& scene, const AccelPolicy& policy) {
+    FlatScene g;
     g.features = analyze_features(scene);
     const RenderSettings& r = scene.render;
     g.samples_per_pixel = r.corners ? 1 : r.samples_per_pixel();

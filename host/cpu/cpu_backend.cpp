@@ -1,4 +1,4 @@
-#include "ref/ref_backend.hpp"
+#include "cpu/cpu_backend.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -6,7 +6,7 @@
 #include <mutex>
 #include <thread>
 
-#include "ref/kernel.hpp"
+#include "kernel/kernel.hpp"
 
 namespace vkrt {
 namespace {
@@ -23,7 +23,7 @@ constexpr std::uint32_t kBruteForceBelow = 32;
 
 }  // namespace
 
-kernel::Kernel make_kernel(const SceneGpu& scene) {
+kernel::Kernel make_kernel(const FlatScene& scene) {
     kernel::Kernel k;
 #define FEATURE(id, name) k.name = scene.features.has(std::uint32_t(id));
 #include "kernel/features.glsl"
@@ -40,7 +40,7 @@ namespace {
 // thread count, and each pass starts its threads afresh.
 class ReferenceSession final : public RenderSession {
 public:
-    ReferenceSession(const SceneGpu& scene, unsigned threads) : scene_(scene), threads_(threads) {}
+    ReferenceSession(const FlatScene& scene, unsigned threads) : scene_(scene), threads_(threads) {}
 
     double setup_seconds() const override { return 0.0; }
 
@@ -100,7 +100,7 @@ public:
     }
 
 private:
-    const SceneGpu& scene_;
+    const FlatScene& scene_;
     unsigned threads_;
 };
 
@@ -114,7 +114,7 @@ public:
     std::string device_name() const override {
         return "C++ reference, " + std::to_string(threads_) + " thread" + (threads_ == 1 ? "" : "s");
     }
-    std::unique_ptr<RenderSession> begin(const SceneGpu& scene) override {
+    std::unique_ptr<RenderSession> begin(const FlatScene& scene) override {
         return std::make_unique<ReferenceSession>(scene, threads_);
     }
 
@@ -124,7 +124,7 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Backend> make_reference_backend(unsigned threads) {
+std::unique_ptr<Backend> make_cpu_backend(unsigned threads) {
     return std::make_unique<ReferenceBackend>(threads);
 }
 

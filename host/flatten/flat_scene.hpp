@@ -9,8 +9,8 @@
 
 #include "accel/accel_policy.hpp"
 #include "accel/grid.hpp"
-#include "kernel_types.hpp"
-#include "scene/features.hpp"
+#include "kernel/types.hpp"
+#include "flatten/features.hpp"
 #include "scene/scene.hpp"
 
 namespace vkrt {
@@ -20,9 +20,9 @@ struct BufferSize {
     std::size_t bytes;
 };
 
-struct SceneGpu {
+struct FlatScene {
     kernel::Params params{};
-    // Where the kernel's coordinates start, in the scene's (build_scene_gpu): every
+    // Where the kernel's coordinates start, in the scene's (flatten_scene): every
     // position in params and the buffers is the scene's minus this, so a point the
     // kernel computes is at origin + that point in the scene.
     dvec3 origin{0.0};
@@ -49,6 +49,6 @@ struct SceneGpu {
 
 // `policy` comes from the backend that will render (Backend::accel_policy); the
 // default builds the grid for any scene with primitives unless the scene says "off".
-SceneGpu build_scene_gpu(const Scene& scene, const AccelPolicy& policy = {});
+FlatScene flatten_scene(const Scene& scene, const AccelPolicy& policy = {});
 
 }  // namespace vkrt

@@ -1,0 +1,20 @@
+# Run by each module's include check (cmake/Modules.cmake): fails when a file of host/MODULE
+# includes a header of a module outside ALLOWED (comma-separated), naming file and line.
+cmake_minimum_required(VERSION 3.25)
+file(GLOB_RECURSE files "${DIR}/*.cpp" "${DIR}/*.hpp")
+string(REPLACE "," ";" allowed "${ALLOWED}")
+set(bad "")
+foreach(file IN LISTS files)
+  file(STRINGS "${file}" lines REGEX "^#include \"[a-z_]+/")
+  foreach(line IN LISTS lines)
+    string(REGEX MATCH "^#include \"([a-z_]+)/" _ "${line}")
+    if(NOT CMAKE_MATCH_1 IN_LIST allowed)
+      string(APPEND bad "\n  ${file}: ${line}")
+    endif()
+  endforeach()
+endforeach()
+if(bad)
+  message(FATAL_ERROR "host/${MODULE} may include only ${ALLOWED} (its uses in CMakeLists.txt); "
+                      "these reach elsewhere:${bad}")
+endif()
+file(TOUCH "${STAMP}")
