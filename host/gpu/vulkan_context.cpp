@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "gpu/portability.hpp"
 #include "gpu/vulkan_devices.hpp"
 
 namespace vkrt::gpu {
@@ -120,18 +121,19 @@ VulkanInstance::VulkanInstance(bool validation) {
     features.pEnabledValidationFeatures = enables;
 
     const char* layers[] = {kValidationLayer};
-    const char* extensions[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME, VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME};
+    const InstanceSetup setup = instance_setup(offered_instance_extensions(), validation);
     VkInstanceCreateInfo info{};
     info.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
     info.pApplicationInfo = &app;
+    info.flags = setup.flags;
+    info.enabledExtensionCount = static_cast<std::uint32_t>(setup.extensions.size());
+    info.ppEnabledExtensionNames = setup.extensions.data();
     if (validation) {
         // The messenger rides along so that instance creation and destruction are
         // checked too.
         info.pNext = &features;
         info.enabledLayerCount = 1;
         info.ppEnabledLayerNames = layers;
-        info.enabledExtensionCount = 2;
-        info.ppEnabledExtensionNames = extensions;
     }
     const VkResult created = vkCreateInstance(&info, nullptr, &instance_);
     if (created == VK_ERROR_INCOMPATIBLE_DRIVER || created == VK_ERROR_INITIALIZATION_FAILED) {
@@ -180,10 +182,13 @@ VulkanContext::VulkanContext(const VulkanOptions& options) : instance_(options.v
     queue.queueFamilyIndex = queue_family_;
     queue.queueCount = 1;
     queue.pQueuePriorities = &priority;
+    const std::vector<const char*> extensions = device_extensions(offered_device_extensions(physical_));
     VkDeviceCreateInfo info{};
     info.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
     info.queueCreateInfoCount = 1;
     info.pQueueCreateInfos = &queue;
+    info.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
+    info.ppEnabledExtensionNames = extensions.data();
     check(vkCreateDevice(physical_, &info, nullptr, &device_), "vkCreateDevice");
     vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
 
