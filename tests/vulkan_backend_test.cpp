@@ -5,12 +5,14 @@
 #include <unordered_map>
 #include <cstdlib>
 #include <iterator>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "cpu/cpu_backend.hpp"
 #include "gpu/vulkan_backend.hpp"
 #include "gpu/vulkan_pipeline.hpp"
 #include "render/pixel_sums.hpp"
@@ -164,6 +166,27 @@ TEST(VulkanBackend, TinyRenderHasExactSums) {
     // Teardown is checked too: the messages print even when the counter is gone.
     const std::string log = testing::internal::GetCapturedStderr();
     EXPECT_EQ(log.find("vulkan validation:"), std::string::npos) << log;
+}
+
+// A NaN or infinite sample is counted, never added to the sums, on both backends:
+// the check reads the float's bits (ray.glsl, is_finite_bits), which no compiler may
+// fold away. Here the background is NaN, then infinite, so every ray that misses
+// the sphere brings back a non-finite sample.
+TEST(VulkanBackend, NonFiniteSamplesAreCountedNotSummed) {
+    const std::uint32_t samples = 2;
+    for (const float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+        FlatScene scene = tiny_scene();
+        kernel::set_background(scene.params, glm::vec3(0.1f, bad, 0.1f));
+        for (const std::unique_ptr<Backend>& backend : {lavapipe(), make_cpu_backend(1)}) {
+            const RenderResult r = backend->render(scene, SampleRange{0, samples});
+            for (std::uint32_t i = 0; i < kSize * kSize; ++i) {
+                SCOPED_TRACE(backend->name() + " pixel " + std::to_string(i) + " background " + std::to_string(bad));
+                const bool sphere = on_sphere(i % kSize, i / kSize);
+                EXPECT_EQ(r.counters[i].work[kernel::WORK_NONFINITE], sphere ? 0u : samples);
+                EXPECT_EQ(r.sums[i], repeated(glm::vec3(0.0f), sphere ? samples : 0u));
+            }
+        }
+    }
 }
 
 TEST(VulkanBackend, SplitRangesGiveTheSameSums) {

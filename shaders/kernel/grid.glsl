@@ -42,7 +42,7 @@ vec3 grid_t_next(Ray ray, GridWalk w) {
 GridWalk grid_walk_start(Ray ray, float t_max) {
     GridWalk w = GridWalk(ivec3(0), ivec3(0), vec3(0.0f), vec3(INFINITY_T), 0.0f, false);
     float sum = ray.origin.x + ray.origin.y + ray.origin.z + ray.dir.x + ray.dir.y + ray.dir.z;
-    if (isnan(sum) || isinf(sum)) {
+    if (!is_finite_bits(sum)) {
         return w;
     }
     vec3 lo = grid_min();

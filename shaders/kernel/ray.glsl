@@ -22,6 +22,13 @@ vec3 unit_vector(vec3 v) {
     return u;
 }
 
+// Whether x is finite, from its exponent bits: a driver that assumes no NaN or
+// infinity (without SignedZeroInfNanPreserve) may fold isnan() and isinf() to false,
+// but not an integer test.
+bool is_finite_bits(float x) {
+    return (floatBitsToUint(x) & 0x7f800000u) != 0x7f800000u;
+}
+
 Hit no_hit() {
     return Hit(INFINITY_T, vec3(0.0f), vec3(0.0f), 0u, false);
 }

@@ -169,7 +169,7 @@ void accumulate_sample(SampleResult s, INOUT(PixelSum) sum, INOUT(Counters) coun
         counters.work[WORK_TRUNCATED] += 1u;
     } else if (s.dropped) {
         counters.paths[PATHS_PAPER_DROPPED] += 1u;
-    } else if (isnan(total) || isinf(total)) {
+    } else if (!is_finite_bits(total)) {
         counters.work[WORK_NONFINITE] += 1u;
     } else {
         add_sample(sum, s.radiance);
