@@ -44,12 +44,10 @@ void main() {
     for (uint i = 0u; i < PARAM_TEXELS; ++i) {
         params.texels[i] = imageLoad(params_texels, int(i));
     }
-    // Each row of the 8x8 workgroup renders a 4x2 block of its 8x8 pixels rather than
-    // a row of 8. lavapipe packs one row of invocations into one 8-lane SIMD vector,
-    // which walks the grid until its last lane is done; rays from a squarer patch of
-    // pixels agree more often on where they go and when they stop (image H 1.08x, SPD
-    // balls 1.07x faster on lavapipe, median of 9 and 5 renders). Only which
-    // invocation renders which pixel changes: every pixel's sample is the same.
+    // Each row of 8 invocations renders a 4x2 block of pixels, not a row of 8: an
+    // 8-lane SIMD vector then traces rays that agree more often on where they go
+    // (docs/decisions/0017-loop-shapes-for-simd.md). Only which invocation renders
+    // which pixel changes; every pixel's sample is the same.
     uint row = gl_LocalInvocationID.y;
     uint lane = gl_LocalInvocationID.x;
     uint px = gl_WorkGroupID.x * 8u + (row & 1u) * 4u + (lane & 3u);
