@@ -29,16 +29,7 @@ Command add_converge_command(CLI::App& program) {
     v->add_option("--estimator", args->estimators,
                   "Estimator of a curve: paper, path or path+nee, optionally :angles, :uniform or :cosine; repeat for "
                   "more (default: the scene's own)")
-        ->check(CLI::Validator(
-            [](const std::string& text) {
-                try {
-                    parse_estimator_spec(text);
-                } catch (const std::invalid_argument& e) {
-                    return std::string(e.what());
-                }
-                return std::string();
-            },
-            "SPEC"))
+        ->check(accepted_by([](const std::string& text) { parse_estimator_spec(text); }, "SPEC"))
         ->allow_extra_args(false);
     v->add_option("--until", args->until, "Render each curve for this many seconds of passes")
         ->check(positive_seconds());

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <functional>
+#include <stdexcept>
 #include <type_traits>
 
 #include <fmt/format.h>
@@ -39,6 +40,19 @@ unsigned long long parse_whole(const std::string& text, std::size_t* used) { ret
 double parse_real(const std::string& text, std::size_t* used) { return std::stod(text, used); }
 
 }  // namespace
+
+CLI::Validator accepted_by(std::function<void(const std::string&)> parse, const std::string& name) {
+    return CLI::Validator(
+        [parse = std::move(parse)](const std::string& text) {
+            try {
+                parse(text);
+            } catch (const std::invalid_argument& e) {
+                return std::string(e.what());
+            }
+            return std::string();
+        },
+        name);
+}
 
 CLI::Validator whole_number(std::uint64_t lo, std::uint64_t hi) {
     return number<unsigned long long>(

@@ -3,6 +3,7 @@
 // answer a wrong value with what was expected (CLI11's own Range answers "abc" with
 // "not in range").
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -16,6 +17,9 @@ CLI::Validator whole_number(std::uint64_t lo, std::uint64_t hi);
 CLI::Validator non_negative();
 // A finite number of seconds above 0 (a budget of 0 could render nothing).
 CLI::Validator positive_seconds();
+// What `parse` accepts; a value it refuses with std::invalid_argument is answered
+// with the exception's message. `name` is the value's form in --help (e.g. "A:B").
+CLI::Validator accepted_by(std::function<void(const std::string&)> parse, const std::string& name);
 
 // --width and --height, each overriding the scene's.
 void add_image_size(CLI::App* command, std::optional<std::uint32_t>& width, std::optional<std::uint32_t>& height);

@@ -33,16 +33,7 @@ Command add_render_command(CLI::App& program) {
         r->add_option("--samples", args->samples,
                       "Render only the samples A to B-1 of every pixel, to a partial file (.exr) that vkrt merge adds "
                       "up with others (default output: <scene name>_A-B.exr)")
-            ->check(CLI::Validator(
-                [](const std::string& text) {
-                    try {
-                        parse_sample_range(text, limits::kMaxSpp);
-                    } catch (const std::invalid_argument& e) {
-                        return std::string(e.what());
-                    }
-                    return std::string();
-                },
-                "A:B"));
+            ->check(accepted_by([](const std::string& text) { parse_sample_range(text, limits::kMaxSpp); }, "A:B"));
     add_seed(r, args->seed);
     r->add_option("--grid", args->grid,
                   "Uniform grid: auto (when the scene has enough primitives for it to pay), on, off, or a "
