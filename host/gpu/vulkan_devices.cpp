@@ -1,5 +1,7 @@
 #include "gpu/vulkan_devices.hpp"
 
+#include "gpu/portability.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -44,14 +46,8 @@ std::uint32_t compute_family(const std::vector<VkQueueFamilyProperties>& familie
 namespace {
 
 bool has_device_extension(VkPhysicalDevice device, const char* name) {
-    std::uint32_t count = 0;
-    check(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr),
-          "vkEnumerateDeviceExtensionProperties");
-    std::vector<VkExtensionProperties> extensions(count);
-    check_listing(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data()),
-                  "vkEnumerateDeviceExtensionProperties");
-    return std::any_of(extensions.begin(), extensions.begin() + count,
-                       [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+    const std::vector<std::string> offered = offered_device_extensions(device);
+    return std::find(offered.begin(), offered.end(), name) != offered.end();
 }
 
 std::string type_name(VkPhysicalDeviceType type) {
