@@ -37,7 +37,7 @@ constexpr std::size_t kBruteForceOnVulkanMax = 20000;
 // deferred spheres, scene.glsl), and a sample traces its eye ray and, with
 // mirrors or glass, up to max_depth more along the ray tree, each sending a shadow
 // ray per point light and per area-light sample. One pass over the spheres per ray:
-// a ray that starts near more than four makes more (scene.glsl, brute_force_trace). An estimate
+// a ray that starts near more than four makes more (deferred_spheres.glsl). An estimate
 // that errs low shows up as truncated samples, which the test fails on.
 bool brute_force_fits_loop_budget(const Scene& s, std::size_t primitives) {
     bool secondary = false, emits = false;

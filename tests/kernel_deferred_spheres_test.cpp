@@ -1,4 +1,4 @@
-// Brute force's deferred sphere tests (scene.glsl, DeferredSpheres): a sphere the ray
+// Brute force's deferred sphere tests (deferred_spheres.glsl): a sphere the ray
 // starts near (sphere_needs_exact_c) is set aside by the loop and tested error-free
 // after it, four per pass of the loop, and a ray that met more makes another pass.
 // Whatever the path, the result must be intersect_sphere's on every sphere: the

@@ -180,10 +180,9 @@ const float SPHERE_C_SIGN_MARGIN = 3.814697265625e-06f;   // 2^-18
 // The discriminant is sphere_closest_point_disc, as in the rounded-c test; its error
 // moves the decision only for rays tangent to the sphere within a rounding.
 // Compared with intersect_sphere(ray, ..., 0, t_max) != INFINITY_T, which it equals
-// away from those margins, it skips the error-free c that lavapipe computes on every
-// test (both sides of the branch) and the division for the second root: image H
-// rendered 1.08x faster on lavapipe and 1.07x on the reference, the floorless
-// 100,000 spheres 1.15x and 1.13x, with the same images (docs/grid.md).
+// away from those margins, it skips the error-free c, which SIMD hardware computes on
+// every test (both sides of the branch), and the division for the second root
+// (docs/decisions/0006-shadow-rays-sphere-blocks.md).
 bool sphere_blocks(Ray ray, vec3 center, float radius, float t_max) {
     SphereSetup s = sphere_setup(ray, center, radius);
     float disc = sphere_closest_point_disc(ray, s);

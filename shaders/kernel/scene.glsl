@@ -46,57 +46,13 @@ void test_sphere_blocks(Ray ray, uint index, INOUT(Nearest) nearest) {
 
 // The sphere test for the ray's question: where it first meets the sphere, or, with
 // any_hit, whether it meets it at all. The sphere is read inside each test: read by the
-// caller and passed in, the reference backend's sphere loops ran up to 1.1x slower
-// (SPD balls by brute force 0.61-0.62 s against 0.66-0.67 s, three alternated rounds).
+// caller and passed in, the CPU backend's sphere loops ran up to 1.1x slower.
 void test_sphere_for(Ray ray, uint index, bool any_hit, INOUT(Nearest) nearest) {
     if (any_hit) {
         test_sphere_blocks(ray, index, nearest);
     } else {
         test_sphere(ray, index, nearest);
     }
-}
-
-// The spheres a brute-force loop set aside because the ray starts near them
-// (sphere_needs_exact_c): lavapipe runs both sides of every branch, so a loop that
-// made the error-free test in place paid for it on every sphere (SPD balls by brute
-// force took 1.3x as long). Few spheres qualify for any one ray: the one it leaves,
-// and neighbours touching it. Four are kept at a time, by selects rather than an
-// indexed array (which lavapipe keeps in memory), and tested after the loop
-// (test_deferred_slots); a ray that met more loops again for the next four
-// (brute_force_trace). Only with DEFERRED_SPHERES, which the host turns on from 8
-// spheres: below that the loops after the sphere loop cost more than they save. And
-// only for rays that need the nearest hit: a shadow ray's test (sphere_blocks) needs
-// no error-free c, so shadow rays test every sphere in place.
-struct DeferredSpheres {
-    uint count;   // near spheres met so far in this pass of the loop
-    uint first;   // the count at which this pass's slots start: 0, 4, 8, ...
-    uvec4 slots;  // near spheres first to first + 3
-};
-
-// One test of a brute-force loop: the rounded-c test, or the sphere deferred.
-void test_sphere_or_defer(Ray ray, uint index, INOUT(Nearest) nearest, INOUT(DeferredSpheres) deferred) {
-    g_intersection_tests += 1u;
-    Sphere s = load_sphere(index);
-    SphereSetup setup = sphere_setup(ray, vec3(s.center_radius), s.center_radius.w);
-    if (sphere_needs_exact_c(setup)) {
-        uint k = deferred.count - deferred.first;   // wraps to a large number before `first`
-        deferred.slots.x = k == 0u ? index : deferred.slots.x;
-        deferred.slots.y = k == 1u ? index : deferred.slots.y;
-        deferred.slots.z = k == 2u ? index : deferred.slots.z;
-        deferred.slots.w = k == 3u ? index : deferred.slots.w;
-        deferred.count += 1u;
-    } else {
-        set_sphere_nearest(index, sphere_rounded_c_test(ray, setup, 0.0f, nearest.t), nearest);
-    }
-}
-
-// The error-free test of a deferred sphere (counted when it was deferred).
-void test_sphere_exact(Ray ray, uint index, INOUT(Nearest) nearest) {
-    Sphere s = load_sphere(index);
-    vec3 center = vec3(s.center_radius);
-    SphereSetup setup = sphere_setup(ray, center, s.center_radius.w);
-    set_sphere_nearest(index, sphere_exact_c_test(ray, center, s.center_radius.w, setup, 0.0f, nearest.t),
-                       nearest);
 }
 
 void test_triangle(Ray ray, uint index, INOUT(Nearest) nearest) {
@@ -155,10 +111,8 @@ bool trace_done(bool any_hit, Nearest nearest) {
 // Every loop of the traversal leaves at one place only: its condition, which ticks
 // the budget and asks whether a shadow ray found its blocker. Written with a break at
 // the top for the budget and a return after the test for the blocker, the same loops,
-// making the same tests, were slower on lavapipe: SPD balls by brute force 1.24x,
-// with the grid 1.17x, image H 1.08x (both at 1024x1024), the torus knot 1.16x
-// (docs/grid.md, "One exit per loop"); the reference's times did not change beyond
-// their noise.
+// making the same tests, ran slower on lavapipe
+// (docs/decisions/0017-loop-shapes-for-simd.md).
 
 // Tests the primitives listed for one grid cell, references i to end - 1 (i < end):
 // its spheres, triangles, rings and cylinders, in that order, one loop per kind the
@@ -245,8 +199,7 @@ bool grid_advance(Ray ray, INOUT(GridWalk) w, Nearest nearest) {
 // cell per iteration therefore paid for a primitive test of every kind in every cell,
 // empty or not; now every lane still walking reaches a cell with something to test
 // first. The cells visited, the tests made and the result are the same as walking one
-// cell at a time (image H on lavapipe: 1.3x faster with test_cell's bottom-tested
-// loops, docs/grid.md).
+// cell at a time (docs/decisions/0017-loop-shapes-for-simd.md).
 void grid_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
     GridWalk w = grid_walk_start(ray, nearest.t);
     if (!w.inside) {
@@ -277,43 +230,13 @@ void grid_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
     } while (walking);
 }
 
-// This pass's deferred spheres, error-free. A loop rather than four tests in a row:
-// lavapipe would make all four for every ray, and most rays have one (the sphere
-// they leave) or none (eye rays). Bottom-tested: one pass, masked, when no lane has
-// any (a scene of ten spheres renders 1.2-1.35x slower on lavapipe with the four).
-void test_deferred_slots(Ray ray, DeferredSpheres deferred, bool any_hit, INOUT(Nearest) nearest) {
-    uint n = deferred.count > deferred.first ? min(deferred.count - deferred.first, 4u) : 0u;
-    uint k = 0u;
-    loop_enter();
-    do {
-        if (k < n) {
-            uvec4 s = deferred.slots;
-            test_sphere_exact(ray, k == 0u ? s.x : (k == 1u ? s.y : (k == 2u ? s.z : s.w)), nearest);
-        }
-        k += 1u;
-    } while (k < n && loop_tick() && !blocker_found(any_hit, nearest));
-}
+#include "deferred_spheres.glsl"
 
 // Every primitive, one loop per kind: scenes too small to gain from the grid. Shadow
 // rays (any_hit) never defer a sphere and take the in-place loop.
 void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
     if (HAS_SPHERES && DEFERRED_SPHERES && !any_hit) {
-        // A second pass only for a ray that met more than four near spheres: it counts
-        // every sphere again, tests again those it does not defer, and keeps the next
-        // four of those it does.
-        DeferredSpheres deferred = DeferredSpheres(0u, 0u, uvec4(0u));
-        loop_enter();
-        do {
-            deferred.count = 0u;
-            loop_enter();
-            for (uint i = 0u; i < sphere_count() && loop_tick() && !blocker_found(any_hit, nearest); ++i) {
-                test_sphere_or_defer(ray, i, nearest, deferred);
-            }
-            if (!trace_done(any_hit, nearest)) {
-                test_deferred_slots(ray, deferred, any_hit, nearest);
-            }
-            deferred.first += 4u;
-        } while (deferred.count > deferred.first && loop_tick() && !blocker_found(any_hit, nearest));
+        trace_spheres_deferring_near_ones(ray, nearest);
         if (trace_done(any_hit, nearest)) {
             return;
         }
