@@ -16,9 +16,8 @@ namespace {
 // one atomic counter.
 constexpr std::uint32_t kTileSize = 16;
 
-// Scenes with fewer primitives render faster by brute force than through the grid:
-// measured with `vkrt bench --threshold` (random spheres, 512x512, one light), the
-// grid was 0.92x brute force at 16 spheres and 1.13x at 32 (docs/grid.md).
+// Scenes with fewer primitives render faster by brute force than through the grid on
+// this backend (docs/decisions/0002-grid-threshold.md; `vkrt bench --threshold`).
 constexpr std::uint32_t kBruteForceBelow = 32;
 
 }  // namespace

@@ -25,13 +25,8 @@ using kernel::vec3;
 using kernel::vec4;
 
 // Brute force tests the spheres a ray starts near after its loop over them
-// (DEFERRED_SPHERES) from this many spheres on. Measured on lavapipe, `vkrt bench
-// --threshold --backend vulkan` against a kernel that tested them in place, two
-// rounds: random spheres by brute force 1.1-1.6x faster at 8 to 256 spheres and no
-// slower at 1 to 4 (5 to 7 not measured); but the shipped scenes with 2 and 3
-// spheres among triangles, rings and mirrors 5-10% slower (`scripts/bench_scenes
-// 3`, two rounds). The reference's brute force on SPD balls got faster too
-// (docs/grid.md).
+// (DEFERRED_SPHERES) from this many spheres on; below it the extra loops cost more
+// than they save (docs/decisions/0003-deferred-sphere-tests.md).
 constexpr std::size_t kDeferredSpheresFrom = 8;
 
 vec4 to_vec4(const dvec3& v, double w = 0.0) {

@@ -2,14 +2,12 @@
 // Specialization on the host: the scene's feature values folded into the kernel's
 // SPIR-V, and the code they switch off removed, before the driver sees it.
 //
-// Why not leave it to the driver: lavapipe (Mesa 22.3) inlines every call of the
-// kernel's functions before it drops the branches that the specialization constants
-// switch off, and its NIR passes then take seconds over the whole inlined kernel:
-// creating the pipeline of `scenes/default.json` took 2.1-2.3 s, most of each
-// render and test on lavapipe, against 0.45 s from the specialized SPIR-V
-// (docs/architecture.md). The shader still declares its features as specialization
-// constants, and the pipeline still gets them: a driver that is given the
-// specialized module finds no constant left to set.
+// Why not leave it to the driver: lavapipe inlines every call of the kernel's
+// functions before it drops the branches that the specialization constants switch
+// off, and its passes then take seconds over the whole inlined kernel
+// (docs/decisions/0012-spirv-specialization-on-host.md). The shader still declares
+// its features as specialization constants, and the pipeline still gets them: a
+// driver that is given the specialized module finds no constant left to set.
 #include <cstdint>
 #include <span>
 #include <string>

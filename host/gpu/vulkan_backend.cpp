@@ -28,9 +28,9 @@ using Clock = std::chrono::steady_clock;
 // progress callback lively; long ones amortise the per-submission cost. Aim between.
 constexpr double kTargetSubmitSeconds = 0.25;
 
-// Scenes with fewer primitives render faster by brute force than through the grid on lavapipe:
-// measured with `vkrt bench --threshold` (random spheres, 512x512, one light), the
-// grid was 0.90x brute force at 16 spheres and 1.09x at 32 (docs/grid.md).
+// Scenes with fewer primitives render faster by brute force than through the grid, as
+// measured on lavapipe and unmeasured elsewhere (docs/decisions/0002-grid-threshold.md;
+// `vkrt bench --threshold` measures a device).
 constexpr std::uint32_t kBruteForceBelow = 32;
 constexpr std::uint32_t kMaxBatch = 256;
 // Each sample is dispatched in bands of this many workgroup rows (64 pixel rows), so
@@ -114,8 +114,8 @@ void check_dispatchable(const VulkanContext& context, const FlatScene& scene) {
 }
 
 // The pipeline, the uploaded scene and the sums buffers of one scene, kept for as
-// many passes as the caller renders: on lavapipe creating the pipeline alone takes
-// about 0.5 s (the default scene: 0.45-0.49 s), more than a pass of a small image.
+// many passes as the caller renders: creating the pipeline can take longer than a
+// pass of a small image (docs/decisions/0014-progressive-passes-one-session.md).
 class VulkanSession final : public RenderSession {
 public:
     VulkanSession(const VulkanContext& context, const FlatScene& scene)
