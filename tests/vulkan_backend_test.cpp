@@ -14,6 +14,8 @@
 
 #include "cpu/cpu_backend.hpp"
 #include "gpu/vulkan_backend.hpp"
+#include "gpu/vulkan_buffer.hpp"
+#include "gpu/vulkan_context.hpp"
 #include "gpu/vulkan_pipeline.hpp"
 #include "render/pixel_sums.hpp"
 #include "render_comp_spv.h"
@@ -187,6 +189,25 @@ TEST(VulkanBackend, NonFiniteSamplesAreCountedNotSummed) {
             }
         }
     }
+}
+
+// A grid array's view counts 4-byte texels: a buffer one texel past the device's
+// maxTexelBufferElements is refused, naming the buffer and the limit, before any
+// memory is allocated (counted in 16-byte texels it would have passed).
+TEST(VulkanBuffer, TheTexelLimitCountsTheViewsTexels) {
+    const gpu::VulkanContext context(VulkanOptions{"lavapipe", false});
+    const std::uint64_t max = context.properties().limits.maxTexelBufferElements;
+    try {
+        const gpu::VulkanBuffer refs(context, "grid refs", (max + 1) * 4, gpu::kBindingUsage, gpu::Placement::Device, 4);
+        FAIL() << "a buffer of " << max + 1 << " 4-byte texels was accepted";
+    } catch (const GpuError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("grid refs"), std::string::npos) << message;
+        EXPECT_NE(message.find("maxTexelBufferElements"), std::string::npos) << message;
+        EXPECT_NE(message.find("4-byte texels"), std::string::npos) << message;
+    }
+    EXPECT_EQ(gpu::texel_bytes(gpu::index(gpu::Binding::grid_refs)), 4u);
+    EXPECT_EQ(gpu::texel_bytes(gpu::index(gpu::Binding::spheres)), 16u);
 }
 
 TEST(VulkanBackend, SplitRangesGiveTheSameSums) {

@@ -45,13 +45,13 @@ double seconds_since(Clock::time_point start) {
 
 // A scene array as a buffer, or nothing when the scene leaves it out.
 template <typename T>
-std::optional<VulkanBuffer> array_buffer(const VulkanContext& context, const char* name,
+std::optional<VulkanBuffer> array_buffer(const VulkanContext& context, std::uint32_t binding, const char* name,
                                          const std::vector<T>& items) {
     if (items.empty()) {
         return std::nullopt;
     }
     std::optional<VulkanBuffer> buffer;
-    buffer.emplace(context, name, items.size() * sizeof(T), kBindingUsage);
+    buffer.emplace(context, name, items.size() * sizeof(T), kBindingUsage, Placement::Device, texel_bytes(binding));
     buffer->upload(items.data(), buffer->size());
     return buffer;
 }
@@ -61,7 +61,7 @@ std::array<std::optional<VulkanBuffer>, kBindingCount> upload_scene_buffers(cons
                                                                             const FlatScene& scene) {
     std::array<std::optional<VulkanBuffer>, kBindingCount> buffers;
 #define SCENE_BUFFER(binding, name, Element, load, format) \
-    buffers[binding] = array_buffer(context, #name, scene.name);
+    buffers[binding] = array_buffer(context, binding, #name, scene.name);
 #include "kernel/bindings.glsl"
     return buffers;
 }

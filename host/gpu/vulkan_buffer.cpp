@@ -24,32 +24,31 @@ std::uint32_t find_memory_type(const VkPhysicalDeviceMemoryProperties& memory,
     return UINT32_MAX;
 }
 
-// Buffers are bound only as texel buffers (render.comp says why), so that is the limit
-// to check.
+// The renderer binds texel buffers only (docs/decisions/0001-texel-buffers.md), so
+// that is the limit to check.
 void check_range(const VulkanContext& context, const std::string& name, VkDeviceSize size,
-                 VkBufferUsageFlags usage) {
+                 VkBufferUsageFlags usage, std::uint32_t texel_bytes) {
     const VkPhysicalDeviceLimits& limits = context.properties().limits;
     auto fail = [&](const std::string& limit) {
         throw GpuError("buffer '" + name + "' needs " + std::to_string(size) +
                        " bytes, more than this device's " + limit);
     };
-    // Texel buffers are viewed as 16-byte texels (render.comp).
     if ((usage & (VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT)) &&
-        size / 16 > limits.maxTexelBufferElements) {
-        fail("maxTexelBufferElements of " + std::to_string(limits.maxTexelBufferElements) +
-             " 16-byte texels");
+        size / texel_bytes > limits.maxTexelBufferElements) {
+        fail("maxTexelBufferElements of " + std::to_string(limits.maxTexelBufferElements) + " " +
+             std::to_string(texel_bytes) + "-byte texels");
     }
 }
 
 }  // namespace
 
 VulkanBuffer::VulkanBuffer(const VulkanContext& context, std::string name, VkDeviceSize size,
-                           VkBufferUsageFlags usage, Placement placement)
+                           VkBufferUsageFlags usage, Placement placement, std::uint32_t texel_bytes)
     : context_(&context), name_(std::move(name)), size_(size) {
     if (size == 0) {
         throw GpuError("buffer '" + name_ + "' would be empty");
     }
-    check_range(context, name_, size, usage);
+    check_range(context, name_, size, usage, texel_bytes);
     VkBufferCreateInfo info{};
     info.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
     info.size = size;

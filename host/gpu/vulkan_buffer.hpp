@@ -3,6 +3,7 @@
 // that is both device-local and host-mapped (lavapipe, integrated GPUs, resizable-BAR
 // GPUs), the buffer is mapped once and copies are memcpy; otherwise it lives in
 // device-local memory and copies go through a temporary staging buffer.
+#include <cstdint>
 #include <functional>
 #include <string>
 
@@ -18,11 +19,11 @@ enum class Placement {
 class VulkanBuffer {
 public:
     // `usage` is how shaders bind it; transfer usage is added as the placement needs.
-    // The size is checked against the limits of uniform and texel buffers, the only
-    // kinds render.comp binds.
-    // `name` appears in error messages.
+    // A texel buffer's size is checked against maxTexelBufferElements, counted in
+    // texels of `texel_bytes` (16 for rgba32ui, 4 for r32ui), before any memory is
+    // allocated. `name` appears in error messages.
     VulkanBuffer(const VulkanContext& context, std::string name, VkDeviceSize size,
-                 VkBufferUsageFlags usage, Placement placement = Placement::Device);
+                 VkBufferUsageFlags usage, Placement placement = Placement::Device, std::uint32_t texel_bytes = 16);
 
     VkBuffer get() const { return buffer_.get(); }
     VkDeviceSize size() const { return size_; }

@@ -42,6 +42,10 @@ VkFormat texel_format(std::uint32_t binding) {
     }
 }
 
+std::uint32_t texel_bytes(std::uint32_t binding) {
+    return texel_format(binding) == VK_FORMAT_R32_UINT ? 4u : 16u;
+}
+
 Pipeline make_compute_pipeline(VkDevice device, std::span<const std::uint32_t> spirv,
                                std::span<const VkDescriptorType> types, std::uint32_t push_bytes,
                                const VkSpecializationInfo* specialization) {

@@ -28,8 +28,9 @@ constexpr std::uint32_t kBindingCount = 0
 #include "kernel/bindings.glsl"
     ;
 constexpr std::uint32_t index(Binding b) { return static_cast<std::uint32_t>(b); }
-// Each binding's texel format, by binding number.
+// Each binding's texel format, by binding number, and the bytes of one texel.
 VkFormat texel_format(std::uint32_t binding);
+std::uint32_t texel_bytes(std::uint32_t binding);
 
 constexpr std::uint32_t kLocalSize = 8;   // local_size_x and _y of render.comp
 constexpr std::uint32_t kPushBytes = 16;  // uvec4 pass
