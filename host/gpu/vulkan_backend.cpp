@@ -209,9 +209,12 @@ RenderResult VulkanSession::render(SampleRange samples, const ProgressCallback& 
             for (std::uint32_t item = done; item < done + n; ++item) {
                 const std::uint32_t sample = samples.first + item / bands;
                 const std::uint32_t band = item % bands;
-                // Each dispatch adds to the sums an earlier one wrote (also across
-                // batches: a barrier's scope spans earlier submissions).
-                if (item != 0) {
+                // A sample adds to the sums the previous sample wrote: one barrier
+                // where a sample starts orders all of the previous one before all of
+                // it, across batches too (a barrier's scope spans earlier
+                // submissions). The bands of one sample write disjoint rows and may
+                // overlap on a GPU.
+                if (item != 0 && band == 0) {
                     memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                                    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, kShaderAccess);
                 }
