@@ -11,11 +11,11 @@ namespace {
 // Spelled out: the macro lives in vulkan_beta.h, which a portable build need not include.
 constexpr const char* kPortabilitySubset = "VK_KHR_portability_subset";
 
+}  // namespace
+
 bool offers(const std::vector<std::string>& offered, const char* name) {
     return std::find(offered.begin(), offered.end(), name) != offered.end();
 }
-
-}  // namespace
 
 InstanceSetup instance_setup(const std::vector<std::string>& offered, bool validation) {
     InstanceSetup setup;

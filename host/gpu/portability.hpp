@@ -21,6 +21,9 @@ struct InstanceSetup {
 // validation's two extensions when asked, portability enumeration when offered.
 InstanceSetup instance_setup(const std::vector<std::string>& offered, bool validation);
 
+// Whether `name` is among the extensions `offered`.
+bool offers(const std::vector<std::string>& offered, const char* name);
+
 // What a device enables, given the device extensions it offers.
 std::vector<const char*> device_extensions(const std::vector<std::string>& offered);
 

@@ -110,21 +110,17 @@ void VulkanBuffer::allocate(VkMemoryPropertyFlags wanted, VkMemoryPropertyFlags 
 }
 
 void VulkanBuffer::upload(const void* data, VkDeviceSize bytes) {
-    upload_with(bytes, [&](void* target) { std::memcpy(target, data, bytes); });
-}
-
-void VulkanBuffer::upload_with(VkDeviceSize bytes, const std::function<void(void*)>& write) {
     if (bytes > size_) {
         throw GpuError("upload of " + std::to_string(bytes) + " bytes into buffer '" + name_ +
                        "' of " + std::to_string(size_));
     }
     if (mapped_) {
         // Coherent memory: vkQueueSubmit makes host writes visible to later commands.
-        write(mapped_);
+        std::memcpy(mapped_, data, bytes);
         return;
     }
     VulkanBuffer staging(*context_, name_ + " (staging)", bytes, 0, Placement::Staging);
-    staging.upload_with(bytes, write);
+    staging.upload(data, bytes);
     context_->submit_and_wait([&](VkCommandBuffer cmd) {
         const VkBufferCopy region{0, 0, bytes};
         vkCmdCopyBuffer(cmd, staging.get(), buffer_.get(), 1, &region);

@@ -4,7 +4,6 @@
 // GPUs), the buffer is mapped once and copies are memcpy; otherwise it lives in
 // device-local memory and copies go through a temporary staging buffer.
 #include <cstdint>
-#include <functional>
 #include <string>
 
 #include "gpu/vulkan_context.hpp"
@@ -31,10 +30,6 @@ public:
 
     // Both wait for the device; they are meant for setup and the final read-back.
     void upload(const void* data, VkDeviceSize bytes);
-    // Has `write` fill the first `bytes` in host memory: the buffer's own where it is
-    // mapped, else a staging buffer's. For contents computed at upload, which then
-    // need no host array of their own.
-    void upload_with(VkDeviceSize bytes, const std::function<void(void*)>& write);
     void readback(void* data, VkDeviceSize bytes) const;
 
 private:

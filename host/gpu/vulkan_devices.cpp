@@ -46,8 +46,7 @@ std::uint32_t compute_family(const std::vector<VkQueueFamilyProperties>& familie
 namespace {
 
 bool has_device_extension(VkPhysicalDevice device, const char* name) {
-    const std::vector<std::string> offered = offered_device_extensions(device);
-    return std::find(offered.begin(), offered.end(), name) != offered.end();
+    return offers(offered_device_extensions(device), name);
 }
 
 std::string type_name(VkPhysicalDeviceType type) {
