@@ -3,6 +3,7 @@
 // and adds it to that pixel's sums. All the maths lives in kernel/, shared with the
 // C++ reference renderer.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
@@ -13,36 +14,70 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "kernel/layout.glsl"
 #include "kernel/sums.glsl"
 
-// The buffers (kernel/bindings.glsl): storage texel buffers, the scene's read only.
-// Not storage or uniform buffers: docs/decisions/0001-texel-buffers.md has the
-// measurements. Storage texel buffers count against a device's storage-image limits,
-// whose guaranteed minimum is 4: device selection (gpu/vulkan_devices.cpp) asks for
-// one per binding.
-#define PARAMS_BUFFER(binding_, name) \
-    layout(binding = binding_, rgba32ui) uniform readonly uimageBuffer name##_texels;
-#define SCENE_BUFFER(binding_, name, Element, load, format) \
-    layout(binding = binding_, format) uniform readonly uimageBuffer name##_texels;
-#define OUTPUT_BUFFER(binding_, name, Element, format) \
-    layout(binding = binding_, format) uniform uimageBuffer name##_texels;
-#include "kernel/bindings.glsl"
-layout(push_constant) uniform PassBlock { uvec4 pass; };   // x = sample index, y = first row of the band
+// The descriptor set (render_bindings.glsl). Texel buffers by default: lavapipe
+// compiles storage-buffer and uniform loads badly
+// (docs/decisions/0001-texel-buffers.md); a device picks the others through the
+// device choices.
+#define TEXEL_BINDING(binding_, name, format, access) \
+    layout(binding = binding_, format) uniform access uimageBuffer name;
+#define STORAGE_BINDING(binding_, name, access) \
+    layout(std430, binding = binding_) access buffer name##_block { uvec4 texels[]; } name;
+#define UNIFORM_BINDING(binding_, name) \
+    layout(std140, binding = binding_) uniform name##_block { uvec4 texels[PARAM_TEXELS]; } name;
+#define DEVICE_CHOICE(id, name) layout(constant_id = id) const bool name = false;
+#include "render_bindings.glsl"
+// x = sample index; y, z = the tile's first pixel column and row; w = the first row
+// of the slab of rows the pixel buffer holds.
+layout(push_constant) uniform PassBlock { uvec4 pass; };
 
-// Read once per invocation by main(), from a texel buffer rather than a uniform
-// buffer, so that no driver folds its values into the shader and compiles a variant
-// per dispatch (docs/decisions/0001-texel-buffers.md).
+// Read once per invocation by main().
 Params params;
-// Element i of a scene buffer, from the texels of its image (loads.glsl). Macros, not
-// functions: an image parameter would lose the format imageLoad needs.
-#define fetch_texel(buffer, i) imageLoad(buffer, int(i))
-#define fetch_vec4(buffer, i) uintBitsToFloat(fetch_texel(buffer, i))
-#define uint_FROM_TEXELS(buffer, i) imageLoad(buffer, int(i)).x
-#define LOAD_ELEMENT(Element, name, i) Element##_FROM_TEXELS(name##_texels, i)
+uint scene_words_start();   // kernel/param_access.glsl, from params.glsl
+
+// Texel t of the scene buffer, and word w of its r32ui arrays.
+uvec4 scene_texel(uint t) {
+    if (SCENE_IN_STORAGE_BUFFERS) {
+        return scene_storage.texels[t];
+    }
+    return imageLoad(scene_texels, int(t));
+}
+
+uint scene_word(uint w) {
+    if (SCENE_IN_STORAGE_BUFFERS) {
+        const uint i = scene_words_start() * 4u + w;
+        return scene_storage.texels[i >> 2u][i & 3u];
+    }
+    return imageLoad(scene_words, int(w)).x;
+}
+
+uvec4 load_pixel_texel(uint t) {
+    if (SCENE_IN_STORAGE_BUFFERS) {
+        return pixel_storage.texels[t];
+    }
+    return imageLoad(pixel_texels, int(t));
+}
+
+void store_pixel_texel(uint t, uvec4 value) {
+    if (SCENE_IN_STORAGE_BUFFERS) {
+        pixel_storage.texels[t] = value;
+    } else {
+        imageStore(pixel_texels, int(t), value);
+    }
+}
+
+// Element i of a scene array (loads.glsl): its texels from the array's base on.
+#define fetch_texel(array, t) scene_texel(array##_base() + (t))
+#define fetch_vec4(array, t) uintBitsToFloat(fetch_texel(array, t))
+#define uint_FROM_TEXELS(array, i) scene_word(array##_base() + (i))
+#define LOAD_ELEMENT(Element, name, i) Element##_FROM_TEXELS(name, i)
 
 #include "kernel/all.glsl"
 
 void main() {
-    for (uint i = 0u; i < PARAM_TEXELS; ++i) {
-        params.texels[i] = imageLoad(params_texels, int(i));
+    // Unrolled, so that every accessor reads a register: a loop the driver keeps
+    // would index `params` at run time and put it in memory.
+    [[unroll]] for (uint i = 0u; i < PARAM_TEXELS; ++i) {
+        params.texels[i] = PARAMS_IN_UNIFORM_BUFFER ? params_uniform.texels[i] : imageLoad(params_texels, int(i));
     }
     // Each row of 8 invocations renders a 4x2 block of pixels, not a row of 8: an
     // 8-lane SIMD vector then traces rays that agree more often on where they go
@@ -50,23 +85,21 @@ void main() {
     // which pixel changes; every pixel's sample is the same.
     uint row = gl_LocalInvocationID.y;
     uint lane = gl_LocalInvocationID.x;
-    uint px = gl_WorkGroupID.x * 8u + (row & 1u) * 4u + (lane & 3u);
-    uint py = gl_WorkGroupID.y * 8u + (row >> 1u) * 2u + (lane >> 2u) + pass.y;
+    uint px = pass.y + gl_WorkGroupID.x * 8u + (row & 1u) * 4u + (lane & 3u);
+    uint py = pass.z + gl_WorkGroupID.y * 8u + (row >> 1u) * 2u + (lane >> 2u);
     if (px >= image_width() || py >= image_height()) {
         return;
     }
-    uint index = py * image_width() + px;
-    PixelSum sum = PixelSum(fetch_texel(sums_texels, 3u * index), fetch_texel(sums_texels, 3u * index + 1u),
-                            fetch_texel(sums_texels, 3u * index + 2u));
-    Counters counts = Counters(fetch_texel(counters_texels, 4u * index), fetch_texel(counters_texels, 4u * index + 1u),
-                               fetch_texel(counters_texels, 4u * index + 2u),
-                               fetch_texel(counters_texels, 4u * index + 3u));
+    uint first = ((py - pass.w) * image_width() + px) * PIXEL_TEXELS;
+    PixelSum sum = PixelSum(load_pixel_texel(first), load_pixel_texel(first + 1u), load_pixel_texel(first + 2u));
+    Counters counts = Counters(load_pixel_texel(first + 3u), load_pixel_texel(first + 4u),
+                               load_pixel_texel(first + 5u), load_pixel_texel(first + 6u));
     accumulate_sample(render_sample(px, py, pass.x), sum, counts);
-    imageStore(sums_texels, int(3u * index), sum.red);
-    imageStore(sums_texels, int(3u * index + 1u), sum.green);
-    imageStore(sums_texels, int(3u * index + 2u), sum.blue);
-    imageStore(counters_texels, int(4u * index), counts.rays);
-    imageStore(counters_texels, int(4u * index + 1u), counts.work);
-    imageStore(counters_texels, int(4u * index + 2u), counts.tree);
-    imageStore(counters_texels, int(4u * index + 3u), counts.paths);
+    store_pixel_texel(first, sum.red);
+    store_pixel_texel(first + 1u, sum.green);
+    store_pixel_texel(first + 2u, sum.blue);
+    store_pixel_texel(first + 3u, counts.rays);
+    store_pixel_texel(first + 4u, counts.work);
+    store_pixel_texel(first + 5u, counts.tree);
+    store_pixel_texel(first + 6u, counts.paths);
 }

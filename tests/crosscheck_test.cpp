@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "gpu/device_limits.hpp"
 #include "gpu/float_probe.hpp"
 #include "image/compare.hpp"
 #include "probe/cpu_float_probe.hpp"
@@ -93,6 +94,47 @@ TEST_P(CrossCheck, VulkanMatchesReference) {
     EXPECT_GT(sum / double(cpu.image.rgb.size()), 0.01);
 }
 
+// The same device clamped to a profile's limits (gpu/device_limits.hpp) plans other
+// data paths, slabs and staging copies; none may change a bit of the image.
+TEST_P(CrossCheck, DeviceProfilesGiveTheSameImage) {
+    const Scene scene = test::load_at_size(GetParam(), 64, 48);
+    const RenderOutcome own = test::render_vulkan(scene);
+    for (const gpu::DeviceProfile& profile : gpu::device_profiles()) {
+        VulkanOptions options;
+        options.profile = std::string(profile.name);
+        const RenderOutcome clamped = test::render_vulkan_with(scene, options);
+        EXPECT_EQ(test::max_abs_difference(clamped.image, own.image), 0.0f) << profile.name;
+        EXPECT_EQ(clamped.stats.rays(), own.stats.rays()) << profile.name;
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Scenes, CrossCheck, ::testing::ValuesIn(vkrt::test::repo_scenes()), test::scene_test_name);
+
+// At the specification's minimum a 200x150 image is rendered in slabs of 40 rows,
+// and scenes go to storage buffers when too large for 65,536 texels or when forced:
+// the same image as the device's own plan.
+class MinimumLimits : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(MinimumLimits, SlabsAndStorageBuffersGiveTheSameImage) {
+    const Scene scene = test::load_at_size(test::source_dir() / GetParam(), 200, 150);
+    const RenderOutcome own = test::render_vulkan(scene);
+    VulkanOptions minimum;
+    minimum.profile = "minimum";
+    const RenderOutcome slabs = test::render_vulkan_with(scene, minimum);
+    // 100,000 spheres need 3.2 MB, more than 65,536 texels: storage buffers, which
+    // hold the whole image.
+    const bool large = std::string(GetParam()).find("h_random_spheres") != std::string::npos;
+    EXPECT_EQ(slabs.stats.data_paths.find("scene: storage") != std::string::npos, large) << slabs.stats.data_paths;
+    EXPECT_EQ(slabs.stats.slabs, large ? 1u : 4u) << slabs.stats.data_paths;
+    EXPECT_EQ(test::max_abs_difference(slabs.image, own.image), 0.0f);
+    minimum.scene_path = gpu::PathChoice::Other;
+    const RenderOutcome storage = test::render_vulkan_with(scene, minimum);
+    EXPECT_NE(storage.stats.data_paths.find("scene: storage"), std::string::npos) << storage.stats.data_paths;
+    EXPECT_EQ(test::max_abs_difference(storage.image, own.image), 0.0f);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, MinimumLimits,
+                         ::testing::Values("scenes/default.json", "scenes/gallery/h_random_spheres.json",
+                                           "scenes/spd/teapot.nff.gz"));
 
 }  // namespace

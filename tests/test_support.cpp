@@ -110,8 +110,11 @@ RenderOutcome render_cpu(const Scene& scene) {
     return render_scene(scene, *backend);
 }
 
-RenderOutcome render_vulkan(const Scene& scene) {
-    auto backend = make_vulkan_backend(VulkanOptions{"", true});
+RenderOutcome render_vulkan(const Scene& scene) { return render_vulkan_with(scene, VulkanOptions{}); }
+
+RenderOutcome render_vulkan_with(const Scene& scene, VulkanOptions options) {
+    options.validation = true;
+    auto backend = make_vulkan_backend(options);
     RenderOutcome out = render_scene(scene, *backend);
     // Every Vulkan render in the tests runs under the validation layer, and any
     // message it prints fails the test that rendered.

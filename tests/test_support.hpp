@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "gpu/vulkan_backend.hpp"
 #include "render/render.hpp"
 #include "scene/scene.hpp"
 
@@ -73,5 +74,7 @@ float max_abs_difference(const Image& a, const Image& b);
 RenderOutcome render_cpu(const Scene& scene);
 // Runs with the Khronos validation layer on; any validation message fails the test.
 RenderOutcome render_vulkan(const Scene& scene);
+// The same on the device and data paths `options` choose (validation forced on).
+RenderOutcome render_vulkan_with(const Scene& scene, VulkanOptions options);
 
 }  // namespace vkrt::test

@@ -28,8 +28,8 @@ kernel::Kernel make_kernel(const FlatScene& scene) {
 #include "kernel/features.glsl"
 #undef FEATURE
     k.params = scene.params;
-#define SCENE_BUFFER(binding, name, Element, load, format) k.name = scene.name;
-#include "kernel/bindings.glsl"
+#define SCENE_ARRAY(name, Element, load, format) k.name = scene.name;
+#include "kernel/arrays.glsl"
     return k;
 }
 

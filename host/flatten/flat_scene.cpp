@@ -24,11 +24,6 @@ using kernel::uvec4;
 using kernel::vec3;
 using kernel::vec4;
 
-// Brute force tests the spheres a ray starts near after its loop over them
-// (DEFERRED_SPHERES) from this many spheres on; below it the extra loops cost more
-// than they save (docs/decisions/0003-deferred-sphere-tests.md).
-constexpr std::size_t kDeferredSpheresFrom = 8;
-
 vec4 to_vec4(const dvec3& v, double w = 0.0) {
     return vec4(static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z),
                 static_cast<float>(w));
@@ -293,9 +288,9 @@ void add_grid(const Scene& scene, const AccelPolicy& policy, FlatScene& g) {
 
 std::vector<BufferSize> FlatScene::built_buffers() const {
     std::vector<BufferSize> out;
-#define SCENE_BUFFER(binding, name, Element, load, format) \
+#define SCENE_ARRAY(name, Element, load, format) \
     if (!name.empty()) out.push_back({#name, bytes(name)});
-#include "kernel/bindings.glsl"
+#include "kernel/arrays.glsl"
     std::sort(out.begin(), out.end(), [](const BufferSize& a, const BufferSize& b) { return a.name < b.name; });
     return out;
 }
@@ -373,7 +368,7 @@ FlatScene flatten_scene(const Scene& scene, const AccelPolicy& policy) {
                             policy, g.grid.reason);
     if (g.grid.used) add_grid(scene, policy, g);
     g.features.set(Feature::HAS_GRID, g.grid.used);
-    g.features.set(Feature::DEFERRED_SPHERES, !g.grid.used && g.spheres.size() >= kDeferredSpheresFrom);
+    g.features.set(Feature::DEFERRED_SPHERES, !g.grid.used && g.spheres.size() >= policy.deferred_spheres_from);
     return g;
 }
 

@@ -27,10 +27,10 @@ struct FlatScene {
     // kernel computes is at origin + that point in the scene.
     dvec3 origin{0.0};
     FeatureSet features;
-    // One array per scene buffer of kernel/bindings.glsl (materials, spheres, ...,
+    // One array per line of kernel/arrays.glsl (materials, spheres, ...,
     // grid_refs), uploaded as it is. An array only left-out features read stays empty.
-#define SCENE_BUFFER(binding, name, Element, load, format) std::vector<kernel::Element> name;
-#include "kernel/bindings.glsl"
+#define SCENE_ARRAY(name, Element, load, format) std::vector<kernel::Element> name;
+#include "kernel/arrays.glsl"
     GridStats grid;
     std::uint32_t samples_per_pixel = 1;
     // The SPD rule (render.corners): the kernel traces one ray through each pixel

@@ -1,18 +1,23 @@
-// The Vulkan backend: one compute pipeline specialised for the scene's feature set,
-// one dispatch per sample index and band of rows, submitted in batches sized to the
-// device's speed; a session keeps all of it for pass after pass.
+// The Vulkan backend: one compute pipeline specialised for the scene's feature set
+// and the device's data paths, one dispatch per sample index and tile, submitted in
+// batches planned to stay under a bound; a session keeps all of it for pass after
+// pass, and makes it again on a new device when the device is lost.
 #include "gpu/vulkan_backend.hpp"
 
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstring>
 #include <optional>
 #include <vector>
 
-#include "gpu/band_batcher.hpp"
 #include "gpu/batch_timer.hpp"
+#include "gpu/data_paths.hpp"
+#include "gpu/device_class.hpp"
+#include "gpu/scene_pack.hpp"
+#include "gpu/tile_batcher.hpp"
 #include "gpu/vulkan_buffer.hpp"
 #include "gpu/vulkan_context.hpp"
 #include "gpu/vulkan_pipeline.hpp"
@@ -24,56 +29,30 @@ namespace {
 using namespace gpu;
 using Clock = std::chrono::steady_clock;
 
-// Short submissions keep a GPU's watchdog away (Windows' TDR fires at 2 s) and the
-// progress callback lively; long ones amortise the per-submission cost. Aim between.
-constexpr double kTargetSubmitSeconds = 0.25;
-
-// Scenes with fewer primitives render faster by brute force than through the grid, as
-// measured on lavapipe and unmeasured elsewhere (docs/decisions/0002-grid-threshold.md;
-// `vkrt bench --threshold` measures a device).
-constexpr std::uint32_t kBruteForceBelow = 32;
+// Tiles start this size; while one tile of one sample alone takes longer than the
+// bound, they are halved from the next sample on, down to one 8x8 workgroup.
+constexpr std::uint32_t kStartTileWidth = 256;
+constexpr std::uint32_t kStartTileHeight = 64;
 constexpr std::uint32_t kMaxBatch = 256;
-// Each sample is dispatched in bands of this many workgroup rows (64 pixel rows), so
-// that one dispatch of a slow scene stays short and progress moves within a sample.
-constexpr std::uint32_t kBandGroups = 8;
-// The dispatches read the sums and write them back: what each barrier before one covers.
+// A pass is rendered again on a new device at most this many times.
+constexpr std::uint32_t kDeviceResets = 2;
 constexpr VkAccessFlags kShaderAccess = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+constexpr std::uint32_t kProgressUnits = 1u << 20;
+// The largest minTexelBufferOffsetAlignment the specification allows, in bytes.
+constexpr std::uint32_t kMaxTexelOffsetAlignment = 256;
 
 double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// A scene array as a buffer, or nothing when the scene leaves it out.
-template <typename T>
-std::optional<VulkanBuffer> array_buffer(const VulkanContext& context, std::uint32_t binding, const char* name,
-                                         const std::vector<T>& items) {
-    if (items.empty()) {
-        return std::nullopt;
-    }
-    std::optional<VulkanBuffer> buffer;
-    buffer.emplace(context, name, items.size() * sizeof(T), kBindingUsage, Placement::Device, texel_bytes(binding));
-    buffer->upload(items.data(), buffer->size());
-    return buffer;
-}
-
-// The scene's arrays, one buffer per SCENE_BUFFER line of kernel/bindings.glsl.
-std::array<std::optional<VulkanBuffer>, kBindingCount> upload_scene_buffers(const VulkanContext& context,
-                                                                            const FlatScene& scene) {
-    std::array<std::optional<VulkanBuffer>, kBindingCount> buffers;
-#define SCENE_BUFFER(binding, name, Element, load, format) \
-    buffers[binding] = array_buffer(context, binding, #name, scene.name);
-#include "kernel/bindings.glsl"
-    return buffers;
-}
-
-// The kernel trusts the counts in Params; an index past a buffer's end would be an
-// out-of-bounds read on the device, so the counts are checked here, once.
+// The kernel trusts the counts in Params; an index past an array's end would read
+// another array or past the buffer, so the counts are checked here, once.
 void check_counts(const FlatScene& scene) {
     const kernel::Params& p = scene.params;
     auto check = [](const char* what, std::size_t count, std::size_t size) {
         if (count > size) {
             throw GpuError(std::string("scene: params count of ") + what + " (" + std::to_string(count) +
-                           ") exceeds its buffer (" + std::to_string(size) + ")");
+                           ") exceeds its array (" + std::to_string(size) + ")");
         }
     };
     const FeatureSet& f = scene.features;
@@ -96,180 +75,341 @@ void check_counts(const FlatScene& scene) {
     }
 }
 
-// Refuses, before anything is created, a scene this device cannot dispatch.
-void check_dispatchable(const VulkanContext& context, const FlatScene& scene) {
-    const std::uint32_t width = scene.width();
-    const std::uint32_t height = scene.height();
-    if (scene.pixel_count() == 0) {
-        throw GpuError("scene: the image has no pixels (" + std::to_string(width) + "x" +
-                       std::to_string(height) + ")");
-    }
-    const VkPhysicalDeviceLimits& limits = context.properties().limits;
-    if ((width + kLocalSize - 1) / kLocalSize > limits.maxComputeWorkGroupCount[0] ||
-        (height + kLocalSize - 1) / kLocalSize > limits.maxComputeWorkGroupCount[1]) {
-        throw GpuError("image " + std::to_string(width) + "x" + std::to_string(height) +
-                       " needs more workgroups than this device dispatches at once");
-    }
-    check_counts(scene);
+std::string describe(const DataPaths& paths) {
+    return std::string("scene: ") + (paths.scene_in_storage ? "storage" : "texel") + " buffers, params: " +
+           (paths.params_in_uniform ? "uniform" : "texel") + " buffer";
 }
 
-// The pipeline, the uploaded scene and the sums buffers of one scene, kept for as
-// many passes as the caller renders: creating the pipeline can take longer than a
-// pass of a small image (docs/decisions/0014-progressive-passes-one-session.md).
+// Everything a session makes on one device: lost with the device, made again on a
+// new one.
+struct DeviceState {
+    DeviceState(const VulkanContext& context, const FlatScene& scene)
+        : pack(pack_scene(scene, std::max(context.limits().texel_offset_alignment / 16, 1u))),
+          paths(plan_data_paths(context.limits(), context.cpu_device(),
+                                {pack.texels.size(), pack.words_start, pack.word_count, scene.width(), scene.height()},
+                                context.options().scene_path, context.options().params_path)),
+          pipeline(make_pipeline(context, scene.features, paths)),
+          params(context, "params", sizeof(kernel::Params), kBindingUsage),
+          // Stands in for every binding the data paths leave unread: the shader still
+          // declares it, but nothing reads it.
+          dummy(context, "unused", 512, kBindingUsage),
+          scene_buffer(context, "scene", pack.bytes(), kBindingUsage),
+          pixels(context, "pixels", slab_bytes(scene), kBindingUsage),
+          timer(context) {
+        params.upload(&pack.params, sizeof(kernel::Params));
+        scene_buffer.upload(pack.texels.data(), pack.bytes());
+        // The CPU reads the sums through its caches: where the pixel buffer is not
+        // such memory, each slab's last batch copies it into a buffer that is.
+        if (!pixels.host_cached()) {
+            readback.emplace(context, "pixels (read-back)", pixels.size(), 0, Placement::Readback);
+        }
+        views = write_descriptors(context.device(), pipeline.set, bound());
+        context.submit_and_wait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, dummy.get(), 0, VK_WHOLE_SIZE, 0); });
+    }
+
+    VkDeviceSize slab_bytes(const FlatScene& scene) const {
+        return VkDeviceSize(paths.slab_rows) * scene.width() * kernel::PIXEL_TEXELS * 16;
+    }
+
+    // What each binding of render_bindings.glsl is bound to.
+    std::array<BoundRange, kBindingCount> bound() const {
+        std::array<BoundRange, kBindingCount> b;
+        b.fill({&dummy, 0, VK_WHOLE_SIZE});
+        b[index(Binding::params_texels)] = {&params, 0, VK_WHOLE_SIZE};
+        b[index(Binding::params_uniform)] = {&params, 0, VK_WHOLE_SIZE};
+        if (paths.scene_in_storage) {
+            b[index(Binding::scene_storage)] = {&scene_buffer, 0, VK_WHOLE_SIZE};
+            b[index(Binding::pixel_storage)] = {&pixels, 0, VK_WHOLE_SIZE};
+        } else {
+            b[index(Binding::scene_texels)] = {&scene_buffer, 0, std::max<VkDeviceSize>(pack.words_start, 1) * 16};
+            if (pack.word_count != 0) {
+                b[index(Binding::scene_words)] = {&scene_buffer, VkDeviceSize(pack.words_start) * 16,
+                                                  VkDeviceSize(pack.word_count) * 4};
+            }
+            b[index(Binding::pixel_texels)] = {&pixels, 0, VK_WHOLE_SIZE};
+        }
+        return b;
+    }
+
+    ScenePack pack;
+    DataPaths paths;
+    Pipeline pipeline;
+    VulkanBuffer params;
+    VulkanBuffer dummy;
+    VulkanBuffer scene_buffer;
+    VulkanBuffer pixels;
+    std::optional<VulkanBuffer> readback;
+    std::vector<BufferView> views;
+    BatchTimer timer;
+};
+
+class VulkanBackend;
+
+// The device state of one scene, kept for as many passes as the caller renders:
+// creating the pipeline can take longer than a pass of a small image
+// (docs/decisions/0014-progressive-passes-one-session.md).
 class VulkanSession final : public RenderSession {
 public:
-    VulkanSession(const VulkanContext& context, const FlatScene& scene)
-        : context_(context),
-          width_(scene.width()),
-          height_(scene.height()),
-          groups_x_((width_ + kLocalSize - 1) / kLocalSize),
-          groups_y_((height_ + kLocalSize - 1) / kLocalSize),
-          setup_start_(Clock::now()),
-          pipeline_(make_pipeline(context, scene.features)),
-          params_(context, "params", sizeof(kernel::Params), kBindingUsage),
-          // Stands in for every array the scene leaves out: the shader still declares
-          // the binding, but with the feature off nothing reads it.
-          dummy_(context, "unused", 16, kBindingUsage),
-          sums_(context, "sums", scene.pixel_count() * sizeof(kernel::PixelSum), kBindingUsage),
-          counters_(context, "counters", scene.pixel_count() * sizeof(kernel::Counters), kBindingUsage),
-          scene_buffers_(upload_scene_buffers(context, scene)),
-          views_(write_descriptors(context.device(), pipeline_.set, bound_buffers())),
-          timer_(context),
-          batcher_(((groups_y_ + kBandGroups - 1) / kBandGroups), kTargetSubmitSeconds, kMaxBatch) {
-        params_.upload(&scene.params, sizeof(kernel::Params));
-        context_.submit_and_wait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, dummy_.get(), 0, VK_WHOLE_SIZE, 0); });
-        setup_seconds_ = seconds_since(setup_start_);
-    }
+    VulkanSession(VulkanBackend& backend, const FlatScene& scene);
 
     double setup_seconds() const override { return setup_seconds_; }
     RenderResult render(SampleRange samples, const ProgressCallback& progress) override;
 
 private:
-    // The buffer of each binding (kernel/bindings.glsl), the dummy for an empty array.
-    std::array<const VulkanBuffer*, kBindingCount> bound_buffers() const {
-        std::array<const VulkanBuffer*, kBindingCount> buffers{};
-        for (std::uint32_t i = 0; i < kBindingCount; ++i) {
-            buffers[i] = scene_buffers_[i] ? &*scene_buffers_[i] : &dummy_;
-        }
-        buffers[index(Binding::params)] = &params_;
-        buffers[index(Binding::sums)] = &sums_;
-        buffers[index(Binding::counters)] = &counters_;
-        return buffers;
-    }
+    RenderResult render_once(SampleRange samples, const ProgressCallback& progress);
+    bool split_tiles();
+    void render_slab(SampleRange samples, std::uint32_t first_row, std::uint32_t rows, RenderResult& result,
+                     const std::function<void(double)>& progress);
 
-    const VulkanContext& context_;
-    std::uint32_t width_, height_, groups_x_, groups_y_;
-    Clock::time_point setup_start_;
-    Pipeline pipeline_;
-    VulkanBuffer params_;
-    VulkanBuffer dummy_;
-    VulkanBuffer sums_;
-    VulkanBuffer counters_;
-    std::array<std::optional<VulkanBuffer>, kBindingCount> scene_buffers_;  // by binding; empty: none
-    std::vector<BufferView> views_;
-    BatchTimer timer_;
-    // Dispatches per submission, from the bands' measured costs; kept from pass to
-    // pass so that a later pass need not measure them again.
-    BandBatcher batcher_;
+    VulkanBackend& backend_;
+    const FlatScene& scene_;
+    std::uint32_t width_, height_;
+    double bound_;
+    std::unique_ptr<DeviceState> state_;
+    // The tiles and their measured costs, kept from pass to pass so that a later
+    // pass need not measure them again.
+    std::uint32_t tile_width_ = kStartTileWidth, tile_height_ = kStartTileHeight;
+    std::optional<Tiling> tiling_;
+    std::optional<TileBatcher> batcher_;
     double setup_seconds_ = 0.0;
 };
 
-RenderResult VulkanSession::render(SampleRange samples, const ProgressCallback& progress) {
-    // Each pass starts from zero sums; the barrier orders the fill after the previous
-    // pass's shader writes (also across submissions: a barrier's scope spans them).
-    context_.submit_and_wait([&](VkCommandBuffer cmd) {
-        memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, kShaderAccess, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                       VK_ACCESS_TRANSFER_WRITE_BIT);
-        vkCmdFillBuffer(cmd, sums_.get(), 0, VK_WHOLE_SIZE, 0);
-        vkCmdFillBuffer(cmd, counters_.get(), 0, VK_WHOLE_SIZE, 0);
-        memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, kShaderAccess);
-    });
-
-    RenderResult result;
-    result.width = width_;
-    result.height = height_;
-
-    // The work, in order: sample by sample, each in bands of rows. The sums are
-    // exact integers, so neither banding nor batching changes a bit of the image.
-    const std::uint32_t bands = (groups_y_ + kBandGroups - 1) / kBandGroups;
-    // At most 65,536 samples (limits.hpp) of at most 512 bands (32,768 rows): the
-    // count fits the progress callback's 32 bits.
-    const std::uint32_t items = samples.count * bands;
-    const Clock::time_point loop_start = Clock::now();
-    double gpu_seconds = 0.0;
-    for (std::uint32_t done = 0; done < items;) {
-        const std::uint32_t n = batcher_.next(done, items - done);
-        const Clock::time_point submitted = Clock::now();
-        context_.submit_and_wait([&](VkCommandBuffer cmd) {
-            timer_.begin(cmd);
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.pipeline.get());
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.layout.get(), 0, 1,
-                                    &pipeline_.set, 0, nullptr);
-            for (std::uint32_t item = done; item < done + n; ++item) {
-                const std::uint32_t sample = samples.first + item / bands;
-                const std::uint32_t band = item % bands;
-                // A sample adds to the sums the previous sample wrote: one barrier
-                // where a sample starts orders all of the previous one before all of
-                // it, across batches too (a barrier's scope spans earlier
-                // submissions). The bands of one sample write disjoint rows and may
-                // overlap on a GPU.
-                if (item != 0 && band == 0) {
-                    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, kShaderAccess);
-                }
-                const std::uint32_t first_group = band * kBandGroups;
-                const std::array<std::uint32_t, 4> pass{sample, first_group * kLocalSize, 0, 0};
-                vkCmdPushConstants(cmd, pipeline_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, kPushBytes,
-                                   pass.data());
-                vkCmdDispatch(cmd, groups_x_, std::min(kBandGroups, groups_y_ - first_group), 1);
-            }
-            timer_.end(cmd);
-        });
-        const double wall = seconds_since(submitted);
-        result.longest_submit_seconds = std::max(result.longest_submit_seconds, wall);
-        if (timer_.on_gpu()) {
-            gpu_seconds += timer_.batch_seconds();
-        }
-        done += n;
-        if (progress) {
-            progress(done, items);
-        }
-        batcher_.measured(done - n, n, wall);
-    }
-    result.render_seconds = timer_.on_gpu() ? gpu_seconds : seconds_since(loop_start);
-
-    result.sums.resize(std::size_t(width_) * height_);
-    result.counters.resize(result.sums.size());
-    sums_.readback(result.sums.data(), sums_.size());
-    counters_.readback(result.counters.data(), counters_.size());
-    return result;
-}
-
 class VulkanBackend final : public Backend {
 public:
-    explicit VulkanBackend(const VulkanOptions& options) : context_(options) {}
+    explicit VulkanBackend(const VulkanOptions& options)
+        : options_(options), context_(std::make_unique<VulkanContext>(options)) {}
 
     std::string name() const override { return "vulkan"; }
     AccelPolicy accel_policy() const override {
-        // The grid arrays are uint texel buffers: bounded by the texel count a view
-        // may have and,
-        // for a device that would need them as storage buffers, by
-        // maxStorageBufferRange.
-        const VkPhysicalDeviceLimits& l = context_.properties().limits;
-        return {kBruteForceBelow, std::min<std::uint64_t>(l.maxTexelBufferElements, l.maxStorageBufferRange / 4)};
+        // The grid's arrays are part of the scene buffer: a texel buffer, or a storage
+        // buffer where that is larger (data_paths.hpp).
+        const DeviceLimits& l = context_->limits();
+        AccelPolicy policy = heuristics_for(context_->cpu_device()).accel;
+        policy.max_buffer_entries = std::max<std::uint64_t>(l.texel_elements, l.storage_range / 4);
+        return policy;
     }
-    std::string device_name() const override { return context_.properties().deviceName; }
-    std::uint32_t validation_messages() const override { return context_.validation_messages(); }
+    std::string device_name() const override { return context_->properties().deviceName; }
+    std::uint32_t validation_messages() const override {
+        return lost_messages_ + context_->validation_messages();
+    }
 
     std::unique_ptr<RenderSession> begin(const FlatScene& scene) override {
-        check_dispatchable(context_, scene);
-        return std::make_unique<VulkanSession>(context_, scene);
+        if (scene.pixel_count() == 0) {
+            throw GpuError("scene: the image has no pixels (" + std::to_string(scene.width()) + "x" +
+                           std::to_string(scene.height()) + ")");
+        }
+        check_counts(scene);
+        try {
+            return std::make_unique<VulkanSession>(*this, scene);
+        } catch (const SceneDoesNotFit& e) {
+            // Unless the user named the device, one that can hold the scene is better.
+            if (!options_.device.empty()) throw;
+            const ScenePack pack = pack_scene(scene, kMaxTexelOffsetAlignment / 16);
+            const PhysicalDevice* other = device_for_scene(
+                context_->devices(), {pack.texels.size(), pack.words_start, pack.word_count, scene.width(), scene.height()});
+            if (!other || other->info.index == context_->device_index()) {
+                throw SceneDoesNotFit(std::string(e.what()) + ", and no other Vulkan device can hold it either");
+            }
+            std::fprintf(stderr, "note: %s; rendering on device %u (%s) instead\n", e.what(), other->info.index,
+                         other->info.name.c_str());
+            options_.device = std::to_string(other->info.index);
+            replace_context();
+            return std::make_unique<VulkanSession>(*this, scene);
+        }
+    }
+
+    const VulkanContext& context() const { return *context_; }
+
+    // After a lost device: a new context on the same device (without the injected
+    // fault of VulkanOptions::lose_device_at_submission).
+    void replace_context() {
+        lost_messages_ += context_->validation_messages();
+        context_.reset();
+        VulkanOptions options = options_;
+        options.lose_device_at_submission = 0;
+        context_ = std::make_unique<VulkanContext>(options);
     }
 
 private:
-    VulkanContext context_;
+    VulkanOptions options_;
+    std::unique_ptr<VulkanContext> context_;
+    std::uint32_t lost_messages_ = 0;
 };
+
+VulkanSession::VulkanSession(VulkanBackend& backend, const FlatScene& scene)
+    : backend_(backend),
+      scene_(scene),
+      width_(scene.width()),
+      height_(scene.height()),
+      bound_(backend.context().options().submit_bound_seconds > 0.0
+                 ? backend.context().options().submit_bound_seconds
+                 : heuristics_for(backend.context().cpu_device()).submit_bound_seconds) {
+    const Clock::time_point start = Clock::now();
+    state_ = std::make_unique<DeviceState>(backend_.context(), scene_);
+    setup_seconds_ = seconds_since(start);
+}
+
+RenderResult VulkanSession::render(SampleRange samples, const ProgressCallback& progress) {
+    for (std::uint32_t resets = 0;; ++resets) {
+        try {
+            RenderResult result = render_once(samples, progress);
+            result.device_resets = resets;
+            return result;
+        } catch (const DeviceLost& lost) {
+            if (resets == kDeviceResets) {
+                throw GpuError(std::string(lost.what()) + "; the pass failed on " + std::to_string(resets + 1) +
+                               " devices in a row, giving up");
+            }
+            std::fprintf(stderr, "warning: %s; rendering samples %u to %u again on a new device\n", lost.what(),
+                         samples.first, samples.end() - 1);
+            state_.reset();
+            backend_.replace_context();
+            state_ = std::make_unique<DeviceState>(backend_.context(), scene_);
+        }
+    }
+}
+
+RenderResult VulkanSession::render_once(SampleRange samples, const ProgressCallback& progress) {
+    RenderResult result;
+    result.width = width_;
+    result.height = height_;
+    result.sums.resize(std::size_t(width_) * height_);
+    result.counters.resize(result.sums.size());
+    result.data_paths = describe(state_->paths);
+    const std::uint32_t slab_rows = state_->paths.slab_rows;
+    const std::uint32_t slabs = (height_ + slab_rows - 1) / slab_rows;
+    result.slabs = slabs;
+    for (std::uint32_t slab = 0; slab < slabs; ++slab) {
+        const std::uint32_t first_row = slab * slab_rows;
+        render_slab(samples, first_row, std::min(slab_rows, height_ - first_row), result, [&](double fraction) {
+            if (progress) progress(std::uint32_t((slab + fraction) / slabs * kProgressUnits), kProgressUnits);
+        });
+    }
+    result.tile_width = tile_width_;
+    result.tile_height = tile_height_;
+    return result;
+}
+
+// Halves the tiles until the costliest, its cost taken as proportional to its area,
+// would fit the bound; false when they cannot shrink.
+bool VulkanSession::split_tiles() {
+    const double area = double(tiling_->tile_width) * tiling_->tile_height;
+    const double costliest = batcher_->costliest();
+    bool split = false;
+    while (costliest * (double(tiling_->tile_width) * tiling_->tile_height / area) > bound_ && tiling_->split()) {
+        split = true;
+    }
+    if (split) {
+        tile_width_ = tiling_->tile_width;
+        tile_height_ = tiling_->tile_height;
+        batcher_.emplace(tiling_->count(), bound_, kMaxBatch);
+    }
+    return split;
+}
+
+void VulkanSession::render_slab(SampleRange samples, std::uint32_t first_row, std::uint32_t rows,
+                                RenderResult& result, const std::function<void(double)>& progress) {
+    DeviceState& s = *state_;
+    const VulkanContext& context = backend_.context();
+    if (!tiling_ || tiling_->rows != rows || tiling_->tile_width != tile_width_ ||
+        tiling_->tile_height != tile_height_) {
+        tiling_ = tile_slab(width_, rows, tile_width_, tile_height_);
+        batcher_.emplace(tiling_->count(), bound_, kMaxBatch);
+    }
+    const VkDeviceSize bytes = VkDeviceSize(rows) * width_ * kernel::PIXEL_TEXELS * 16;
+
+    // The work, in order: sample by sample, each tile by tile. The sums are exact
+    // integers, so neither tiling nor batching changes a bit of the image.
+    std::uint32_t first_sample = samples.first;  // of the items counted from 0
+    std::uint32_t samples_left = samples.count;
+    std::uint32_t item = 0;
+    bool dispatched = false;
+    const Clock::time_point loop_start = Clock::now();
+    double gpu_seconds = 0.0;
+    for (;;) {
+        const Tiling& tiling = *tiling_;
+        const std::uint32_t tiles = tiling.count();
+        const std::uint32_t items = samples_left * tiles;
+        const std::uint32_t n = batcher_->next(item, items - item);
+        const bool last = item + n == items;
+        const Clock::time_point submitted = Clock::now();
+        context.submit_and_wait([&](VkCommandBuffer cmd) {
+            if (!dispatched) {
+                // The slab starts from zero sums, after whatever last used the buffer.
+                memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                               kShaderAccess | VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                               VK_ACCESS_TRANSFER_WRITE_BIT);
+                vkCmdFillBuffer(cmd, s.pixels.get(), 0, bytes, 0);
+                memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                               VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, kShaderAccess);
+            }
+            s.timer.begin(cmd);
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.pipeline.get());
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.layout.get(), 0, 1,
+                                    &s.pipeline.set, 0, nullptr);
+            for (std::uint32_t i = item; i < item + n; ++i) {
+                const std::uint32_t tile = i % tiles;
+                // A sample adds to the sums the previous one wrote: one barrier where a
+                // sample starts orders all of the previous one before all of it, across
+                // batches too (a barrier's scope spans earlier submissions). The tiles
+                // of one sample write disjoint pixels and may overlap on a GPU.
+                if (tile == 0 && dispatched) {
+                    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, kShaderAccess);
+                }
+                const std::uint32_t x = tile % tiling.across() * tiling.tile_width;
+                const std::uint32_t y = tile / tiling.across() * tiling.tile_height;
+                const std::array<std::uint32_t, 4> pass{first_sample + i / tiles, x, first_row + y, first_row};
+                vkCmdPushConstants(cmd, s.pipeline.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, kPushBytes,
+                                   pass.data());
+                const std::uint32_t w = std::min(tiling.tile_width, width_ - x);
+                const std::uint32_t h = std::min(tiling.tile_height, rows - y);
+                vkCmdDispatch(cmd, (w + kLocalSize - 1) / kLocalSize, (h + kLocalSize - 1) / kLocalSize, 1);
+                dispatched = true;
+            }
+            s.timer.end(cmd);
+            if (last) {
+                // The slab's sums, to where the CPU reads them.
+                if (s.readback) {
+                    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                                   VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+                    const VkBufferCopy region{0, 0, bytes};
+                    vkCmdCopyBuffer(cmd, s.pixels.get(), s.readback->get(), 1, &region);
+                    memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                                   VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+                } else {
+                    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                                   VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+                }
+            }
+        });
+        const double wall = seconds_since(submitted);
+        result.longest_submit_seconds = std::max(result.longest_submit_seconds, wall);
+        if (s.timer.on_gpu()) gpu_seconds += s.timer.batch_seconds();
+        batcher_->measured(item, n, wall);
+        item += n;
+        const std::uint32_t samples_done = samples.count - samples_left + item / tiles;
+        if (progress) progress((samples_done + double(item % tiles) / tiles) / samples.count);
+        if (last) break;
+        // Tiles of which one alone takes longer than the bound are split, from the next
+        // sample on (a sample is dispatched with one tiling).
+        if (item % tiles == 0 && batcher_->costliest() > bound_ && split_tiles()) {
+            first_sample += item / tiles;
+            samples_left -= item / tiles;
+            item = 0;
+        }
+    }
+    result.render_seconds += s.timer.on_gpu() ? gpu_seconds : seconds_since(loop_start);
+
+    // Each pixel's texels: its PixelSum, then its Counters (kernel/layout.glsl).
+    const auto* texels = static_cast<const unsigned char*>(s.readback ? s.readback->data() : s.pixels.data());
+    const std::size_t first = std::size_t(first_row) * width_;
+    for (std::size_t p = 0; p < std::size_t(rows) * width_; ++p) {
+        const unsigned char* pixel = texels + p * kernel::PIXEL_TEXELS * 16;
+        std::memcpy(&result.sums[first + p], pixel, sizeof(kernel::PixelSum));
+        std::memcpy(&result.counters[first + p], pixel + sizeof(kernel::PixelSum), sizeof(kernel::Counters));
+    }
+}
 
 }  // namespace
 

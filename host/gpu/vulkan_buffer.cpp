@@ -24,31 +24,14 @@ std::uint32_t find_memory_type(const VkPhysicalDeviceMemoryProperties& memory,
     return UINT32_MAX;
 }
 
-// The renderer binds texel buffers only (docs/decisions/0001-texel-buffers.md), so
-// that is the limit to check.
-void check_range(const VulkanContext& context, const std::string& name, VkDeviceSize size,
-                 VkBufferUsageFlags usage, std::uint32_t texel_bytes) {
-    const VkPhysicalDeviceLimits& limits = context.properties().limits;
-    auto fail = [&](const std::string& limit) {
-        throw GpuError("buffer '" + name + "' needs " + std::to_string(size) +
-                       " bytes, more than this device's " + limit);
-    };
-    if ((usage & (VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT)) &&
-        size / texel_bytes > limits.maxTexelBufferElements) {
-        fail("maxTexelBufferElements of " + std::to_string(limits.maxTexelBufferElements) + " " +
-             std::to_string(texel_bytes) + "-byte texels");
-    }
-}
-
 }  // namespace
 
 VulkanBuffer::VulkanBuffer(const VulkanContext& context, std::string name, VkDeviceSize size,
-                           VkBufferUsageFlags usage, Placement placement, std::uint32_t texel_bytes)
+                           VkBufferUsageFlags usage, Placement placement)
     : context_(&context), name_(std::move(name)), size_(size) {
     if (size == 0) {
         throw GpuError("buffer '" + name_ + "' would be empty");
     }
-    check_range(context, name_, size, usage, texel_bytes);
     VkBufferCreateInfo info{};
     info.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
     info.size = size;
@@ -61,7 +44,9 @@ VulkanBuffer::VulkanBuffer(const VulkanContext& context, std::string name, VkDev
 
     if (placement == Placement::Staging) {
         allocate(kHostCoherent, kHostCoherent, true);
-    } else if (context.force_staging()) {
+    } else if (placement == Placement::Readback) {
+        allocate(kHostCoherent | VK_MEMORY_PROPERTY_HOST_CACHED_BIT, kHostCoherent, true);
+    } else if (!context.limits().mapped_device_memory) {
         allocate(VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, false);
     } else {
         allocate(kMappedDevice, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, true);
@@ -106,6 +91,7 @@ void VulkanBuffer::allocate(VkMemoryPropertyFlags wanted, VkMemoryPropertyFlags 
     const VkMemoryPropertyFlags flags = memory.memoryTypes[info.memoryTypeIndex].propertyFlags;
     if (map && (flags & kHostCoherent) == kHostCoherent) {
         check(vkMapMemory(device, raw, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
+        cached_ = (flags & VK_MEMORY_PROPERTY_HOST_CACHED_BIT) != 0;
     }
 }
 

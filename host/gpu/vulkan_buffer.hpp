@@ -13,20 +13,22 @@ namespace vkrt::gpu {
 enum class Placement {
     Device,   // used by shaders: device-local, mapped when the device allows
     Staging,  // host-visible and coherent: the other end of a copy
+    Readback, // host-visible and coherent, host-cached where the device has it: read by the CPU
 };
 
 class VulkanBuffer {
 public:
     // `usage` is how shaders bind it; transfer usage is added as the placement needs.
-    // A texel buffer's size is checked against maxTexelBufferElements, counted in
-    // texels of `texel_bytes` (16 for rgba32ui, 4 for r32ui), before any memory is
-    // allocated. `name` appears in error messages.
+    // `name` appears in error messages.
     VulkanBuffer(const VulkanContext& context, std::string name, VkDeviceSize size,
-                 VkBufferUsageFlags usage, Placement placement = Placement::Device, std::uint32_t texel_bytes = 16);
+                 VkBufferUsageFlags usage, Placement placement = Placement::Device);
 
     VkBuffer get() const { return buffer_.get(); }
     VkDeviceSize size() const { return size_; }
     bool mapped() const { return mapped_ != nullptr; }
+    // Mapped memory the CPU reads through its caches (uncached reads are slow).
+    bool host_cached() const { return mapped_ != nullptr && cached_; }
+    const void* data() const { return mapped_; }
 
     // Both wait for the device; they are meant for setup and the final read-back.
     void upload(const void* data, VkDeviceSize bytes);
@@ -42,6 +44,7 @@ private:
     DeviceHandle<VkDeviceMemory, vkFreeMemory> memory_;
     DeviceHandle<VkBuffer, vkDestroyBuffer> buffer_;
     void* mapped_ = nullptr;  // persistently mapped while memory_ lives
+    bool cached_ = false;
 };
 
 }  // namespace vkrt::gpu

@@ -164,17 +164,25 @@ VulkanInstance::~VulkanInstance() {
     vkDestroyInstance(instance_, nullptr);
 }
 
-VulkanContext::VulkanContext(const VulkanOptions& options) : instance_(options.validation) {
-    const std::vector<PhysicalDevice> devices = instance_.devices();
-    const PhysicalDevice& chosen = select_device(devices, options.device);
+VulkanContext::VulkanContext(const VulkanOptions& options) : instance_(options.validation), options_(options) {
+    if (options_.profile.empty()) {
+        const char* profile = std::getenv("VKRT_DEVICE_PROFILE");
+        options_.profile = profile ? profile : "";
+    }
+    devices_ = instance_.devices();
+    if (!options_.profile.empty()) {
+        const DeviceProfile& profile = find_profile(options_.profile);
+        for (PhysicalDevice& d : devices_) d.limits = clamp_to(d.limits, profile.limits);
+    }
+    const PhysicalDevice& chosen = select_device(devices_, options_.device);
     physical_ = chosen.handle;
+    device_index_ = chosen.info.index;
+    limits_ = chosen.limits;
     vkGetPhysicalDeviceProperties(physical_, &properties_);
     vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
     const std::vector<VkQueueFamilyProperties> families = queue_families(physical_);
     queue_family_ = compute_family(families);
     timestamp_bits_ = families[queue_family_].timestampValidBits;
-    const char* staging = std::getenv("VKRT_VULKAN_FORCE_STAGING");
-    force_staging_ = staging && std::strcmp(staging, "1") == 0;
 
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo queue{};
@@ -246,6 +254,9 @@ void VulkanContext::submit_and_wait(const std::function<void(VkCommandBuffer)>& 
     submit.pCommandBuffers = &cmd;
     check(vkQueueSubmit(queue_, 1, &submit, fence.get()), "vkQueueSubmit");
     check(vkWaitForFences(device_, 1, &raw_fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+    if (++submissions_ == options_.lose_device_at_submission) {
+        check(VK_ERROR_DEVICE_LOST, "vkWaitForFences (VulkanOptions::lose_device_at_submission)");
+    }
 }
 
 }  // namespace vkrt::gpu

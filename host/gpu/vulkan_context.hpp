@@ -11,14 +11,26 @@
 
 #include <vulkan/vulkan.h>
 
+#include "gpu/device_limits.hpp"
 #include "gpu/vulkan_backend.hpp"
 
 namespace vkrt::gpu {
 
 std::string result_name(VkResult result);
 
+// VK_ERROR_DEVICE_LOST: the driver reset the device (a GPU watchdog, a driver fault);
+// everything made on it is gone, and a new context may render again.
+class DeviceLost : public GpuError {
+public:
+    using GpuError::GpuError;
+};
+
 // Every VkResult goes through this: a failure becomes a GpuError naming the call.
 inline void check(VkResult result, const char* call) {
+    if (result == VK_ERROR_DEVICE_LOST) {
+        throw DeviceLost(std::string(call) + " failed: the Vulkan device was lost (VK_ERROR_DEVICE_LOST: a "
+                         "driver reset, such as a GPU watchdog ending a long submission, or a driver fault)");
+    }
     if (result != VK_SUCCESS) {
         throw GpuError(std::string(call) + " failed: " + result_name(result));
     }
@@ -71,9 +83,7 @@ struct PhysicalDevice {
     VkDriverId driver_id{};  // 0 when the device cannot report it
     std::uint32_t api_version = 0;
     bool has_compute = false;
-    // Storage texel buffers a compute shader may bind: the lesser of the per-stage and
-    // per-set limits on storage images, which they count against.
-    std::uint32_t storage_texel_buffers = 0;
+    DeviceLimits limits;  // as the device reports them, or clamped to a profile
 };
 
 // The instance and, when asked for, the validation layer's messenger. Not movable:
@@ -101,6 +111,13 @@ private:
 const PhysicalDevice& select_device(const std::vector<PhysicalDevice>& devices,
                                     const std::string& selector);
 
+// What the renderer reads of a device's limits and memory (device_limits.hpp).
+DeviceLimits read_limits(VkPhysicalDevice device);
+
+// Among the usable devices, the one select_device would prefer of those whose
+// limits hold a scene of these sizes (data_paths.hpp); nullptr when none does.
+const PhysicalDevice* device_for_scene(const std::vector<PhysicalDevice>& devices, const DataSizes& sizes);
+
 class VulkanContext {
 public:
     explicit VulkanContext(const VulkanOptions& options);
@@ -112,11 +129,18 @@ public:
     VkDevice device() const { return device_; }
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     const VkPhysicalDeviceMemoryProperties& memory_properties() const { return memory_; }
-    std::uint32_t timestamp_valid_bits() const { return timestamp_bits_; }
+    // The limits the renderer plans with: the device's, clamped to the profile of
+    // VulkanOptions::profile (or VKRT_DEVICE_PROFILE) when one is named.
+    const DeviceLimits& limits() const { return limits_; }
+    const VulkanOptions& options() const { return options_; }
+    // Every device of the instance, with its limits as the profile clamps them, and
+    // the index of the one in use among them.
+    const std::vector<PhysicalDevice>& devices() const { return devices_; }
+    std::uint32_t device_index() const { return device_index_; }
+    bool cpu_device() const { return properties_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
+    // Valid bits of the compute queue's timestamps; 0 where the limits have none.
+    std::uint32_t timestamp_valid_bits() const { return limits_.timestamps ? timestamp_bits_ : 0; }
     std::uint32_t validation_messages() const { return instance_.validation_messages(); }
-    // Set by VKRT_VULKAN_FORCE_STAGING=1: take the staging path even where mapped
-    // device memory exists, so CI (lavapipe has only mapped memory) exercises it.
-    bool force_staging() const { return force_staging_; }
 
     // Records one command buffer, submits it to the compute queue and waits for it.
     void submit_and_wait(const std::function<void(VkCommandBuffer)>& record) const;
@@ -128,7 +152,11 @@ private:
     VkPhysicalDeviceMemoryProperties memory_{};
     std::uint32_t queue_family_ = 0;
     std::uint32_t timestamp_bits_ = 0;
-    bool force_staging_ = false;
+    VulkanOptions options_;
+    std::vector<PhysicalDevice> devices_;
+    std::uint32_t device_index_ = 0;
+    DeviceLimits limits_;
+    mutable std::uint32_t submissions_ = 0;
     VkDevice device_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;
     VkCommandPool pool_ = VK_NULL_HANDLE;

@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
 
 #include "gpu/vulkan_context.hpp"
+#include "gpu/device_class.hpp"
 #include "gpu/vulkan_pipeline.hpp"
 
 namespace vkrt::gpu {
@@ -81,14 +83,16 @@ std::string lower(std::string s) {
     return s;
 }
 
-// Every binding of render.comp is a storage texel buffer (render.comp says why).
 bool usable(const PhysicalDevice& d) {
-    return d.has_compute && d.api_version >= VK_API_VERSION_1_1 && d.storage_texel_buffers >= kBindingCount;
+    return d.has_compute && d.api_version >= VK_API_VERSION_1_1 && missing(d.limits).empty();
 }
 
-std::string needs() {
-    return "it needs Vulkan 1.1, a compute queue and " + std::to_string(kBindingCount) +
-           " storage texel buffers in one shader stage";
+// Why `d` cannot run vkrt.
+std::string needs(const PhysicalDevice& d) {
+    std::string out = "it needs Vulkan 1.1 and a compute queue";
+    const std::string lacks = missing(d.limits);
+    if (!lacks.empty()) out += ", and " + lacks;
+    return out;
 }
 
 std::string describe(const PhysicalDevice& d) {
@@ -127,8 +131,7 @@ PhysicalDevice describe_device(VkPhysicalDevice handle, std::uint32_t index,
     d.info.type = type_name(props.deviceType);
     d.info.api_version = version_string(props.apiVersion);
     d.info.driver = "unknown driver";
-    d.storage_texel_buffers =
-        std::min(props.limits.maxPerStageDescriptorStorageImages, props.limits.maxDescriptorSetStorageImages);
+    d.limits = read_limits(handle);
 
     // Driver properties are core from 1.2 (as both sides see it), else an extension.
     const std::uint32_t effective = std::min(instance_api, props.apiVersion);
@@ -149,6 +152,37 @@ PhysicalDevice describe_device(VkPhysicalDevice handle, std::uint32_t index,
 
 }  // namespace
 
+DeviceLimits read_limits(VkPhysicalDevice device) {
+    VkPhysicalDeviceProperties props{};
+    vkGetPhysicalDeviceProperties(device, &props);
+    const VkPhysicalDeviceLimits& l = props.limits;
+    DeviceLimits d;
+    d.storage_images = std::min(l.maxPerStageDescriptorStorageImages, l.maxDescriptorSetStorageImages);
+    d.storage_buffers = std::min(l.maxPerStageDescriptorStorageBuffers, l.maxDescriptorSetStorageBuffers);
+    d.uniform_buffers = std::min(l.maxPerStageDescriptorUniformBuffers, l.maxDescriptorSetUniformBuffers);
+    d.resources = l.maxPerStageResources;
+    d.texel_elements = l.maxTexelBufferElements;
+    d.storage_range = l.maxStorageBufferRange;
+    d.uniform_range = l.maxUniformBufferRange;
+    d.push_constant_bytes = l.maxPushConstantsSize;
+    d.texel_offset_alignment = std::uint32_t(l.minTexelBufferOffsetAlignment);
+    d.workgroup_count_x = l.maxComputeWorkGroupCount[0];
+    d.workgroup_count_y = l.maxComputeWorkGroupCount[1];
+    d.workgroup_invocations = l.maxComputeWorkGroupInvocations;
+    d.workgroup_size_x = l.maxComputeWorkGroupSize[0];
+    d.workgroup_size_y = l.maxComputeWorkGroupSize[1];
+    VkPhysicalDeviceMemoryProperties memory{};
+    vkGetPhysicalDeviceMemoryProperties(device, &memory);
+    const VkMemoryPropertyFlags mapped = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT;
+    for (std::uint32_t i = 0; i < memory.memoryTypeCount; ++i) {
+        d.mapped_device_memory = d.mapped_device_memory || (memory.memoryTypes[i].propertyFlags & mapped) == mapped;
+    }
+    const std::vector<VkQueueFamilyProperties> families = queue_families(device);
+    const std::uint32_t family = compute_family(families);
+    d.timestamps = family != UINT32_MAX && families[family].timestampValidBits > 0 && l.timestampPeriod > 0.0f;
+    return d;
+}
+
 std::vector<PhysicalDevice> VulkanInstance::devices() const {
     std::uint32_t count = 0;
     check(vkEnumeratePhysicalDevices(instance_, &count, nullptr), "vkEnumeratePhysicalDevices");
@@ -159,6 +193,19 @@ std::vector<PhysicalDevice> VulkanInstance::devices() const {
         devices.push_back(describe_device(handles[i], i, api_version_));
     }
     return devices;
+}
+
+const PhysicalDevice* device_for_scene(const std::vector<PhysicalDevice>& devices, const DataSizes& sizes) {
+    const PhysicalDevice* best = nullptr;
+    for (const PhysicalDevice& d : devices) {
+        if (!usable(d) || (best && type_rank(d.type) >= type_rank(best->type))) continue;
+        try {
+            plan_data_paths(d.limits, d.type == VK_PHYSICAL_DEVICE_TYPE_CPU, sizes);
+            best = &d;
+        } catch (const SceneDoesNotFit&) {
+        }
+    }
+    return best;
 }
 
 const PhysicalDevice& select_device(const std::vector<PhysicalDevice>& devices,
@@ -174,7 +221,9 @@ const PhysicalDevice& select_device(const std::vector<PhysicalDevice>& devices,
             }
         }
         if (!chosen) {
-            throw GpuError("no Vulkan device can run vkrt (" + needs() + "); available: " + describe_all(devices));
+            std::string why;
+            for (const PhysicalDevice& d : devices) why += (why.empty() ? "" : "; ") + describe(d) + ": " + needs(d);
+            throw GpuError("no Vulkan device can run vkrt (" + why + ")");
         }
         return *chosen;
     }
@@ -196,7 +245,7 @@ const PhysicalDevice& select_device(const std::vector<PhysicalDevice>& devices,
         throw GpuError("no Vulkan device matches '" + selector + "'; available: " + describe_all(devices));
     }
     if (!usable(*chosen)) {
-        throw GpuError("Vulkan device " + describe(*chosen) + " cannot run vkrt: " + needs());
+        throw GpuError("Vulkan device " + describe(*chosen) + " cannot run vkrt: " + needs(*chosen));
     }
     return *chosen;
 }
@@ -212,6 +261,36 @@ std::vector<DeviceInfo> list_vulkan_devices() {
         infos.push_back(d.info);
     }
     return infos;
+}
+
+namespace {
+
+std::string seconds_text(double seconds) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g s", seconds);
+    return text;
+}
+
+}  // namespace
+
+std::string device_limits_report(const std::string& profile) {
+    const gpu::VulkanInstance instance(false);
+    const gpu::DeviceProfile* clamp = profile.empty() ? nullptr : &gpu::find_profile(profile);
+    std::string out;
+    for (gpu::PhysicalDevice d : instance.devices()) {
+        if (clamp) d.limits = gpu::clamp_to(d.limits, clamp->limits);
+        out += gpu::describe(d) + (clamp ? " as profile " + profile : std::string()) + "\n";
+        out += gpu::format_limits(d.limits);
+        out += "  can run vkrt: " + (gpu::usable(d) ? std::string("yes") : "no, " + gpu::needs(d)) + "\n";
+        const gpu::DeviceHeuristics h = gpu::heuristics_for(d.type == VK_PHYSICAL_DEVICE_TYPE_CPU);
+        out += "  heuristics (" + h.name + "): submissions planned under " + seconds_text(h.submit_bound_seconds) +
+               ", grid from " + std::to_string(h.accel.brute_force_below) + " primitives, deferred sphere tests from " +
+               std::to_string(h.accel.deferred_spheres_from) + " spheres" +
+               (h.measured ? "" : " (lavapipe's values, unmeasured here: vkrt bench --threshold --device " +
+                                      std::to_string(d.info.index) + " measures the grid's)") + "\n";
+    }
+    if (out.empty()) out = "no Vulkan devices\n";
+    return out;
 }
 
 }  // namespace vkrt

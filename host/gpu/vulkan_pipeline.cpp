@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "gpu/spirv_specialize.hpp"
@@ -19,31 +21,45 @@ constexpr VkFormat kFormat_r32ui = VK_FORMAT_R32_UINT;
 constexpr bool bindings_dense() {
     std::uint32_t expected = 0;
     bool dense = true;
-#define PARAMS_BUFFER(binding, name) dense = dense && binding == expected++;
-#define SCENE_BUFFER(binding, name, Element, load, format) dense = dense && binding == expected++;
-#define OUTPUT_BUFFER(binding, name, Element, format) dense = dense && binding == expected++;
-#include "kernel/bindings.glsl"
+#define TEXEL_BINDING(binding, name, format, access) dense = dense && binding == expected++;
+#define STORAGE_BINDING(binding, name, access) dense = dense && binding == expected++;
+#define UNIFORM_BINDING(binding, name) dense = dense && binding == expected++;
+#include "render_bindings.glsl"
     return dense;
 }
-static_assert(bindings_dense(), "kernel/bindings.glsl: bindings must be numbered 0, 1, 2, ... in order");
+static_assert(bindings_dense(), "render_bindings.glsl: bindings must be numbered 0, 1, 2, ... in order");
+
+// The device choices' constant ids lie above the features'.
+constexpr bool choices_after_features() {
+    bool after = true;
+#define DEVICE_CHOICE(id, name) after = after && id >= kFeatureCount;
+#include "render_bindings.glsl"
+    return after;
+}
+static_assert(choices_after_features(), "render_bindings.glsl: a device choice shares a feature's constant id");
 
 }  // namespace
 
-VkFormat texel_format(std::uint32_t binding) {
+VkDescriptorType descriptor_type(Binding binding) {
     switch (binding) {
-#define PARAMS_BUFFER(binding, name) \
-    case binding: return kFormat_rgba32ui;
-#define SCENE_BUFFER(binding, name, Element, load, format) \
-    case binding: return kFormat_##format;
-#define OUTPUT_BUFFER(binding, name, Element, format) \
-    case binding: return kFormat_##format;
-#include "kernel/bindings.glsl"
-    default: return VK_FORMAT_UNDEFINED;
+#define TEXEL_BINDING(binding, name, format, access) \
+    case Binding::name: return VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
+#define STORAGE_BINDING(binding, name, access) \
+    case Binding::name: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+#define UNIFORM_BINDING(binding, name) \
+    case Binding::name: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+#include "render_bindings.glsl"
     }
+    return VK_DESCRIPTOR_TYPE_MAX_ENUM;
 }
 
-std::uint32_t texel_bytes(std::uint32_t binding) {
-    return texel_format(binding) == VK_FORMAT_R32_UINT ? 4u : 16u;
+VkFormat texel_format(Binding binding) {
+    switch (binding) {
+#define TEXEL_BINDING(binding, name, format, access) \
+    case Binding::name: return kFormat_##format;
+#include "render_bindings.glsl"
+    default: return VK_FORMAT_UNDEFINED;
+    }
 }
 
 Pipeline make_compute_pipeline(VkDevice device, std::span<const std::uint32_t> spirv,
@@ -121,28 +137,34 @@ Pipeline make_compute_pipeline(VkDevice device, std::span<const std::uint32_t> s
     return p;
 }
 
-Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features) {
+Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features, const DataPaths& paths) {
     std::array<VkDescriptorType, kBindingCount> types{};
-    types.fill(VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER);
+    for (std::uint32_t i = 0; i < kBindingCount; ++i) types[i] = descriptor_type(Binding(i));
 
-    // One VkBool32 per feature, constant_id = feature id: a feature that is off is
-    // compiled out by the driver.
-    std::array<VkBool32, kFeatureCount> values{};
-    std::array<VkSpecializationMapEntry, kFeatureCount> entries{};
-    for (std::uint32_t id = 0; id < kFeatureCount; ++id) {
-        values[id] = features.has(id) ? VK_TRUE : VK_FALSE;
-        entries[id] = {id, std::uint32_t(id * sizeof(VkBool32)), sizeof(VkBool32)};
+    // One VkBool32 per constant: a feature that is off, and a data path the device
+    // does not take, are compiled out by the driver.
+    std::vector<std::pair<std::uint32_t, bool>> constants;
+    for (std::uint32_t id = 0; id < kFeatureCount; ++id) constants.emplace_back(id, features.has(id));
+    const bool SCENE_IN_STORAGE_BUFFERS = paths.scene_in_storage;
+    const bool PARAMS_IN_UNIFORM_BUFFER = paths.params_in_uniform;
+#define DEVICE_CHOICE(id, name) constants.emplace_back(id, name);
+#include "render_bindings.glsl"
+    std::vector<VkBool32> values;
+    std::vector<VkSpecializationMapEntry> entries;
+    std::unordered_map<std::uint32_t, bool> by_id;
+    for (const auto& [id, on] : constants) {
+        entries.push_back({id, std::uint32_t(values.size() * sizeof(VkBool32)), sizeof(VkBool32)});
+        values.push_back(on ? VK_TRUE : VK_FALSE);
+        by_id.emplace(id, on);
     }
     VkSpecializationInfo specialization{};
-    specialization.mapEntryCount = kFeatureCount;
+    specialization.mapEntryCount = std::uint32_t(entries.size());
     specialization.pMapEntries = entries.data();
-    specialization.dataSize = sizeof(values);
+    specialization.dataSize = values.size() * sizeof(VkBool32);
     specialization.pData = values.data();
 
     // The same values folded in on the host (spirv_specialize.hpp says why); should
     // SPIRV-Tools refuse, the driver specializes the module as it is.
-    std::unordered_map<std::uint32_t, bool> by_id;
-    for (std::uint32_t id = 0; id < kFeatureCount; ++id) by_id.emplace(id, values[id] == VK_TRUE);
     std::string error;
     const std::vector<std::uint32_t> specialized = specialize_spirv(render_comp_spv, by_id, error);
     if (specialized.empty()) {
@@ -160,21 +182,29 @@ Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features)
 }
 
 std::vector<BufferView> write_descriptors(VkDevice device, VkDescriptorSet set,
-                                          const std::array<const VulkanBuffer*, kBindingCount>& buffers) {
+                                          const std::array<BoundRange, kBindingCount>& bound) {
     std::vector<BufferView> views;
     std::array<VkBufferView, kBindingCount> raw_views{};
+    std::array<VkDescriptorBufferInfo, kBindingCount> infos{};
     std::array<VkWriteDescriptorSet, kBindingCount> writes{};
     for (std::uint32_t i = 0; i < kBindingCount; ++i) {
+        const VkDescriptorType type = descriptor_type(Binding(i));
         writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
         writes[i].dstSet = set;
         writes[i].dstBinding = i;
         writes[i].descriptorCount = 1;
-        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
+        writes[i].descriptorType = type;
+        if (type != VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER) {
+            infos[i] = {bound[i].buffer->get(), bound[i].offset, bound[i].range};
+            writes[i].pBufferInfo = &infos[i];
+            continue;
+        }
         VkBufferViewCreateInfo view_info{};
         view_info.sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO;
-        view_info.buffer = buffers[i]->get();
-        view_info.format = texel_format(i);
-        view_info.range = VK_WHOLE_SIZE;
+        view_info.buffer = bound[i].buffer->get();
+        view_info.format = texel_format(Binding(i));
+        view_info.offset = bound[i].offset;
+        view_info.range = bound[i].range;
         check(vkCreateBufferView(device, &view_info, nullptr, &raw_views[i]), "vkCreateBufferView");
         views.emplace_back(device, raw_views[i]);
         writes[i].pTexelBufferView = &raw_views[i];

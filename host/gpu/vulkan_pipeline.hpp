@@ -8,37 +8,38 @@
 
 #include "gpu/vulkan_context.hpp"
 #include "flatten/features.hpp"
+#include "gpu/data_paths.hpp"
 
 namespace vkrt::gpu {
 
 class VulkanBuffer;
 
-// The bindings of shaders/render.comp, one per line of kernel/bindings.glsl, named as
-// there. A binding whose feature the scene leaves out gets the dummy buffer.
+// The bindings of shaders/render.comp, one per line of render_bindings.glsl, named
+// as there.
 enum class Binding : std::uint32_t {
-#define PARAMS_BUFFER(binding, name) name = binding,
-#define SCENE_BUFFER(binding, name, Element, load, format) name = binding,
-#define OUTPUT_BUFFER(binding, name, Element, format) name = binding,
-#include "kernel/bindings.glsl"
+#define TEXEL_BINDING(binding, name, format, access) name = binding,
+#define STORAGE_BINDING(binding, name, access) name = binding,
+#define UNIFORM_BINDING(binding, name) name = binding,
+#include "render_bindings.glsl"
 };
 constexpr std::uint32_t kBindingCount = 0
-#define PARAMS_BUFFER(binding, name) +1
-#define SCENE_BUFFER(binding, name, Element, load, format) +1
-#define OUTPUT_BUFFER(binding, name, Element, format) +1
-#include "kernel/bindings.glsl"
+#define TEXEL_BINDING(binding, name, format, access) +1
+#define STORAGE_BINDING(binding, name, access) +1
+#define UNIFORM_BINDING(binding, name) +1
+#include "render_bindings.glsl"
     ;
 constexpr std::uint32_t index(Binding b) { return static_cast<std::uint32_t>(b); }
-// Each binding's texel format, by binding number, and the bytes of one texel.
-VkFormat texel_format(std::uint32_t binding);
-std::uint32_t texel_bytes(std::uint32_t binding);
+// Each binding's descriptor type, and for a texel buffer its format.
+VkDescriptorType descriptor_type(Binding binding);
+VkFormat texel_format(Binding binding);
 
 constexpr std::uint32_t kLocalSize = 8;   // local_size_x and _y of render.comp
 constexpr std::uint32_t kPushBytes = 16;  // uvec4 pass
 
-// Every binding is a storage texel buffer of 16-byte texels (r32ui for the grid's cell
-// starts and references; render.comp says why): the params, the read-only scene arrays
-// and the sums.
-constexpr VkBufferUsageFlags kBindingUsage = VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT;
+// What a buffer bound to render.comp may be bound as; each binding uses one.
+constexpr VkBufferUsageFlags kBindingUsage = VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT |
+                                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                             VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
 
 // The pipeline and its descriptor set. Members are destroyed in reverse order.
 struct Pipeline {
@@ -58,14 +59,22 @@ Pipeline make_compute_pipeline(VkDevice device, std::span<const std::uint32_t> s
                                std::span<const VkDescriptorType> types, std::uint32_t push_bytes,
                                const VkSpecializationInfo* specialization);
 
-// The renderer's pipeline (render.comp), specialized for the scene's features.
-Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features);
+// The renderer's pipeline (render.comp), specialized for the scene's features and
+// the device's data paths.
+Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features, const DataPaths& paths);
 
 using BufferView = DeviceHandle<VkBufferView, vkDestroyBufferView>;
 
-// Writes the set, one buffer per binding; returns the texel-buffer views, which must
+// A part of a buffer bound to one binding.
+struct BoundRange {
+    const VulkanBuffer* buffer = nullptr;
+    VkDeviceSize offset = 0;
+    VkDeviceSize range = VK_WHOLE_SIZE;
+};
+
+// Writes the set, one range per binding; returns the texel-buffer views, which must
 // outlive its use.
 std::vector<BufferView> write_descriptors(VkDevice device, VkDescriptorSet set,
-                                          const std::array<const VulkanBuffer*, kBindingCount>& buffers);
+                                          const std::array<BoundRange, kBindingCount>& bound);
 
 }  // namespace vkrt::gpu

@@ -22,9 +22,9 @@ struct Kernel {
 
     // What render.comp's main() reads from its params buffer.
     Params params{};
-    // One span per buffer the kernel reads (kernel/bindings.glsl): the arrays of FlatScene.
-#define SCENE_BUFFER(binding, name, Element, load, format) std::span<const Element> name;
-#include "kernel/bindings.glsl"
+    // One span per array the kernel reads (kernel/arrays.glsl): those of FlatScene.
+#define SCENE_ARRAY(name, Element, load, format) std::span<const Element> name;
+#include "kernel/arrays.glsl"
 
 #define LOAD_ELEMENT(Element, name, i) name[i]
 #include "kernel/all.glsl"

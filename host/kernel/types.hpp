@@ -33,6 +33,7 @@ static_assert(sizeof(Emitter) == 32);
 static_assert(sizeof(Params) == 16 * PARAM_TEXELS);
 static_assert(sizeof(Counters) == 64);
 static_assert(sizeof(PixelSum) == 48);
+static_assert(sizeof(PixelSum) == 16 * PIXEL_SUM_TEXELS && sizeof(PixelSum) + sizeof(Counters) == 16 * PIXEL_TEXELS);
 
 // The host's accessors of the per-render constants (kernel/params.glsl): name(params)
 // reads a value, set_name(params, value) writes it.

@@ -28,6 +28,11 @@ inline void accumulate(RenderResult& total, const RenderResult& part) {
     total.setup_seconds += part.setup_seconds;
     total.render_seconds += part.render_seconds;
     total.longest_submit_seconds = std::max(total.longest_submit_seconds, part.longest_submit_seconds);
+    total.data_paths = part.data_paths;
+    total.slabs = part.slabs;
+    total.tile_width = part.tile_width;
+    total.tile_height = part.tile_height;
+    total.device_resets += part.device_resets;
 }
 
 }  // namespace vkrt

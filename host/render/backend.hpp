@@ -38,6 +38,12 @@ struct RenderResult {
     double setup_seconds = 0.0;        // building pipelines, uploading buffers
     double render_seconds = 0.0;       // the sample loop (GPU timestamps where available)
     double longest_submit_seconds = 0.0;  // Vulkan: the longest single queue submission (wall clock)
+    // Vulkan: how the work was laid out on the device (docs/porting.md).
+    std::string data_paths;                 // e.g. "scene: texel buffers, params: uniform buffer"
+    std::uint32_t slabs = 0;                // pixel buffers' worth of rows rendered one after another
+    std::uint32_t tile_width = 0;           // the tiles the pass ended with, in pixels
+    std::uint32_t tile_height = 0;
+    std::uint32_t device_resets = 0;        // devices lost and recreated during the pass
 };
 
 // One scene made ready to render: on Vulkan the pipeline specialised for it and its

@@ -96,6 +96,11 @@ RenderStats collect_stats(const FlatScene& scene, const Backend& backend, const 
     s.setup_seconds = result.setup_seconds;
     s.render_seconds = result.render_seconds;
     s.longest_submit_seconds = result.longest_submit_seconds;
+    s.data_paths = result.data_paths;
+    s.slabs = result.slabs;
+    s.tile_width = result.tile_width;
+    s.tile_height = result.tile_height;
+    s.device_resets = result.device_resets;
     s.features = scene.features;
     s.buffers = scene.built_buffers();
     s.validation_messages = backend.validation_messages();

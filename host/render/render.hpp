@@ -47,6 +47,9 @@ struct RenderStats {
     double pass_seconds = 0.0;            // wall clock of the passes, read-back and accumulation included
     double longest_submit_seconds = 0.0;  // Vulkan: the longest single queue submission
     double total_seconds = 0.0;
+    // Vulkan: the layout of the work on the device (RenderResult says more).
+    std::string data_paths;
+    std::uint32_t slabs = 0, tile_width = 0, tile_height = 0, device_resets = 0;
     FeatureSet features;
     std::vector<BufferSize> buffers;
     std::uint32_t validation_messages = 0;

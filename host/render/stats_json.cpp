@@ -36,6 +36,8 @@ nlohmann::json stats_to_json(const RenderStats& s) {
         {"features", {{"kept", s.features.kept()}, {"left_out", s.features.left_out()}}},
         {"buffers", buffers},
         {"validation_messages", s.validation_messages},
+        {"device_plan", {{"data_paths", s.data_paths}, {"slabs", s.slabs},
+                         {"tile", {s.tile_width, s.tile_height}}, {"device_resets", s.device_resets}}},
     };
 }
 

@@ -1,7 +1,7 @@
 // The whole kernel, in dependency order. Included by shaders/render.comp and, inside
 // the reference Kernel struct, by host/kernel/kernel.hpp. Before including it, a host
 // declares the feature flags (features.glsl), `params` (a Params), its buffers
-// (bindings.glsl) and LOAD_ELEMENT (loads.glsl).
+// (arrays.glsl) and LOAD_ELEMENT (loads.glsl).
 #include "param_access.glsl"
 #include "loads.glsl"
 #include "rng.glsl"

@@ -36,5 +36,6 @@ FEATURE(22, LOOSE_RINGS)
 FEATURE(23, LOOSE_CYLINDERS)
 // Without the grid, whether the sphere loop tests the spheres a ray starts near
 // after it (scene.glsl, DeferredSpheres) rather than in place: on from
-// kDeferredSpheresFrom spheres (host/flatten/flat_scene.cpp), where it pays on lavapipe.
+// AccelPolicy::deferred_spheres_from spheres (host/accel/accel_policy.hpp), where it
+// pays on lavapipe.
 FEATURE(24, DEFERRED_SPHERES)

@@ -3,7 +3,8 @@
 // rules to remember (std140 and std430 coincide for such structs), and each member is
 // one 16-byte texel of the texel buffers the kernel reads them from;
 // host/kernel/types.hpp static_asserts the sizes. Beside each struct,
-// Name_FROM_TEXELS(buffer, i) assembles element i from its texels (kernel/loads.glsl).
+// Name_FROM_TEXELS(array, i) assembles element i of an array of kernel/arrays.glsl
+// from its texels, fetched by the host's fetch_texel(array, t) (render.comp).
 // Unused .w lanes are documented as such and written as 0 by the host.
 
 // A sphere: centre in xyz, radius in w; meta.x = material index.
@@ -87,7 +88,7 @@ struct Emitter {
 
 // Per-render constants: PARAM_TEXELS texels, each value named in kernel/params.glsl
 // and read through its accessor (camera_eye(), max_depth(), ...), never by lane.
-const uint PARAM_TEXELS = 16u;
+const uint PARAM_TEXELS = 19u;
 struct Params {
     uvec4 texels[PARAM_TEXELS];
 };
@@ -118,3 +119,7 @@ struct Counters {
     uvec4 tree;
     uvec4 paths;
 };
+
+// On the device a pixel's output is its PixelSum's texels, then its Counters'.
+const uint PIXEL_SUM_TEXELS = 3u;
+const uint PIXEL_TEXELS = 7u;

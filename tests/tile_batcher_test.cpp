@@ -1,21 +1,21 @@
-// How the Vulkan backend groups band dispatches into submissions: from each band's
+// How the Vulkan backend groups tile dispatches into submissions: from each tile's
 // measured cost, so that no submission runs far past the target however unevenly
-// the bands cost.
+// the tiles cost.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <vector>
 
-#include "gpu/band_batcher.hpp"
+#include "gpu/tile_batcher.hpp"
 
 namespace {
 
-using vkrt::gpu::BandBatcher;
+using vkrt::gpu::TileBatcher;
 
-// Runs `samples` samples of bands costing `cost` seconds each through the batcher
+// Runs `samples` samples of tiles costing `cost` seconds each through the batcher
 // (a submission takes the sum of its items' costs, times `slowdown`) and returns
 // the seconds of every submission.
-std::vector<double> submissions(BandBatcher& batcher, const std::vector<double>& cost, std::uint32_t samples,
+std::vector<double> submissions(TileBatcher& batcher, const std::vector<double>& cost, std::uint32_t samples,
                                 double slowdown = 1.0) {
     const std::uint32_t items = samples * std::uint32_t(cost.size());
     std::vector<double> out;
@@ -31,27 +31,27 @@ std::vector<double> submissions(BandBatcher& batcher, const std::vector<double>&
     return out;
 }
 
-TEST(BandBatcher, MeasuresEveryBandAloneFirst) {
-    BandBatcher batcher(4, 0.25, 256);
+TEST(TileBatcher, MeasuresEveryTileAloneFirst) {
+    TileBatcher batcher(4, 0.25, 256);
     const std::vector<double> times = submissions(batcher, {0.01, 0.02, 0.03, 0.04}, 1);
     EXPECT_EQ(times.size(), 4u);
 }
 
-TEST(BandBatcher, CheapBandsDoNotCarryABatchIntoExpensiveOnes) {
-    // Sixteen bands of sky at 1 ms, then four of heavy geometry at 0.2 s: a batch
+TEST(TileBatcher, CheapTilesDoNotCarryABatchIntoExpensiveOnes) {
+    // Sixteen tiles of sky at 1 ms, then four of heavy geometry at 0.2 s: a batch
     // sized by the average (or grown on the sky) would run for seconds.
     std::vector<double> cost(16, 0.001);
     cost.insert(cost.end(), 4, 0.2);
-    BandBatcher batcher(std::uint32_t(cost.size()), 0.25, 256);
+    TileBatcher batcher(std::uint32_t(cost.size()), 0.25, 256);
     const std::vector<double> times = submissions(batcher, cost, 50);
     EXPECT_LE(*std::max_element(times.begin(), times.end()), 0.25);
     // And it batches: far fewer submissions than the 1000 items.
     EXPECT_LT(times.size(), 300u);
 }
 
-TEST(BandBatcher, FollowsAMachineThatSlowsDown) {
+TEST(TileBatcher, FollowsAMachineThatSlowsDown) {
     const std::vector<double> cost(8, 0.01);
-    BandBatcher batcher(8, 0.25, 256);
+    TileBatcher batcher(8, 0.25, 256);
     submissions(batcher, cost, 20);
     // Three times slower from now on: the first batch overshoots by the factor,
     // after which the rescaled costs bring the submissions back to the target.
@@ -60,17 +60,45 @@ TEST(BandBatcher, FollowsAMachineThatSlowsDown) {
     EXPECT_LE(*std::max_element(slow.begin() + 1, slow.end()), 0.25 + 1e-9);
 }
 
-TEST(BandBatcher, ABandAboveTheTargetGoesAlone) {
-    BandBatcher batcher(2, 0.25, 256);
+TEST(TileBatcher, ATileAboveTheTargetGoesAlone) {
+    TileBatcher batcher(2, 0.25, 256);
     const std::vector<double> times = submissions(batcher, {0.6, 0.01}, 4);
     for (double t : times) EXPECT_TRUE(t == 0.6 || t <= 0.25) << t;
 }
 
-TEST(BandBatcher, NeverMoreThanLeftOrTheMaximum) {
-    BandBatcher batcher(1, 10.0, 16);
+TEST(TileBatcher, NeverMoreThanLeftOrTheMaximum) {
+    TileBatcher batcher(1, 10.0, 16);
     batcher.measured(0, 1, 0.0001);
     EXPECT_EQ(batcher.next(1, 100), 16u);
     EXPECT_EQ(batcher.next(1, 3), 3u);
+}
+
+}  // namespace
+
+namespace {
+
+using vkrt::gpu::Tiling;
+
+TEST(Tiling, TilesAreCutToTheSlabAndToWholeWorkgroups) {
+    const Tiling t = vkrt::gpu::tile_slab(20, 200, 256, 64);
+    EXPECT_EQ(t.tile_width, 24u);   // 20 rounded up to whole 8-pixel workgroups
+    EXPECT_EQ(t.tile_height, 64u);
+    EXPECT_EQ(t.across(), 1u);
+    EXPECT_EQ(t.down(), 4u);        // the last tile cut short by the edge
+}
+
+TEST(Tiling, SplittingHalvesTheLongerSideDownToOneWorkgroup) {
+    Tiling t = vkrt::gpu::tile_slab(512, 512, 256, 64);
+    EXPECT_EQ(t.count(), 16u);
+    ASSERT_TRUE(t.split());
+    EXPECT_EQ(t.tile_width, 128u);
+    EXPECT_EQ(t.tile_height, 64u);
+    int splits = 1;
+    while (t.split()) ++splits;
+    EXPECT_EQ(t.tile_width, 8u);
+    EXPECT_EQ(t.tile_height, 8u);
+    EXPECT_EQ(splits, 8);           // 256 -> 8 in five halvings, 64 -> 8 in three
+    EXPECT_EQ(t.count(), 64u * 64u);
 }
 
 }  // namespace

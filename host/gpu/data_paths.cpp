@@ -1,0 +1,55 @@
+#include "gpu/data_paths.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "kernel/types.hpp"
+
+namespace vkrt::gpu {
+
+namespace {
+
+constexpr std::uint64_t kTexelBytes = 16;
+constexpr std::uint64_t kPixelTexels = kernel::PIXEL_TEXELS;
+constexpr std::uint32_t kRowsPerGroup = 8;  // render.comp's local_size_y
+
+// Rows of `width` pixels that `texels` texels hold, as a multiple of 8 or the whole
+// image; 0 when not even 8 rows fit.
+std::uint32_t rows_fitting(std::uint64_t texels, std::uint32_t width, std::uint32_t height) {
+    const std::uint64_t rows = texels / (kPixelTexels * width);
+    if (rows >= height) return height;
+    return std::uint32_t(rows / kRowsPerGroup * kRowsPerGroup);
+}
+
+bool scene_fits_texels(const DeviceLimits& l, const DataSizes& s) {
+    return s.words_start <= l.texel_elements && s.word_count <= l.texel_elements;
+}
+
+}  // namespace
+
+DataPaths plan_data_paths(const DeviceLimits& l, bool cpu_device, const DataSizes& s, PathChoice scene,
+                          PathChoice params) {
+    DataPaths paths;
+    const std::uint32_t texel_rows = rows_fitting(l.texel_elements, s.width, s.height);
+    const std::uint32_t storage_rows = rows_fitting(l.storage_range / kTexelBytes, s.width, s.height);
+    const bool texel_ok = scene_fits_texels(l, s) && texel_rows > 0;
+    const bool storage_ok = s.scene_texels * kTexelBytes <= l.storage_range && storage_rows > 0;
+    if (scene == PathChoice::Automatic) {
+        paths.scene_in_storage = !texel_ok && storage_ok;
+    } else {
+        paths.scene_in_storage = scene == PathChoice::Other;
+    }
+    if (paths.scene_in_storage ? !storage_ok : !texel_ok) {
+        const std::string size = std::to_string(s.width) + "x" + std::to_string(s.height);
+        const std::string scene_bytes = std::to_string(s.scene_texels * kTexelBytes);
+        throw SceneDoesNotFit("this device cannot hold the scene (" + scene_bytes + " bytes) and a slab of 8 rows of the " +
+                       size + " image in one buffer each: its maxTexelBufferElements is " +
+                       std::to_string(l.texel_elements) + " and its maxStorageBufferRange " +
+                       std::to_string(l.storage_range) + " bytes");
+    }
+    paths.slab_rows = paths.scene_in_storage ? storage_rows : texel_rows;
+    paths.params_in_uniform = params == PathChoice::Automatic ? !cpu_device : params == PathChoice::Other;
+    return paths;
+}
+
+}  // namespace vkrt::gpu

@@ -1,0 +1,45 @@
+#pragma once
+// How one scene's data reaches the kernel on one device: texel or storage buffers
+// for the scene and the pixels, a texel or uniform buffer for the params, and how
+// many rows of pixels one pixel buffer holds. The device choices of
+// render_bindings.glsl, planned from the device's limits. No Vulkan here.
+#include <cstdint>
+
+#include "gpu/device_limits.hpp"
+#include "gpu/gpu_error.hpp"
+
+namespace vkrt::gpu {
+
+enum class PathChoice { Automatic, Texel, Other };  // Other: storage or uniform buffers
+
+// A scene or image too large for every data path of a device.
+class SceneDoesNotFit : public GpuError {
+public:
+    using GpuError::GpuError;
+};
+
+struct DataPaths {
+    bool scene_in_storage = false;   // SCENE_IN_STORAGE_BUFFERS: scene and pixels
+    bool params_in_uniform = false;  // PARAMS_IN_UNIFORM_BUFFER
+    // Rows of the image the pixel buffer holds at once (a slab): all of them when they
+    // fit, else a multiple of 8; the image is rendered slab by slab.
+    std::uint32_t slab_rows = 0;
+};
+
+struct DataSizes {
+    std::uint64_t scene_texels = 0;  // the packed scene (scene_pack.hpp), rgba32ui texels
+    std::uint64_t words_start = 0;   // texel where its r32ui arrays begin
+    std::uint64_t word_count = 0;
+    std::uint32_t width = 0;         // of the grid of rays the kernel traces
+    std::uint32_t height = 0;
+};
+
+// Texel buffers where the scene's and a row of eight pixels' texels fit
+// maxTexelBufferElements (docs/decisions/0001-texel-buffers.md: fastest on lavapipe),
+// else storage buffers; params from a uniform buffer except on CPU devices. A choice
+// other than Automatic forces the path (tests). Throws SceneDoesNotFit naming the
+// limits a scene or image exceeds on every path.
+DataPaths plan_data_paths(const DeviceLimits& limits, bool cpu_device, const DataSizes& sizes,
+                          PathChoice scene = PathChoice::Automatic, PathChoice params = PathChoice::Automatic);
+
+}  // namespace vkrt::gpu

@@ -1,0 +1,70 @@
+#include "gpu/scene_pack.hpp"
+
+#include <cstring>
+#include <string>
+
+#include "gpu/vulkan_backend.hpp"
+
+namespace vkrt::gpu {
+
+namespace {
+
+constexpr bool kWords_rgba32ui = false;
+constexpr bool kWords_r32ui = true;
+
+// The kernel indexes the buffer with a signed 32-bit texel number.
+constexpr std::uint64_t kMaxTexels = std::uint64_t(1) << 31;
+
+void check_size(std::uint64_t texels) {
+    if (texels >= kMaxTexels) {
+        throw GpuError("scene: its arrays need " + std::to_string(texels * 16) +
+                       " bytes, more than one buffer of 2^31 texels holds");
+    }
+}
+
+template <typename T>
+std::uint64_t texels_of(const std::vector<T>& items) {
+    return (items.size() * sizeof(T) + 15) / 16;
+}
+
+}  // namespace
+
+ScenePack pack_scene(const FlatScene& scene, std::uint32_t word_alignment) {
+    ScenePack pack;
+    pack.params = scene.params;
+    std::uint64_t texels = 0;
+#define SCENE_ARRAY(name, Element, load, format)                                   \
+    if (!kWords_##format) {                                                        \
+        kernel::set_##name##_base(pack.params, std::uint32_t(texels));             \
+        texels += texels_of(scene.name);                                           \
+        check_size(texels);                                                        \
+    }
+#include "kernel/arrays.glsl"
+    const std::uint64_t align = word_alignment == 0 ? 1 : word_alignment;
+    const std::uint64_t words_start = (texels + align - 1) / align * align;
+    std::uint64_t words = 0;
+#define SCENE_ARRAY(name, Element, load, format)                                   \
+    if (kWords_##format) {                                                         \
+        kernel::set_##name##_base(pack.params, std::uint32_t(words));              \
+        words += scene.name.size();                                                \
+        check_size(words_start + words / 4);                                       \
+    }
+#include "kernel/arrays.glsl"
+    check_size(words_start + (words + 3) / 4);
+    pack.words_start = std::uint32_t(words_start);
+    pack.word_count = std::uint32_t(words);
+    kernel::set_scene_words_start(pack.params, pack.words_start);
+
+    pack.texels.assign(std::max<std::uint64_t>(words_start + (words + 3) / 4, 1), kernel::uvec4(0u));
+    auto* bytes = reinterpret_cast<unsigned char*>(pack.texels.data());
+#define SCENE_ARRAY(name, Element, load, format)                                                         \
+    if (!scene.name.empty()) {                                                                           \
+        const std::size_t at = kWords_##format ? words_start * 16 + kernel::name##_base(pack.params) * 4u   \
+                                               : std::size_t(kernel::name##_base(pack.params)) * 16;     \
+        std::memcpy(bytes + at, scene.name.data(), scene.name.size() * sizeof(scene.name[0]));           \
+    }
+#include "kernel/arrays.glsl"
+    return pack;
+}
+
+}  // namespace vkrt::gpu

@@ -1,0 +1,154 @@
+// How the Vulkan backend lays a scene out on a device, without a device: the one
+// scene buffer (gpu/scene_pack.hpp), the data paths and slabs planned from a
+// device's limits (gpu/data_paths.hpp), and the limit profiles
+// (gpu/device_limits.hpp).
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+
+#include "gpu/data_paths.hpp"
+#include "gpu/device_limits.hpp"
+#include "gpu/scene_pack.hpp"
+#include "gpu/vulkan_backend.hpp"
+
+namespace vkrt {
+namespace {
+
+using gpu::DataPaths;
+using gpu::DataSizes;
+using gpu::DeviceLimits;
+using gpu::PathChoice;
+
+const DeviceLimits& minimum() { return gpu::find_profile("minimum").limits; }
+
+FlatScene scene_with_arrays() {
+    FlatScene scene;
+    scene.materials.resize(2);                   // 5 texels each
+    scene.spheres.resize(3);                     // 2 each
+    scene.spheres[1].center_radius = glm::vec4(1.0f, 2.0f, 3.0f, 4.0f);
+    scene.triangles.resize(1);                   // 7
+    scene.grid_cell_starts = {0, 2, 5};
+    scene.grid_refs = {7, 8, 9, 10, 11};
+    return scene;
+}
+
+TEST(ScenePack, ArraysFollowOneAnotherAndTheBasesSayWhere) {
+    const FlatScene scene = scene_with_arrays();
+    const gpu::ScenePack pack = gpu::pack_scene(scene, 16);
+    EXPECT_EQ(kernel::materials_base(pack.params), 0u);
+    EXPECT_EQ(kernel::spheres_base(pack.params), 10u);
+    EXPECT_EQ(kernel::triangles_base(pack.params), 16u);
+    EXPECT_EQ(kernel::rings_base(pack.params), 23u);       // empty arrays take no room
+    EXPECT_EQ(kernel::emitters_base(pack.params), 23u);
+    // The uint arrays from the next multiple of 16 texels, counted in words.
+    EXPECT_EQ(pack.words_start, 32u);
+    EXPECT_EQ(kernel::scene_words_start(pack.params), 32u);
+    EXPECT_EQ(kernel::grid_cell_starts_base(pack.params), 0u);
+    EXPECT_EQ(kernel::grid_refs_base(pack.params), 3u);
+    EXPECT_EQ(pack.word_count, 8u);
+    EXPECT_EQ(pack.texels.size(), 34u);
+    // The element is where its base says, bit for bit.
+    EXPECT_EQ(std::memcmp(&pack.texels[10 + 2], &scene.spheres[1], sizeof(kernel::Sphere)), 0);
+    const auto* words = reinterpret_cast<const std::uint32_t*>(&pack.texels[32]);
+    EXPECT_EQ(words[3 + 4], 11u);
+    // Everything else of the scene's params is kept.
+    EXPECT_EQ(kernel::image_width(pack.params), kernel::image_width(scene.params));
+}
+
+TEST(ScenePack, AnEmptySceneStillFillsOneTexel) {
+    const gpu::ScenePack pack = gpu::pack_scene(FlatScene{}, 16);
+    EXPECT_EQ(pack.texels.size(), 1u);
+    EXPECT_EQ(pack.word_count, 0u);
+}
+
+DataSizes sizes(std::uint64_t scene_texels, std::uint32_t width, std::uint32_t height) {
+    return {scene_texels, scene_texels, 0, width, height};
+}
+
+TEST(DataPaths, TexelBuffersWhileTheyHoldSceneAndImage) {
+    const DataPaths p = gpu::plan_data_paths(minimum(), true, sizes(1000, 64, 48));
+    EXPECT_FALSE(p.scene_in_storage);
+    EXPECT_FALSE(p.params_in_uniform);   // a CPU device: decision 0001
+    EXPECT_EQ(p.slab_rows, 48u);         // 64 x 48 x 7 texels fit 65,536
+}
+
+TEST(DataPaths, ParamsFromAUniformBufferOnGpus) {
+    EXPECT_TRUE(gpu::plan_data_paths(minimum(), false, sizes(1000, 64, 48)).params_in_uniform);
+    EXPECT_FALSE(gpu::plan_data_paths(minimum(), false, sizes(1000, 64, 48), PathChoice::Automatic,
+                                      PathChoice::Texel).params_in_uniform);
+}
+
+TEST(DataPaths, LargeImagesAreRenderedInSlabsOfEightRows) {
+    // 65,536 texels hold 18 rows of 512 pixels of 7 texels: slabs of 16.
+    const DataPaths p = gpu::plan_data_paths(minimum(), true, sizes(1000, 512, 512));
+    EXPECT_FALSE(p.scene_in_storage);
+    EXPECT_EQ(p.slab_rows, 16u);
+}
+
+TEST(DataPaths, ASceneTooLargeForTexelBuffersGoesToStorageBuffers) {
+    const DataPaths p = gpu::plan_data_paths(minimum(), true, sizes(70000, 512, 512));
+    EXPECT_TRUE(p.scene_in_storage);
+    // 2^27 bytes hold 2,340 rows of 512 pixels of 112 bytes: the whole image.
+    EXPECT_EQ(p.slab_rows, 512u);
+}
+
+TEST(DataPaths, ImagesTooWideForTexelBuffersGoToStorageBuffers) {
+    // Eight rows of 1,200 pixels need 67,200 texels.
+    EXPECT_TRUE(gpu::plan_data_paths(minimum(), true, sizes(100, 1200, 100)).scene_in_storage);
+}
+
+TEST(DataPaths, WhatFitsNowhereIsRefusedNamingTheLimits) {
+    try {
+        gpu::plan_data_paths(minimum(), true, sizes(std::uint64_t(1) << 24, 64, 48));
+        FAIL() << "a 256 MiB scene was planned on a device of 128 MiB buffers";
+    } catch (const gpu::SceneDoesNotFit& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("maxTexelBufferElements is 65536"), std::string::npos) << message;
+        EXPECT_NE(message.find("maxStorageBufferRange 134217728"), std::string::npos) << message;
+    }
+    // A forced path that cannot hold the scene is refused too.
+    EXPECT_THROW(gpu::plan_data_paths(minimum(), true, sizes(70000, 64, 48), PathChoice::Texel), gpu::SceneDoesNotFit);
+}
+
+TEST(DeviceLimits, TheMinimumProfileCanRunTheRenderer) {
+    EXPECT_EQ(gpu::missing(minimum()), "");
+    for (const gpu::DeviceProfile& p : gpu::device_profiles()) {
+        EXPECT_EQ(gpu::missing(p.limits), "") << p.name;
+        EXPECT_FALSE(p.description.empty()) << p.name;
+    }
+}
+
+TEST(DeviceLimits, ClampingTakesTheWorseOfEachLimit) {
+    DeviceLimits big = minimum();
+    big.texel_elements = 1u << 27;
+    big.texel_offset_alignment = 16;
+    big.mapped_device_memory = true;
+    big.timestamps = true;
+    const DeviceLimits c = gpu::clamp_to(big, minimum());
+    EXPECT_EQ(c.texel_elements, 65536u);
+    EXPECT_EQ(c.texel_offset_alignment, 256u);
+    EXPECT_FALSE(c.mapped_device_memory);
+    EXPECT_FALSE(c.timestamps);
+}
+
+TEST(DeviceLimits, WhatIsMissingIsNamed) {
+    DeviceLimits l = minimum();
+    l.storage_buffers = 1;
+    l.push_constant_bytes = 8;
+    const std::string m = gpu::missing(l);
+    EXPECT_NE(m.find("2 storage buffers"), std::string::npos) << m;
+    EXPECT_NE(m.find("16 bytes of push constants"), std::string::npos) << m;
+}
+
+TEST(DeviceLimits, AnUnknownProfileListsTheKnownOnes) {
+    try {
+        gpu::find_profile("nonesuch");
+        FAIL();
+    } catch (const GpuError& e) {
+        EXPECT_NE(std::string(e.what()).find("minimum"), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace vkrt
