@@ -41,6 +41,24 @@ TEST(Cli, DevicesNamesLavapipe) {
     EXPECT_NE(read_file(dir / "stdout.txt").find("(lavapipe: --device lavapipe)"), std::string::npos);
 }
 
+// `devices --limits`: the limits vkrt relies on, by their Vulkan names, whether the
+// device can run vkrt, and its heuristics; clamped to a profile on request.
+TEST(Cli, DevicesLimitsNamesTheLimitsAndTheProfile) {
+    const fs::path dir = test::temp_dir("cli_devices_limits");
+    ASSERT_EQ(test::run_vkrt("devices --limits", dir).code, 0);
+    const std::string own = read_file(dir / "stdout.txt");
+    for (const char* piece : {"maxTexelBufferElements", "maxStorageBufferRange", "can run vkrt: yes",
+                              "heuristics (cpu): submissions planned under 0.25 s"}) {
+        EXPECT_NE(own.find(piece), std::string::npos) << piece << " in\n" << own;
+    }
+    ASSERT_EQ(test::run_vkrt("devices --limits --profile minimum", dir).code, 0);
+    const std::string minimum = read_file(dir / "stdout.txt");
+    EXPECT_NE(minimum.find("as profile minimum"), std::string::npos) << minimum;
+    EXPECT_NE(minimum.find("maxTexelBufferElements                      65536"), std::string::npos) << minimum;
+    test::expect_one_error(test::run_vkrt("devices --limits --profile nonesuch", dir),
+                           {"no device profile 'nonesuch'", "minimum", "moltenvk-m1"});
+}
+
 // Without -o the image is <scene name>.png in the current directory, and the log
 // names it; with -q nothing is printed at all.
 TEST(Cli, DefaultOutputNameAndQuiet) {

@@ -270,6 +270,10 @@ int run_devices(const DevicesArgs& args) {
         }
         return 0;
     }
+    if (args.limits) {
+        fmt::print("{}", device_limits_report(args.profile));
+        return 0;
+    }
     const auto devices = list_vulkan_devices();
     for (const DeviceInfo& d : devices) {
         // Users are told to pick Mesa's CPU driver by its project name, which the

@@ -50,6 +50,8 @@ struct DevicesArgs {
     bool float_profile = false;  // probe float behaviour (docs/numerics.md) instead of listing
     std::string device;          // with float_profile: only this device (as render's --device)
     std::string json;            // with float_profile: also write the profile here
+    bool limits = false;         // print each device's limits and heuristics
+    std::string profile;         // with limits: clamp them to this profile first
 };
 
 int run_render(const RenderArgs& args);

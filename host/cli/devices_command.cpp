@@ -16,6 +16,13 @@ Command add_devices_command(CLI::App& program) {
         ->needs(float_profile);
     d->add_option("--json", args->json, "With --float-profile: also write the profile to this JSON file")
         ->needs(float_profile);
+    CLI::Option* limits = d->add_flag(
+        "--limits", args->limits,
+        "Print each device's limits that vkrt relies on, whether it can run vkrt, and its heuristics (docs/porting.md)");
+    limits->excludes(float_profile);
+    d->add_option("--profile", args->profile,
+                  "With --limits: clamp the limits to a profile first (minimum, moltenvk-m1, turnip-adreno6xx)")
+        ->needs(limits);
     return {d, [args] { return run_devices(*args); }};
 }
 
