@@ -330,19 +330,27 @@ TEST(VulkanBackend, SpecializationConstantsCompileTrianglesOut) {
     EXPECT_EQ(log.find("vulkan validation:"), std::string::npos) << log;
 }
 
+// Three samples of `scene` on lavapipe as `options` plan them give `reference`'s sums,
+// silently.
+void expect_same_sums(const FlatScene& scene, VulkanOptions options, const RenderResult& reference) {
+    options.device = "lavapipe";
+    options.validation = true;
+    const std::unique_ptr<Backend> backend = make_vulkan_backend(options);
+    const RenderResult r = backend->render(scene, SampleRange{0, 3});
+    SCOPED_TRACE(r.data_paths);
+    EXPECT_EQ(r.sums, reference.sums);
+    EXPECT_EQ(r.counters, reference.counters);
+    EXPECT_EQ(backend->validation_messages(), 0u);
+}
+
 // lavapipe has only mapped memory; the "minimum" profile has none, so the uploads
 // go through staging buffers and the sums through a read-back copy, as on a
 // discrete GPU.
 TEST(VulkanBackend, StagingPathMatchesMappedPath) {
     const FlatScene scene = tiny_scene();
-    const RenderResult mapped = lavapipe()->render(scene, SampleRange{0, 3});
-    VulkanOptions options{"lavapipe", true};
-    options.profile = "minimum";
-    const std::unique_ptr<Backend> backend = make_vulkan_backend(options);
-    const RenderResult staged = backend->render(scene, SampleRange{0, 3});
-    EXPECT_EQ(staged.sums, mapped.sums);
-    EXPECT_EQ(staged.counters, mapped.counters);
-    EXPECT_EQ(backend->validation_messages(), 0u);
+    VulkanOptions minimum;
+    minimum.profile = "minimum";
+    expect_same_sums(scene, minimum, lavapipe()->render(scene, SampleRange{0, 3}));
 }
 
 // Each data path of render_bindings.glsl, forced on lavapipe: the same sums.
@@ -352,15 +360,10 @@ TEST(VulkanBackend, EveryDataPathGivesTheSameSums) {
     using gpu::PathChoice;
     for (const PathChoice data : {PathChoice::Texel, PathChoice::Other}) {
         for (const PathChoice params : {PathChoice::Texel, PathChoice::Other}) {
-            VulkanOptions options{"lavapipe", true};
+            VulkanOptions options;
             options.scene_path = data;
             options.params_path = params;
-            const std::unique_ptr<Backend> backend = make_vulkan_backend(options);
-            const RenderResult r = backend->render(scene, SampleRange{0, 3});
-            SCOPED_TRACE(r.data_paths);
-            EXPECT_EQ(r.sums, reference.sums);
-            EXPECT_EQ(r.counters, reference.counters);
-            EXPECT_EQ(backend->validation_messages(), 0u);
+            expect_same_sums(scene, options, reference);
         }
     }
 }
