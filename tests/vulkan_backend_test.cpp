@@ -99,21 +99,27 @@ TEST(VulkanBackend, UnknownDeviceListsTheAvailableOnes) {
     EXPECT_THROW(make_vulkan_backend(VulkanOptions{"99", false}), GpuError);
 }
 
+// A device as enumerated, for selection alone: Vulkan 1.1, compute, the
+// specification's minimum limits.
+gpu::PhysicalDevice fake_device(std::uint32_t index, const char* name, VkPhysicalDeviceType type) {
+    gpu::PhysicalDevice d;
+    d.info.index = index;
+    d.info.name = name;
+    d.type = type;
+    d.has_compute = true;
+    d.api_version = VK_API_VERSION_1_1;
+    d.limits = gpu::find_profile("minimum").limits;
+    return d;
+}
+
 // A device short of any limit the renderer relies on (gpu/device_limits.hpp) is
 // passed over, and refused by name with the reason. The descriptor set needs 4
 // storage texel buffers, the specification's guaranteed minimum.
 TEST(VulkanBackend, DeviceShortOfALimitIsRefused) {
-    gpu::PhysicalDevice enough;
-    enough.info.index = 0;
-    enough.info.name = "roomy";
-    enough.has_compute = true;
-    enough.api_version = VK_API_VERSION_1_1;
-    enough.limits = gpu::find_profile("minimum").limits;
-    gpu::PhysicalDevice short_of_them = enough;
-    short_of_them.info.index = 1;
-    short_of_them.info.name = "cramped";
+    const gpu::PhysicalDevice enough = fake_device(0, "roomy", VK_PHYSICAL_DEVICE_TYPE_OTHER);
+    // Preferred, were it usable.
+    gpu::PhysicalDevice short_of_them = fake_device(1, "cramped", VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU);
     short_of_them.limits.storage_images = 3;
-    short_of_them.type = VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU;   // preferred, were it usable
 
     const std::vector<gpu::PhysicalDevice> both{enough, short_of_them};
     EXPECT_EQ(gpu::select_device(both, "").info.name, "roomy");
@@ -137,17 +143,8 @@ TEST(VulkanBackend, DeviceShortOfALimitIsRefused) {
 // When the device selection would pick cannot hold a scene, the backend moves to the
 // preferred one of those that can (unless the user named a device).
 TEST(VulkanBackend, TheDeviceThatHoldsTheSceneIsPreferred) {
-    gpu::PhysicalDevice small;
-    small.info.index = 0;
-    small.info.name = "small";
-    small.has_compute = true;
-    small.api_version = VK_API_VERSION_1_1;
-    small.type = VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU;
-    small.limits = gpu::find_profile("minimum").limits;
-    gpu::PhysicalDevice large = small;
-    large.info.index = 1;
-    large.info.name = "large";
-    large.type = VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU;
+    const gpu::PhysicalDevice small = fake_device(0, "small", VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU);
+    gpu::PhysicalDevice large = fake_device(1, "large", VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU);
     large.limits.texel_elements = 1u << 27;
     const std::vector<gpu::PhysicalDevice> both{small, large};
     auto scene_of = [](std::uint64_t texels) { return gpu::DataSizes{texels, texels, 0, 512, 512}; };
