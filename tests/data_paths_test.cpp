@@ -56,6 +56,15 @@ TEST(ScenePack, ArraysFollowOneAnotherAndTheBasesSayWhere) {
     EXPECT_EQ(kernel::image_width(pack.params), kernel::image_width(scene.params));
 }
 
+TEST(ScenePack, WithoutUintArraysNothingIsPadded) {
+    FlatScene scene = scene_with_arrays();
+    scene.grid_cell_starts.clear();
+    scene.grid_refs.clear();
+    const gpu::ScenePack pack = gpu::pack_scene(scene, 16);
+    EXPECT_EQ(pack.words_start, 23u);
+    EXPECT_EQ(pack.texels.size(), 23u);
+}
+
 TEST(ScenePack, AnEmptySceneStillFillsOneTexel) {
     const gpu::ScenePack pack = gpu::pack_scene(FlatScene{}, 16);
     EXPECT_EQ(pack.texels.size(), 1u);

@@ -1,5 +1,6 @@
 #include "gpu/scene_pack.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 
@@ -15,10 +16,10 @@ constexpr bool kWords_r32ui = true;
 // The kernel indexes the buffer with a signed 32-bit texel number.
 constexpr std::uint64_t kMaxTexels = std::uint64_t(1) << 31;
 
-void check_size(std::uint64_t texels) {
-    if (texels >= kMaxTexels) {
-        throw GpuError("scene: its arrays need " + std::to_string(texels * 16) +
-                       " bytes, more than one buffer of 2^31 texels holds");
+// `count` texels or words.
+void check_size(std::uint64_t count) {
+    if (count >= kMaxTexels) {
+        throw GpuError("scene: its arrays need more than one buffer of 2^31 texels (32 GiB) holds");
     }
 }
 
@@ -40,17 +41,23 @@ ScenePack pack_scene(const FlatScene& scene, std::uint32_t word_alignment) {
         check_size(texels);                                                        \
     }
 #include "kernel/arrays.glsl"
-    const std::uint64_t align = word_alignment == 0 ? 1 : word_alignment;
-    const std::uint64_t words_start = (texels + align - 1) / align * align;
     std::uint64_t words = 0;
+#define SCENE_ARRAY(name, Element, load, format) \
+    if (kWords_##format) words += scene.name.size();
+#include "kernel/arrays.glsl"
+    // The imageLoad of a word takes a signed 32-bit index too.
+    check_size(words);
+    // Aligned for a view of its own, where there are words to view.
+    const std::uint64_t align = word_alignment == 0 || words == 0 ? 1 : word_alignment;
+    const std::uint64_t words_start = (texels + align - 1) / align * align;
+    check_size(words_start + (words + 3) / 4);
+    words = 0;
 #define SCENE_ARRAY(name, Element, load, format)                                   \
     if (kWords_##format) {                                                         \
         kernel::set_##name##_base(pack.params, std::uint32_t(words));              \
         words += scene.name.size();                                                \
-        check_size(words_start + words / 4);                                       \
     }
 #include "kernel/arrays.glsl"
-    check_size(words_start + (words + 3) / 4);
     pack.words_start = std::uint32_t(words_start);
     pack.word_count = std::uint32_t(words);
     kernel::set_scene_words_start(pack.params, pack.words_start);

@@ -81,30 +81,32 @@ std::string describe(const DataPaths& paths) {
 }
 
 // Everything a session makes on one device: lost with the device, made again on a
-// new one.
+// new one. It holds its context, so that replacing the backend's context after a
+// lost device leaves another session's objects a device to be destroyed on.
 struct DeviceState {
-    DeviceState(const VulkanContext& context, const FlatScene& scene)
-        : pack(pack_scene(scene, std::max(context.limits().texel_offset_alignment / 16, 1u))),
-          paths(plan_data_paths(context.limits(), context.cpu_device(),
+    DeviceState(std::shared_ptr<const VulkanContext> context_, const FlatScene& scene)
+        : context(std::move(context_)),
+          pack(pack_scene(scene, std::max(context->limits().texel_offset_alignment / 16, 1u))),
+          paths(plan_data_paths(context->limits(), context->cpu_device(),
                                 {pack.texels.size(), pack.words_start, pack.word_count, scene.width(), scene.height()},
-                                context.options().scene_path, context.options().params_path)),
-          pipeline(make_pipeline(context, scene.features, paths)),
-          params(context, "params", sizeof(kernel::Params), kBindingUsage),
+                                context->options().scene_path, context->options().params_path)),
+          pipeline(make_pipeline(*context, scene.features, paths)),
+          params(*context, "params", sizeof(kernel::Params), kBindingUsage),
           // Stands in for every binding the data paths leave unread: the shader still
           // declares it, but nothing reads it.
-          dummy(context, "unused", 512, kBindingUsage),
-          scene_buffer(context, "scene", pack.bytes(), kBindingUsage),
-          pixels(context, "pixels", slab_bytes(scene), kBindingUsage),
-          timer(context) {
+          dummy(*context, "unused", 512, kBindingUsage),
+          scene_buffer(*context, "scene", pack.bytes(), kBindingUsage),
+          pixels(*context, "pixels", slab_bytes(scene), kBindingUsage),
+          timer(*context) {
         params.upload(&pack.params, sizeof(kernel::Params));
         scene_buffer.upload(pack.texels.data(), pack.bytes());
         // The CPU reads the sums through its caches: where the pixel buffer is not
         // such memory, each slab's last batch copies it into a buffer that is.
         if (!pixels.host_cached()) {
-            readback.emplace(context, "pixels (read-back)", pixels.size(), 0, Placement::Readback);
+            readback.emplace(*context, "pixels (read-back)", pixels.size(), 0, Placement::Readback);
         }
-        views = write_descriptors(context.device(), pipeline.set, bound());
-        context.submit_and_wait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, dummy.get(), 0, VK_WHOLE_SIZE, 0); });
+        views = write_descriptors(context->device(), pipeline.set, bound());
+        context->submit_and_wait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, dummy.get(), 0, VK_WHOLE_SIZE, 0); });
     }
 
     VkDeviceSize slab_bytes(const FlatScene& scene) const {
@@ -131,6 +133,7 @@ struct DeviceState {
         return b;
     }
 
+    std::shared_ptr<const VulkanContext> context;  // first: destroyed last
     ScenePack pack;
     DataPaths paths;
     Pipeline pipeline;
@@ -157,8 +160,8 @@ public:
 
 private:
     RenderResult render_once(SampleRange samples, const ProgressCallback& progress);
-    bool split_tiles();
-    void render_slab(SampleRange samples, std::uint32_t first_row, std::uint32_t rows, RenderResult& result,
+    bool split_tiles(std::uint32_t slab);
+    void render_slab(SampleRange samples, std::uint32_t slab, std::uint32_t rows, RenderResult& result,
                      const std::function<void(double)>& progress);
 
     VulkanBackend& backend_;
@@ -166,18 +169,18 @@ private:
     std::uint32_t width_, height_;
     double bound_;
     std::unique_ptr<DeviceState> state_;
-    // The tiles and their measured costs, kept from pass to pass so that a later
-    // pass need not measure them again.
+    // The largest tile wanted, and each slab's tiling and measured tile costs, kept
+    // from pass to pass so that a later pass need not measure them again.
     std::uint32_t tile_width_ = kStartTileWidth, tile_height_ = kStartTileHeight;
-    std::optional<Tiling> tiling_;
-    std::optional<TileBatcher> batcher_;
+    std::vector<Tiling> tilings_;
+    std::vector<std::optional<TileBatcher>> batchers_;
     double setup_seconds_ = 0.0;
 };
 
 class VulkanBackend final : public Backend {
 public:
     explicit VulkanBackend(const VulkanOptions& options)
-        : options_(options), context_(std::make_unique<VulkanContext>(options)) {}
+        : options_(options), context_(std::make_shared<VulkanContext>(options)) {}
 
     std::string name() const override { return "vulkan"; }
     AccelPolicy accel_policy() const override {
@@ -210,29 +213,32 @@ public:
             if (!other || other->info.index == context_->device_index()) {
                 throw SceneDoesNotFit(std::string(e.what()) + ", and no other Vulkan device can hold it either");
             }
-            std::fprintf(stderr, "note: %s; rendering on device %u (%s) instead\n", e.what(), other->info.index,
+            const std::uint32_t index = other->info.index;  // replace_context() frees the list
+            std::fprintf(stderr, "note: %s; rendering on device %u (%s) instead\n", e.what(), index,
                          other->info.name.c_str());
-            options_.device = std::to_string(other->info.index);
+            options_.device = std::to_string(index);
             replace_context();
             return std::make_unique<VulkanSession>(*this, scene);
         }
     }
 
     const VulkanContext& context() const { return *context_; }
+    std::shared_ptr<const VulkanContext> shared_context() const { return context_; }
 
     // After a lost device: a new context on the same device (without the injected
-    // fault of VulkanOptions::lose_device_at_submission).
+    // fault of VulkanOptions::lose_device_at_submission). Should making it fail, the
+    // old one stays, so the backend can still answer.
     void replace_context() {
-        lost_messages_ += context_->validation_messages();
-        context_.reset();
         VulkanOptions options = options_;
         options.lose_device_at_submission = 0;
-        context_ = std::make_unique<VulkanContext>(options);
+        std::shared_ptr<VulkanContext> fresh = std::make_shared<VulkanContext>(options);
+        lost_messages_ += context_->validation_messages();
+        context_ = std::move(fresh);
     }
 
 private:
     VulkanOptions options_;
-    std::unique_ptr<VulkanContext> context_;
+    std::shared_ptr<VulkanContext> context_;
     std::uint32_t lost_messages_ = 0;
 };
 
@@ -245,13 +251,14 @@ VulkanSession::VulkanSession(VulkanBackend& backend, const FlatScene& scene)
                  ? backend.context().options().submit_bound_seconds
                  : heuristics_for(backend.context().cpu_device()).submit_bound_seconds) {
     const Clock::time_point start = Clock::now();
-    state_ = std::make_unique<DeviceState>(backend_.context(), scene_);
+    state_ = std::make_unique<DeviceState>(backend_.shared_context(), scene_);
     setup_seconds_ = seconds_since(start);
 }
 
 RenderResult VulkanSession::render(SampleRange samples, const ProgressCallback& progress) {
     for (std::uint32_t resets = 0;; ++resets) {
         try {
+            if (!state_) state_ = std::make_unique<DeviceState>(backend_.shared_context(), scene_);
             RenderResult result = render_once(samples, progress);
             result.device_resets = resets;
             return result;
@@ -264,7 +271,6 @@ RenderResult VulkanSession::render(SampleRange samples, const ProgressCallback& 
                          samples.first, samples.end() - 1);
             state_.reset();
             backend_.replace_context();
-            state_ = std::make_unique<DeviceState>(backend_.context(), scene_);
         }
     }
 }
@@ -279,125 +285,138 @@ RenderResult VulkanSession::render_once(SampleRange samples, const ProgressCallb
     const std::uint32_t slab_rows = state_->paths.slab_rows;
     const std::uint32_t slabs = (height_ + slab_rows - 1) / slab_rows;
     result.slabs = slabs;
+    if (samples.count == 0) return result;
+    tilings_.resize(slabs);
+    batchers_.resize(slabs);
     for (std::uint32_t slab = 0; slab < slabs; ++slab) {
-        const std::uint32_t first_row = slab * slab_rows;
-        render_slab(samples, first_row, std::min(slab_rows, height_ - first_row), result, [&](double fraction) {
+        render_slab(samples, slab, std::min(slab_rows, height_ - slab * slab_rows), result, [&](double fraction) {
             if (progress) progress(std::uint32_t((slab + fraction) / slabs * kProgressUnits), kProgressUnits);
         });
     }
-    result.tile_width = tile_width_;
-    result.tile_height = tile_height_;
+    result.tile_width = tilings_.front().tile_width;
+    result.tile_height = tilings_.front().tile_height;
     return result;
 }
 
-// Halves the tiles until the costliest, its cost taken as proportional to its area,
-// would fit the bound; false when they cannot shrink.
-bool VulkanSession::split_tiles() {
-    const double area = double(tiling_->tile_width) * tiling_->tile_height;
-    const double costliest = batcher_->costliest();
+// Halves the tiles until the costliest of this slab's, its cost taken as
+// proportional to its area, would fit the bound; false when they cannot shrink.
+// Every slab takes the new size; their costs are measured again.
+bool VulkanSession::split_tiles(std::uint32_t slab) {
+    Tiling tiling = tilings_[slab];
+    const double area = double(tiling.tile_width) * tiling.tile_height;
+    const double costliest = batchers_[slab]->costliest();
     bool split = false;
-    while (costliest * (double(tiling_->tile_width) * tiling_->tile_height / area) > bound_ && tiling_->split()) {
+    while (costliest * (double(tiling.tile_width) * tiling.tile_height / area) > bound_ && tiling.split()) {
         split = true;
     }
     if (split) {
-        tile_width_ = tiling_->tile_width;
-        tile_height_ = tiling_->tile_height;
-        batcher_.emplace(tiling_->count(), bound_, kMaxBatch);
+        tile_width_ = tiling.tile_width;
+        tile_height_ = tiling.tile_height;
+        for (std::optional<TileBatcher>& batcher : batchers_) batcher.reset();
     }
     return split;
 }
 
-void VulkanSession::render_slab(SampleRange samples, std::uint32_t first_row, std::uint32_t rows,
-                                RenderResult& result, const std::function<void(double)>& progress) {
+void VulkanSession::render_slab(SampleRange samples, std::uint32_t slab, std::uint32_t rows, RenderResult& result,
+                                const std::function<void(double)>& progress) {
     DeviceState& s = *state_;
-    const VulkanContext& context = backend_.context();
-    if (!tiling_ || tiling_->rows != rows || tiling_->tile_width != tile_width_ ||
-        tiling_->tile_height != tile_height_) {
-        tiling_ = tile_slab(width_, rows, tile_width_, tile_height_);
-        batcher_.emplace(tiling_->count(), bound_, kMaxBatch);
-    }
+    const VulkanContext& context = *s.context;
+    const std::uint32_t first_row = slab * s.paths.slab_rows;
     const VkDeviceSize bytes = VkDeviceSize(rows) * width_ * kernel::PIXEL_TEXELS * 16;
 
     // The work, in order: sample by sample, each tile by tile. The sums are exact
     // integers, so neither tiling nor batching changes a bit of the image.
-    std::uint32_t first_sample = samples.first;  // of the items counted from 0
+    std::uint32_t first_sample = samples.first;  // of the chunk being dispatched
     std::uint32_t samples_left = samples.count;
-    std::uint32_t item = 0;
     bool dispatched = false;
     const Clock::time_point loop_start = Clock::now();
     double gpu_seconds = 0.0;
-    for (;;) {
-        const Tiling& tiling = *tiling_;
+    while (samples_left > 0) {
+        const Tiling wanted = tile_slab(width_, rows, tile_width_, tile_height_);
+        if (!batchers_[slab] || tilings_[slab].rows != rows || tilings_[slab].tile_width != wanted.tile_width ||
+            tilings_[slab].tile_height != wanted.tile_height) {
+            tilings_[slab] = wanted;
+            batchers_[slab].emplace(wanted.count(), bound_, kMaxBatch);
+        }
+        const Tiling& tiling = tilings_[slab];
+        TileBatcher& batcher = *batchers_[slab];
         const std::uint32_t tiles = tiling.count();
-        const std::uint32_t items = samples_left * tiles;
-        const std::uint32_t n = batcher_->next(item, items - item);
-        const bool last = item + n == items;
-        const Clock::time_point submitted = Clock::now();
-        context.submit_and_wait([&](VkCommandBuffer cmd) {
-            if (!dispatched) {
-                // The slab starts from zero sums, after whatever last used the buffer.
-                memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                               kShaderAccess | VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                               VK_ACCESS_TRANSFER_WRITE_BIT);
-                vkCmdFillBuffer(cmd, s.pixels.get(), 0, bytes, 0);
-                memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                               VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, kShaderAccess);
-            }
-            s.timer.begin(cmd);
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.pipeline.get());
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.layout.get(), 0, 1,
-                                    &s.pipeline.set, 0, nullptr);
-            for (std::uint32_t i = item; i < item + n; ++i) {
-                const std::uint32_t tile = i % tiles;
-                // A sample adds to the sums the previous one wrote: one barrier where a
-                // sample starts orders all of the previous one before all of it, across
-                // batches too (a barrier's scope spans earlier submissions). The tiles
-                // of one sample write disjoint pixels and may overlap on a GPU.
-                if (tile == 0 && dispatched) {
-                    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+        // Item numbers stay in 32 bits: a chunk of the samples, the rest in the next.
+        const std::uint32_t chunk = std::min(samples_left, std::max(1u, (1u << 30) / tiles));
+        const std::uint32_t items = chunk * tiles;
+        std::uint32_t item = 0;
+        bool retile = false;
+        while (item < items && !retile) {
+            // While a tile alone overruns the bound, a batch ends with its sample, so
+            // that the tiles can be split before the next one.
+            const bool overrun = batcher.costliest() > bound_;
+            const std::uint32_t left = overrun ? tiles - item % tiles : items - item;
+            const std::uint32_t n = batcher.next(item, left);
+            const bool last = item + n == items && chunk == samples_left;
+            const Clock::time_point submitted = Clock::now();
+            context.submit_and_wait([&](VkCommandBuffer cmd) {
+                if (!dispatched) {
+                    // The slab starts from zero sums, after whatever last used the buffer.
+                    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                                   kShaderAccess | VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                                   VK_ACCESS_TRANSFER_WRITE_BIT);
+                    vkCmdFillBuffer(cmd, s.pixels.get(), 0, bytes, 0);
+                    memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                                    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, kShaderAccess);
                 }
-                const std::uint32_t x = tile % tiling.across() * tiling.tile_width;
-                const std::uint32_t y = tile / tiling.across() * tiling.tile_height;
-                const std::array<std::uint32_t, 4> pass{first_sample + i / tiles, x, first_row + y, first_row};
-                vkCmdPushConstants(cmd, s.pipeline.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, kPushBytes,
-                                   pass.data());
-                const std::uint32_t w = std::min(tiling.tile_width, width_ - x);
-                const std::uint32_t h = std::min(tiling.tile_height, rows - y);
-                vkCmdDispatch(cmd, (w + kLocalSize - 1) / kLocalSize, (h + kLocalSize - 1) / kLocalSize, 1);
-                dispatched = true;
-            }
-            s.timer.end(cmd);
-            if (last) {
-                // The slab's sums, to where the CPU reads them.
-                if (s.readback) {
-                    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                                   VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-                    const VkBufferCopy region{0, 0, bytes};
-                    vkCmdCopyBuffer(cmd, s.pixels.get(), s.readback->get(), 1, &region);
-                    memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                                   VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
-                } else {
-                    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                                   VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+                s.timer.begin(cmd);
+                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.pipeline.get());
+                vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.layout.get(), 0, 1,
+                                        &s.pipeline.set, 0, nullptr);
+                for (std::uint32_t i = item; i < item + n; ++i) {
+                    const std::uint32_t tile = i % tiles;
+                    // A sample adds to the sums the previous one wrote: one barrier where
+                    // a sample starts orders all of the previous one before all of it,
+                    // across batches too (a barrier's scope spans earlier submissions).
+                    // The tiles of one sample write disjoint pixels and may overlap.
+                    if (tile == 0 && dispatched) {
+                        memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, kShaderAccess);
+                    }
+                    const std::uint32_t x = tile % tiling.across() * tiling.tile_width;
+                    const std::uint32_t y = tile / tiling.across() * tiling.tile_height;
+                    const std::array<std::uint32_t, 4> pass{first_sample + i / tiles, x, first_row + y, first_row};
+                    vkCmdPushConstants(cmd, s.pipeline.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, kPushBytes,
+                                       pass.data());
+                    const std::uint32_t w = std::min(tiling.tile_width, width_ - x);
+                    const std::uint32_t h = std::min(tiling.tile_height, rows - y);
+                    vkCmdDispatch(cmd, (w + kLocalSize - 1) / kLocalSize, (h + kLocalSize - 1) / kLocalSize, 1);
+                    dispatched = true;
                 }
-            }
-        });
-        const double wall = seconds_since(submitted);
-        result.longest_submit_seconds = std::max(result.longest_submit_seconds, wall);
-        if (s.timer.on_gpu()) gpu_seconds += s.timer.batch_seconds();
-        batcher_->measured(item, n, wall);
-        item += n;
-        const std::uint32_t samples_done = samples.count - samples_left + item / tiles;
-        if (progress) progress((samples_done + double(item % tiles) / tiles) / samples.count);
-        if (last) break;
-        // Tiles of which one alone takes longer than the bound are split, from the next
-        // sample on (a sample is dispatched with one tiling).
-        if (item % tiles == 0 && batcher_->costliest() > bound_ && split_tiles()) {
-            first_sample += item / tiles;
-            samples_left -= item / tiles;
-            item = 0;
+                s.timer.end(cmd);
+                if (last) {
+                    // The slab's sums, to where the CPU reads them.
+                    if (s.readback) {
+                        memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                                       VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+                        const VkBufferCopy region{0, 0, bytes};
+                        vkCmdCopyBuffer(cmd, s.pixels.get(), s.readback->get(), 1, &region);
+                        memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                                       VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+                    } else {
+                        memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                                       VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+                    }
+                }
+            });
+            const double wall = seconds_since(submitted);
+            result.longest_submit_seconds = std::max(result.longest_submit_seconds, wall);
+            if (s.timer.on_gpu()) gpu_seconds += s.timer.batch_seconds();
+            batcher.measured(item, n, wall);
+            item += n;
+            const std::uint32_t samples_done = samples.count - samples_left + item / tiles;
+            if (progress) progress((samples_done + double(item % tiles) / tiles) / samples.count);
+            // Tiles of which one alone overran the bound are split from the next sample
+            // on (a sample is dispatched with one tiling).
+            retile = item < items && item % tiles == 0 && batcher.costliest() > bound_ && split_tiles(slab);
         }
+        first_sample += item / tiles;
+        samples_left -= item / tiles;
     }
     result.render_seconds += s.timer.on_gpu() ? gpu_seconds : seconds_since(loop_start);
 
