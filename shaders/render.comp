@@ -26,13 +26,29 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
     layout(std140, binding = binding_) uniform name##_block { uvec4 texels[PARAM_TEXELS]; } name;
 #define DEVICE_CHOICE(id, name) layout(constant_id = id) const bool name = false;
 #include "render_bindings.glsl"
-// x = sample index; y, z = the tile's first pixel column and row; w = the first row
-// of the slab of rows the pixel buffer holds.
-layout(push_constant) uniform PassBlock { uvec4 pass; };
+// pass: x = sample index; y, z = the tile's first pixel column and row; w = the
+// first row of the slab of rows the pixel buffer holds. bases: where each array of
+// kernel/arrays.glsl starts in the scene buffer (host/gpu/scene_pack.hpp), by id,
+// and after the last the texel where its r32ui arrays start. Push constants rather
+// than params: they describe the device's packing, not the render.
+layout(push_constant) uniform PassBlock {
+    uvec4 pass;
+    uvec4 bases[3];
+};
+// Copied by main(), like the params: read from push constants in the loops, they
+// took 1.14x the time on lavapipe (ten_spheres, 512x512, 32 spp).
+uvec4 g_bases[3];
+#define SCENE_ARRAY(id, name, Element, load, format) \
+    uint name##_base() { return g_bases[id / 4][id % 4]; }
+#include "kernel/arrays.glsl"
+const uint SCENE_ARRAYS = 0u
+#define SCENE_ARRAY(id, name, Element, load, format) + 1u
+#include "kernel/arrays.glsl"
+    ;
+uint scene_words_start() { return g_bases[SCENE_ARRAYS / 4u][SCENE_ARRAYS % 4u]; }
 
 // Read once per invocation by main().
 Params params;
-uint scene_words_start();   // kernel/param_access.glsl, from params.glsl
 
 // Texel t of the scene buffer, and word w of its r32ui arrays.
 uvec4 scene_texel(uint t) {
@@ -79,6 +95,7 @@ void main() {
     [[unroll]] for (uint i = 0u; i < PARAM_TEXELS; ++i) {
         params.texels[i] = PARAMS_IN_UNIFORM_BUFFER ? params_uniform.texels[i] : imageLoad(params_texels, int(i));
     }
+    g_bases = bases;
     // Each row of 8 invocations renders a 4x2 block of pixels, not a row of 8: an
     // 8-lane SIMD vector then traces rays that agree more often on where they go
     // (docs/decisions/0017-loop-shapes-for-simd.md). Only which invocation renders

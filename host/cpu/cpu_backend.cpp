@@ -28,7 +28,7 @@ kernel::Kernel make_kernel(const FlatScene& scene) {
 #include "kernel/features.glsl"
 #undef FEATURE
     k.params = scene.params;
-#define SCENE_ARRAY(name, Element, load, format) k.name = scene.name;
+#define SCENE_ARRAY(id, name, Element, load, format) k.name = scene.name;
 #include "kernel/arrays.glsl"
     return k;
 }

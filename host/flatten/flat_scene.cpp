@@ -288,7 +288,7 @@ void add_grid(const Scene& scene, const AccelPolicy& policy, FlatScene& g) {
 
 std::vector<BufferSize> FlatScene::built_buffers() const {
     std::vector<BufferSize> out;
-#define SCENE_ARRAY(name, Element, load, format) \
+#define SCENE_ARRAY(id, name, Element, load, format) \
     if (!name.empty()) out.push_back({#name, bytes(name)});
 #include "kernel/arrays.glsl"
     std::sort(out.begin(), out.end(), [](const BufferSize& a, const BufferSize& b) { return a.name < b.name; });

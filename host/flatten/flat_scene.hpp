@@ -29,7 +29,7 @@ struct FlatScene {
     FeatureSet features;
     // One array per line of kernel/arrays.glsl (materials, spheres, ...,
     // grid_refs), uploaded as it is. An array only left-out features read stays empty.
-#define SCENE_ARRAY(name, Element, load, format) std::vector<kernel::Element> name;
+#define SCENE_ARRAY(id, name, Element, load, format) std::vector<kernel::Element> name;
 #include "kernel/arrays.glsl"
     GridStats grid;
     std::uint32_t samples_per_pixel = 1;

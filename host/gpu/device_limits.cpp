@@ -24,7 +24,7 @@ constexpr BindingCounts kBindings = [] {
 }();
 
 constexpr std::uint32_t kLocalSize = 8;     // render.comp's local_size_x and _y
-constexpr std::uint32_t kPassBytes = 16;    // render.comp's push constants
+constexpr std::uint32_t kPushBytes = 64;    // render.comp's push constants: pass and bases
 constexpr std::uint32_t kParamsBytes = sizeof(kernel::Params);
 
 // The specification's guaranteed limits (Vulkan 1.1, "Required Limits"): the least a
@@ -134,7 +134,7 @@ std::string missing(const DeviceLimits& l) {
     need(l.resources >= descriptors, std::to_string(descriptors) + " resources");
     need(l.texel_elements >= kParamsBytes / 16 && l.uniform_range >= kParamsBytes,
          "buffers of " + std::to_string(kParamsBytes) + " bytes");
-    need(l.push_constant_bytes >= kPassBytes, std::to_string(kPassBytes) + " bytes of push constants");
+    need(l.push_constant_bytes >= kPushBytes, std::to_string(kPushBytes) + " bytes of push constants");
     need(l.workgroup_invocations >= kLocalSize * kLocalSize && l.workgroup_size_x >= kLocalSize &&
              l.workgroup_size_y >= kLocalSize,
          "8x8 workgroups");

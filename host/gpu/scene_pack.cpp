@@ -32,17 +32,16 @@ std::uint64_t texels_of(const std::vector<T>& items) {
 
 ScenePack pack_scene(const FlatScene& scene, std::uint32_t word_alignment) {
     ScenePack pack;
-    pack.params = scene.params;
     std::uint64_t texels = 0;
-#define SCENE_ARRAY(name, Element, load, format)                                   \
+#define SCENE_ARRAY(id, name, Element, load, format)                                   \
     if (!kWords_##format) {                                                        \
-        kernel::set_##name##_base(pack.params, std::uint32_t(texels));             \
+        pack.bases[id] = std::uint32_t(texels);                  \
         texels += texels_of(scene.name);                                           \
         check_size(texels);                                                        \
     }
 #include "kernel/arrays.glsl"
     std::uint64_t words = 0;
-#define SCENE_ARRAY(name, Element, load, format) \
+#define SCENE_ARRAY(id, name, Element, load, format) \
     if (kWords_##format) words += scene.name.size();
 #include "kernel/arrays.glsl"
     // The imageLoad of a word takes a signed 32-bit index too.
@@ -52,22 +51,22 @@ ScenePack pack_scene(const FlatScene& scene, std::uint32_t word_alignment) {
     const std::uint64_t words_start = (texels + align - 1) / align * align;
     check_size(words_start + (words + 3) / 4);
     words = 0;
-#define SCENE_ARRAY(name, Element, load, format)                                   \
+#define SCENE_ARRAY(id, name, Element, load, format)                                   \
     if (kWords_##format) {                                                         \
-        kernel::set_##name##_base(pack.params, std::uint32_t(words));              \
+        pack.bases[id] = std::uint32_t(words);                    \
         words += scene.name.size();                                                \
     }
 #include "kernel/arrays.glsl"
     pack.words_start = std::uint32_t(words_start);
     pack.word_count = std::uint32_t(words);
-    kernel::set_scene_words_start(pack.params, pack.words_start);
+    pack.bases[kSceneArrays] = pack.words_start;
 
     pack.texels.assign(std::max<std::uint64_t>(words_start + (words + 3) / 4, 1), kernel::uvec4(0u));
     auto* bytes = reinterpret_cast<unsigned char*>(pack.texels.data());
-#define SCENE_ARRAY(name, Element, load, format)                                                         \
+#define SCENE_ARRAY(id, name, Element, load, format)                                                         \
     if (!scene.name.empty()) {                                                                           \
-        const std::size_t at = kWords_##format ? words_start * 16 + kernel::name##_base(pack.params) * 4u   \
-                                               : std::size_t(kernel::name##_base(pack.params)) * 16;     \
+        const std::size_t at = kWords_##format ? words_start * 16 + std::size_t(pack.bases[id]) * 4         \
+                                               : std::size_t(pack.bases[id]) * 16;                       \
         std::memcpy(bytes + at, scene.name.data(), scene.name.size() * sizeof(scene.name[0]));           \
     }
 #include "kernel/arrays.glsl"

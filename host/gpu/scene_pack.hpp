@@ -4,8 +4,9 @@
 // specification guarantees 4 storage texel buffers per stage). The rgba32ui arrays
 // come first, counted in 16-byte texels from 0; the r32ui arrays follow from
 // `words_start`, a texel aligned for a texel-buffer view of its own, counted in
-// words from there. Where each array starts goes into the params (`<name>_base`,
-// kernel/params.glsl). No Vulkan here, so the tests can check the layout.
+// words from there. Where each array starts reaches render.comp in its push
+// constants (`bases`). No Vulkan here, so the tests can check the layout.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -13,11 +14,21 @@
 
 namespace vkrt::gpu {
 
+// The arrays of kernel/arrays.glsl, and one more lane for words_start.
+constexpr std::uint32_t kSceneArrays = 0
+#define SCENE_ARRAY(id, name, Element, load, format) +1
+#include "kernel/arrays.glsl"
+    ;
+constexpr std::uint32_t kBaseLanes = 12;  // render.comp's uvec4 bases[3]
+static_assert(kSceneArrays + 1 <= kBaseLanes, "kernel/arrays.glsl: more arrays than render.comp's bases hold");
+
 struct ScenePack {
     std::vector<kernel::uvec4> texels;  // the whole buffer, at least one texel
     std::uint32_t words_start = 0;      // texel where the r32ui arrays begin
     std::uint32_t word_count = 0;       // words of the r32ui arrays
-    kernel::Params params{};            // the scene's, with every array's base set
+    // By array id: where it starts (texels, or words from words_start); lane
+    // kSceneArrays holds words_start.
+    std::array<std::uint32_t, kBaseLanes> bases{};
 
     std::uint64_t bytes() const { return texels.size() * sizeof(kernel::uvec4); }
 };

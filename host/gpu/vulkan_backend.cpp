@@ -98,7 +98,7 @@ struct DeviceState {
           scene_buffer(*context, "scene", pack.bytes(), kBindingUsage),
           pixels(*context, "pixels", slab_bytes(scene), kBindingUsage),
           timer(*context) {
-        params.upload(&pack.params, sizeof(kernel::Params));
+        params.upload(&scene.params, sizeof(kernel::Params));
         scene_buffer.upload(pack.texels.data(), pack.bytes());
         // The CPU reads the sums through its caches: where the pixel buffer is not
         // such memory, each slab's last batch copies it into a buffer that is.
@@ -368,6 +368,8 @@ void VulkanSession::render_slab(SampleRange samples, std::uint32_t slab, std::ui
                 vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.pipeline.get());
                 vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.layout.get(), 0, 1,
                                         &s.pipeline.set, 0, nullptr);
+                vkCmdPushConstants(cmd, s.pipeline.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, kPassBytes,
+                                   kPushBytes - kPassBytes, s.pack.bases.data());
                 for (std::uint32_t i = item; i < item + n; ++i) {
                     const std::uint32_t tile = i % tiles;
                     // A sample adds to the sums the previous one wrote: one barrier where
@@ -381,7 +383,7 @@ void VulkanSession::render_slab(SampleRange samples, std::uint32_t slab, std::ui
                     const std::uint32_t x = tile % tiling.across() * tiling.tile_width;
                     const std::uint32_t y = tile / tiling.across() * tiling.tile_height;
                     const std::array<std::uint32_t, 4> pass{first_sample + i / tiles, x, first_row + y, first_row};
-                    vkCmdPushConstants(cmd, s.pipeline.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, kPushBytes,
+                    vkCmdPushConstants(cmd, s.pipeline.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, kPassBytes,
                                        pass.data());
                     const std::uint32_t w = std::min(tiling.tile_width, width_ - x);
                     const std::uint32_t h = std::min(tiling.tile_height, rows - y);

@@ -23,7 +23,7 @@ struct Kernel {
     // What render.comp's main() reads from its params buffer.
     Params params{};
     // One span per array the kernel reads (kernel/arrays.glsl): those of FlatScene.
-#define SCENE_ARRAY(name, Element, load, format) std::span<const Element> name;
+#define SCENE_ARRAY(id, name, Element, load, format) std::span<const Element> name;
 #include "kernel/arrays.glsl"
 
 #define LOAD_ELEMENT(Element, name, i) name[i]

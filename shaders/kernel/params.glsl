@@ -55,20 +55,5 @@ PARAM3(vec3, grid_cell, 13)
 PARAM3(vec3, grid_inv_cell, 14)      // 1 / grid_cell(), per axis
 PARAM3(uvec3, grid_resolution, 15)   // cells per axis
 
-// Where each array of kernel/arrays.glsl starts in the Vulkan backend's one scene
-// buffer (host/gpu/scene_pack.cpp): an rgba32ui array at that texel, an r32ui array at
-// that word counted from scene_words_start(), the texel where the r32ui arrays begin.
-// The reference backend reads its spans and leaves these 0.
-PARAM(uint, materials_base, 16, x)
-PARAM(uint, spheres_base, 16, y)
-PARAM(uint, triangles_base, 16, z)
-PARAM(uint, rings_base, 16, w)
-PARAM(uint, cylinders_base, 17, x)
-PARAM(uint, lights_base, 17, y)
-PARAM(uint, emitters_base, 17, z)
-PARAM(uint, grid_cell_starts_base, 17, w)
-PARAM(uint, grid_refs_base, 18, x)
-PARAM(uint, scene_words_start, 18, y)
-
 #undef PARAM3
 #undef PARAM
