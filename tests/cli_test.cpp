@@ -59,6 +59,24 @@ TEST(Cli, DevicesLimitsNamesTheLimitsAndTheProfile) {
                            {"no device profile 'nonesuch'", "minimum", "moltenvk-m1"});
 }
 
+// VKRT_DEVICE_PROFILE clamps the device for any command; --stats shows the plan it
+// took, and an unknown profile is one clear error.
+TEST(Cli, DeviceProfileFromTheEnvironment) {
+    const fs::path dir = test::temp_dir("cli_device_profile");
+    const std::string render = "render " + test::shell_quote(scene("spheres_triangles").string()) +
+                               " --backend vulkan --width 16 --height 12 -q -o " +
+                               test::shell_quote((dir / "out.png").string());
+    ASSERT_EQ(setenv("VKRT_DEVICE_PROFILE", "minimum", 1), 0);
+    const test::ProgramRun minimum =
+        test::run_vkrt(render + " --stats " + test::shell_quote((dir / "s.json").string()), dir);
+    ASSERT_EQ(setenv("VKRT_DEVICE_PROFILE", "nonesuch", 1), 0);
+    const test::ProgramRun unknown = test::run_vkrt(render, dir);
+    unsetenv("VKRT_DEVICE_PROFILE");
+    EXPECT_EQ(minimum.code, 0) << minimum.stderr_text;
+    EXPECT_NE(read_file(dir / "s.json").find("\"device_plan\""), std::string::npos);
+    test::expect_one_error(unknown, {"no device profile 'nonesuch'", "minimum"});
+}
+
 // Without -o the image is <scene name>.png in the current directory, and the log
 // names it; with -q nothing is printed at all.
 TEST(Cli, DefaultOutputNameAndQuiet) {

@@ -355,8 +355,8 @@ TEST(VulkanBackend, EveryDataPathGivesTheSameSums) {
     const FlatScene scene = tiny_scene();
     const RenderResult reference = lavapipe()->render(scene, SampleRange{0, 3});
     using gpu::PathChoice;
-    for (const PathChoice data : {PathChoice::Texel, PathChoice::Other}) {
-        for (const PathChoice params : {PathChoice::Texel, PathChoice::Other}) {
+    for (const PathChoice data : {PathChoice::Texel, PathChoice::Buffer}) {
+        for (const PathChoice params : {PathChoice::Texel, PathChoice::Buffer}) {
             VulkanOptions options;
             options.scene_path = data;
             options.params_path = params;

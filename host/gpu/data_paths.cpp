@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "gpu/render_interface.hpp"
 #include "kernel/types.hpp"
 
 namespace vkrt::gpu {
@@ -11,14 +12,13 @@ namespace {
 
 constexpr std::uint64_t kTexelBytes = 16;
 constexpr std::uint64_t kPixelTexels = kernel::PIXEL_TEXELS;
-constexpr std::uint32_t kRowsPerGroup = 8;  // render.comp's local_size_y
 
 // Rows of `width` pixels that `texels` texels hold, as a multiple of 8 or the whole
 // image; 0 when not even 8 rows fit.
 std::uint32_t rows_fitting(std::uint64_t texels, std::uint32_t width, std::uint32_t height) {
     const std::uint64_t rows = texels / (kPixelTexels * width);
     if (rows >= height) return height;
-    return std::uint32_t(rows / kRowsPerGroup * kRowsPerGroup);
+    return std::uint32_t(rows / kWorkgroupSide * kWorkgroupSide);
 }
 
 bool scene_fits_texels(const DeviceLimits& l, const DataSizes& s) {
@@ -37,7 +37,7 @@ DataPaths plan_data_paths(const DeviceLimits& l, bool cpu_device, const DataSize
     if (scene == PathChoice::Automatic) {
         paths.scene_in_storage = !texel_ok && storage_ok;
     } else {
-        paths.scene_in_storage = scene == PathChoice::Other;
+        paths.scene_in_storage = scene == PathChoice::Buffer;
     }
     if (paths.scene_in_storage ? !storage_ok : !texel_ok) {
         const std::string size = std::to_string(s.width) + "x" + std::to_string(s.height);
@@ -48,7 +48,7 @@ DataPaths plan_data_paths(const DeviceLimits& l, bool cpu_device, const DataSize
                        std::to_string(l.storage_range) + " bytes");
     }
     paths.slab_rows = paths.scene_in_storage ? storage_rows : texel_rows;
-    paths.params_in_uniform = params == PathChoice::Automatic ? !cpu_device : params == PathChoice::Other;
+    paths.params_in_uniform = params == PathChoice::Automatic ? !cpu_device : params == PathChoice::Buffer;
     return paths;
 }
 

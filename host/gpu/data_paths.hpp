@@ -10,7 +10,7 @@
 
 namespace vkrt::gpu {
 
-enum class PathChoice { Automatic, Texel, Other };  // Other: storage or uniform buffers
+enum class PathChoice { Automatic, Texel, Buffer };  // Buffer: storage or uniform buffers
 
 // A scene or image too large for every data path of a device.
 class SceneDoesNotFit : public GpuError {

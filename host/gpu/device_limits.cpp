@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 
+#include "gpu/render_interface.hpp"
 #include "gpu/vulkan_backend.hpp"
 #include "kernel/types.hpp"
 
@@ -23,8 +24,6 @@ constexpr BindingCounts kBindings = [] {
     return c;
 }();
 
-constexpr std::uint32_t kLocalSize = 8;     // render.comp's local_size_x and _y
-constexpr std::uint32_t kPushBytes = 64;    // render.comp's push constants: pass and bases
 constexpr std::uint32_t kParamsBytes = sizeof(kernel::Params);
 
 // The specification's guaranteed limits (Vulkan 1.1, "Required Limits"): the least a
@@ -135,8 +134,8 @@ std::string missing(const DeviceLimits& l) {
     need(l.texel_elements >= kParamsBytes / 16 && l.uniform_range >= kParamsBytes,
          "buffers of " + std::to_string(kParamsBytes) + " bytes");
     need(l.push_constant_bytes >= kPushBytes, std::to_string(kPushBytes) + " bytes of push constants");
-    need(l.workgroup_invocations >= kLocalSize * kLocalSize && l.workgroup_size_x >= kLocalSize &&
-             l.workgroup_size_y >= kLocalSize,
+    need(l.workgroup_invocations >= kWorkgroupSide * kWorkgroupSide && l.workgroup_size_x >= kWorkgroupSide &&
+             l.workgroup_size_y >= kWorkgroupSide,
          "8x8 workgroups");
     if (!out.empty()) out += " in one compute stage";
     return out;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "flatten/flat_scene.hpp"
+#include "gpu/render_interface.hpp"
 
 namespace vkrt::gpu {
 
@@ -19,7 +20,6 @@ constexpr std::uint32_t kSceneArrays = 0
 #define SCENE_ARRAY(id, name, Element, load, format) +1
 #include "kernel/arrays.glsl"
     ;
-constexpr std::uint32_t kBaseLanes = 12;  // render.comp's uvec4 bases[3]
 static_assert(kSceneArrays + 1 <= kBaseLanes, "kernel/arrays.glsl: more arrays than render.comp's bases hold");
 
 struct ScenePack {

@@ -2,18 +2,18 @@
 
 #include <algorithm>
 
+#include "gpu/render_interface.hpp"
+
 namespace vkrt::gpu {
 
 namespace {
 
-constexpr std::uint32_t kSide = 8;
-
-std::uint32_t round_up(std::uint32_t value) { return (value + kSide - 1) / kSide * kSide; }
+std::uint32_t round_up(std::uint32_t value) { return (value + kWorkgroupSide - 1) / kWorkgroupSide * kWorkgroupSide; }
 
 }  // namespace
 
 bool Tiling::split() {
-    if (tile_width <= kSide && tile_height <= kSide) return false;
+    if (tile_width <= kWorkgroupSide && tile_height <= kWorkgroupSide) return false;
     if (tile_width >= tile_height) {
         tile_width = round_up(tile_width / 2);
     } else {
@@ -26,8 +26,8 @@ Tiling tile_slab(std::uint32_t width, std::uint32_t rows, std::uint32_t tile_wid
     Tiling t;
     t.width = width;
     t.rows = rows;
-    t.tile_width = std::max(kSide, round_up(std::min(tile_width, width)));
-    t.tile_height = std::max(kSide, round_up(std::min(tile_height, rows)));
+    t.tile_width = std::max(kWorkgroupSide, round_up(std::min(tile_width, width)));
+    t.tile_height = std::max(kWorkgroupSide, round_up(std::min(tile_height, rows)));
     return t;
 }
 

@@ -38,8 +38,6 @@ constexpr std::uint32_t kMaxBatch = 256;
 constexpr std::uint32_t kDeviceResets = 2;
 constexpr VkAccessFlags kShaderAccess = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
 constexpr std::uint32_t kProgressUnits = 1u << 20;
-// The largest minTexelBufferOffsetAlignment the specification allows, in bytes.
-constexpr std::uint32_t kMaxTexelOffsetAlignment = 256;
 
 double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
@@ -207,7 +205,8 @@ public:
         } catch (const SceneDoesNotFit& e) {
             // Unless the user named the device, one that can hold the scene is better.
             if (!options_.device.empty()) throw;
-            const ScenePack pack = pack_scene(scene, kMaxTexelOffsetAlignment / 16);
+            // Aligned for any device: the largest alignment the specification allows.
+            const ScenePack pack = pack_scene(scene, find_profile("minimum").limits.texel_offset_alignment / 16);
             const PhysicalDevice* other = device_for_scene(
                 context_->devices(), {pack.texels.size(), pack.words_start, pack.word_count, scene.width(), scene.height()});
             if (!other || other->info.index == context_->device_index()) {
@@ -387,7 +386,7 @@ void VulkanSession::render_slab(SampleRange samples, std::uint32_t slab, std::ui
                                        pass.data());
                     const std::uint32_t w = std::min(tiling.tile_width, width_ - x);
                     const std::uint32_t h = std::min(tiling.tile_height, rows - y);
-                    vkCmdDispatch(cmd, (w + kLocalSize - 1) / kLocalSize, (h + kLocalSize - 1) / kLocalSize, 1);
+                    vkCmdDispatch(cmd, (w + kWorkgroupSide - 1) / kWorkgroupSide, (h + kWorkgroupSide - 1) / kWorkgroupSide, 1);
                     dispatched = true;
                 }
                 s.timer.end(cmd);

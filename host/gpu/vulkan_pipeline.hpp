@@ -9,6 +9,7 @@
 #include "gpu/vulkan_context.hpp"
 #include "flatten/features.hpp"
 #include "gpu/data_paths.hpp"
+#include "gpu/render_interface.hpp"
 
 namespace vkrt::gpu {
 
@@ -33,10 +34,6 @@ constexpr std::uint32_t index(Binding b) { return static_cast<std::uint32_t>(b);
 VkDescriptorType descriptor_type(Binding binding);
 VkFormat texel_format(Binding binding);
 
-constexpr std::uint32_t kLocalSize = 8;   // local_size_x and _y of render.comp
-// render.comp's push constants: uvec4 pass, then uvec4 bases[3].
-constexpr std::uint32_t kPassBytes = 16;
-constexpr std::uint32_t kPushBytes = 64;
 
 // What a buffer bound to render.comp may be bound as; each binding uses one.
 constexpr VkBufferUsageFlags kBindingUsage = VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT |

@@ -1,0 +1,15 @@
+#pragma once
+// What the host must agree with shaders/render.comp on, beside its descriptor set
+// (render_bindings.glsl): the workgroup's side and the push constants. Declared once
+// here for every file of host/gpu/, Vulkan or not.
+#include <cstdint>
+
+namespace vkrt::gpu {
+
+constexpr std::uint32_t kWorkgroupSide = 8;  // local_size_x and _y
+// Push constants: uvec4 pass, then uvec4 bases[3] (scene_pack.hpp's ScenePack::bases).
+constexpr std::uint32_t kPassBytes = 16;
+constexpr std::uint32_t kBaseLanes = 12;
+constexpr std::uint32_t kPushBytes = kPassBytes + 4 * kBaseLanes;
+
+}  // namespace vkrt::gpu
