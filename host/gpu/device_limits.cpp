@@ -28,7 +28,8 @@ constexpr std::uint32_t kParamsBytes = sizeof(kernel::Params);
 
 // The specification's guaranteed limits (Vulkan 1.1, "Required Limits"): the least a
 // conforming device reports. Neither memory that is both device-local and
-// host-visible nor timestamps on the compute queue is guaranteed.
+// host-visible, timestamps on the compute queue nor buffer device addresses (a
+// Vulkan 1.2 feature) is guaranteed.
 constexpr DeviceLimits kMinimum{
     .storage_images = 4,
     .storage_buffers = 4,
@@ -44,13 +45,16 @@ constexpr DeviceLimits kMinimum{
     .workgroup_invocations = 128,
     .workgroup_size_x = 128,
     .workgroup_size_y = 128,
+    .allocation_bytes = std::uint64_t(1) << 30,
     .mapped_device_memory = false,
     .timestamps = false,
+    .buffer_device_address = false,
 };
 
 // MoltenVK on an Apple M1 under macOS: derived from MoltenVK's MVKDevice.mm (the
 // limits it computes from Metal's for Apple GPUs) and checked against published
-// vulkaninfo reports of M1 machines.
+// vulkaninfo reports of M1 machines; maxMemoryAllocationSize at the specification's
+// minimum (not checked against the driver).
 constexpr DeviceLimits kMoltenVkM1{
     .storage_images = 8,
     .storage_buffers = 31,
@@ -66,12 +70,16 @@ constexpr DeviceLimits kMoltenVkM1{
     .workgroup_invocations = 1024,
     .workgroup_size_x = 1024,
     .workgroup_size_y = 1024,
+    .allocation_bytes = std::uint64_t(1) << 30,
     .mapped_device_memory = true,
     .timestamps = true,
+    .buffer_device_address = true,
 };
 
 // Mesa's turnip on a Qualcomm Adreno 6xx (a mobile GPU): the constants of turnip's
-// tu_device.cc and tu_common.h. Qualcomm's own Android driver reports other values.
+// tu_device.cc and tu_common.h (which offers VK_KHR_buffer_device_address);
+// maxMemoryAllocationSize at the specification's minimum (not checked against the
+// driver). Qualcomm's own Android driver reports other values.
 constexpr DeviceLimits kTurnipAdreno6xx{
     .storage_images = 16777216,
     .storage_buffers = 16777216,
@@ -87,8 +95,10 @@ constexpr DeviceLimits kTurnipAdreno6xx{
     .workgroup_invocations = 1024,
     .workgroup_size_x = 1024,
     .workgroup_size_y = 1024,
+    .allocation_bytes = std::uint64_t(1) << 30,
     .mapped_device_memory = true,
     .timestamps = true,
+    .buffer_device_address = true,
 };
 
 const std::array kProfiles{
@@ -116,8 +126,10 @@ DeviceLimits clamp_to(const DeviceLimits& d, const DeviceLimits& p) {
     c.workgroup_invocations = std::min(d.workgroup_invocations, p.workgroup_invocations);
     c.workgroup_size_x = std::min(d.workgroup_size_x, p.workgroup_size_x);
     c.workgroup_size_y = std::min(d.workgroup_size_y, p.workgroup_size_y);
+    c.allocation_bytes = std::min(d.allocation_bytes, p.allocation_bytes);
     c.mapped_device_memory = d.mapped_device_memory && p.mapped_device_memory;
     c.timestamps = d.timestamps && p.timestamps;
+    c.buffer_device_address = d.buffer_device_address && p.buffer_device_address;
     return c;
 }
 
@@ -161,8 +173,10 @@ std::string format_limits(const DeviceLimits& l) {
     line("maxComputeWorkGroupInvocations", std::to_string(l.workgroup_invocations));
     line("maxComputeWorkGroupSize[0], [1]",
          std::to_string(l.workgroup_size_x) + ", " + std::to_string(l.workgroup_size_y));
+    line("maxMemoryAllocationSize", std::to_string(l.allocation_bytes));
     line("memory both device-local and host-visible", yes_no(l.mapped_device_memory));
     line("timestamps on the compute queue", yes_no(l.timestamps));
+    line("bufferDeviceAddress", yes_no(l.buffer_device_address));
     return out;
 }
 

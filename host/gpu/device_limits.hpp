@@ -28,8 +28,12 @@ struct DeviceLimits {
     std::uint32_t workgroup_invocations = 0;    // maxComputeWorkGroupInvocations
     std::uint32_t workgroup_size_x = 0;         // maxComputeWorkGroupSize[0]
     std::uint32_t workgroup_size_y = 0;         // maxComputeWorkGroupSize[1]
+    std::uint64_t allocation_bytes = 0;         // maxMemoryAllocationSize
     bool mapped_device_memory = false;          // a memory type device-local and host-visible
     bool timestamps = false;                    // the compute queue writes timestamps
+    // bufferDeviceAddress (Vulkan 1.2): the scene may be read through a pointer, so
+    // that maxStorageBufferRange does not cap it (data_paths.hpp).
+    bool buffer_device_address = false;
 };
 
 // Every limit at its worst of the two: a device clamped to a profile.

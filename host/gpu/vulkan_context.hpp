@@ -111,8 +111,9 @@ private:
 const PhysicalDevice& select_device(const std::vector<PhysicalDevice>& devices,
                                     const std::string& selector);
 
-// What the renderer reads of a device's limits and memory (device_limits.hpp).
-DeviceLimits read_limits(VkPhysicalDevice device);
+// What the renderer reads of a device's limits, features and memory
+// (device_limits.hpp), as an instance of `instance_api` sees them.
+DeviceLimits read_limits(VkPhysicalDevice device, std::uint32_t instance_api);
 
 // Among the usable devices, the one select_device would prefer of those whose
 // limits hold a scene of these sizes (data_paths.hpp); nullptr when none does.

@@ -131,7 +131,7 @@ PhysicalDevice describe_device(VkPhysicalDevice handle, std::uint32_t index,
     d.info.type = type_name(props.deviceType);
     d.info.api_version = version_string(props.apiVersion);
     d.info.driver = "unknown driver";
-    d.limits = read_limits(handle);
+    d.limits = read_limits(handle, instance_api);
 
     // Driver properties are core from 1.2 (as both sides see it), else an extension.
     const std::uint32_t effective = std::min(instance_api, props.apiVersion);
@@ -152,9 +152,14 @@ PhysicalDevice describe_device(VkPhysicalDevice handle, std::uint32_t index,
 
 }  // namespace
 
-DeviceLimits read_limits(VkPhysicalDevice device) {
-    VkPhysicalDeviceProperties props{};
-    vkGetPhysicalDeviceProperties(device, &props);
+DeviceLimits read_limits(VkPhysicalDevice device, std::uint32_t instance_api) {
+    VkPhysicalDeviceMaintenance3Properties maintenance3{};
+    maintenance3.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES;
+    VkPhysicalDeviceProperties2 props2{};
+    props2.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
+    props2.pNext = &maintenance3;
+    vkGetPhysicalDeviceProperties2(device, &props2);
+    const VkPhysicalDeviceProperties& props = props2.properties;
     const VkPhysicalDeviceLimits& l = props.limits;
     DeviceLimits d;
     d.storage_images = std::min(l.maxPerStageDescriptorStorageImages, l.maxDescriptorSetStorageImages);
@@ -171,6 +176,17 @@ DeviceLimits read_limits(VkPhysicalDevice device) {
     d.workgroup_invocations = l.maxComputeWorkGroupInvocations;
     d.workgroup_size_x = l.maxComputeWorkGroupSize[0];
     d.workgroup_size_y = l.maxComputeWorkGroupSize[1];
+    d.allocation_bytes = maintenance3.maxMemoryAllocationSize;
+    // As a Vulkan 1.2 feature only, so that one create-info enables it (vulkan_context.cpp).
+    if (std::min(instance_api, props.apiVersion) >= VK_API_VERSION_1_2) {
+        VkPhysicalDeviceVulkan12Features v12{};
+        v12.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES;
+        VkPhysicalDeviceFeatures2 features{};
+        features.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
+        features.pNext = &v12;
+        vkGetPhysicalDeviceFeatures2(device, &features);
+        d.buffer_device_address = v12.bufferDeviceAddress == VK_TRUE;
+    }
     VkPhysicalDeviceMemoryProperties memory{};
     vkGetPhysicalDeviceMemoryProperties(device, &memory);
     const VkMemoryPropertyFlags mapped = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT;
