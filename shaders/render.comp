@@ -4,6 +4,13 @@
 // C++ reference renderer.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
+#ifdef SCENE_BY_ADDRESS
+// Built a second time with SCENE_BY_ADDRESS for devices whose bindings cannot hold
+// the scene (host/gpu/data_paths.hpp): it is then read through its device address.
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SceneTexels { uvec4 texels[]; };
+#endif
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
@@ -30,10 +37,12 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 // first row of the slab of rows the pixel buffer holds. bases: where each array of
 // kernel/arrays.glsl starts in the scene buffer (host/gpu/scene_pack.hpp), by id,
 // and after the last the texel where its r32ui arrays start. Push constants rather
-// than params: they describe the device's packing, not the render.
+// than params: they describe the device's packing, not the render. scene_address.xy:
+// the scene buffer's device address, low word first, when it is read by address.
 layout(push_constant) uniform PassBlock {
     uvec4 pass;
     uvec4 bases[3];
+    uvec4 scene_address;
 };
 // Copied by main(), like the params: read from push constants in the loops, they
 // took 1.14x the time on lavapipe (ten_spheres, 512x512, 32 spp).
@@ -50,20 +59,33 @@ uint scene_words_start() { return g_bases[SCENE_ARRAYS / 4u][SCENE_ARRAYS % 4u];
 // Read once per invocation by main().
 Params params;
 
+#ifdef SCENE_BY_ADDRESS
+SceneTexels g_scene;  // set by main()
+#endif
+
 // Texel t of the scene buffer, and word w of its r32ui arrays.
 uvec4 scene_texel(uint t) {
+#ifdef SCENE_BY_ADDRESS
+    return g_scene.texels[t];
+#else
     if (SCENE_IN_STORAGE_BUFFERS) {
         return scene_storage.texels[t];
     }
     return imageLoad(scene_texels, int(t));
+#endif
 }
 
 uint scene_word(uint w) {
+#ifdef SCENE_BY_ADDRESS
+    const uint i = scene_words_start() * 4u + w;
+    return g_scene.texels[i >> 2u][i & 3u];
+#else
     if (SCENE_IN_STORAGE_BUFFERS) {
         const uint i = scene_words_start() * 4u + w;
         return scene_storage.texels[i >> 2u][i & 3u];
     }
     return imageLoad(scene_words, int(w)).x;
+#endif
 }
 
 uvec4 load_pixel_texel(uint t) {
@@ -96,6 +118,9 @@ void main() {
         params.texels[i] = PARAMS_IN_UNIFORM_BUFFER ? params_uniform.texels[i] : imageLoad(params_texels, int(i));
     }
     g_bases = bases;
+#ifdef SCENE_BY_ADDRESS
+    g_scene = SceneTexels(scene_address.xy);
+#endif
     // Each row of 8 invocations renders a 4x2 block of pixels, not a row of 8: an
     // 8-lane SIMD vector then traces rays that agree more often on where they go
     // (docs/decisions/0017-loop-shapes-for-simd.md). Only which invocation renders

@@ -143,6 +143,20 @@ TEST_P(MinimumLimits, SlabsAndStorageBuffersGiveTheSameImage) {
     EXPECT_EQ(test::max_abs_difference(storage.image, own.image), 0.0f);
 }
 
+// A scene larger than any binding holds is read through its device address: forced
+// here, under a profile that has bufferDeviceAddress, the same image.
+TEST_P(MinimumLimits, SceneByAddressGivesTheSameImage) {
+    const Scene scene = test::load_at_size(test::source_dir() / GetParam(), 200, 150);
+    const RenderOutcome own = test::render_vulkan(scene);
+    VulkanOptions address;
+    address.profile = "turnip-adreno6xx";
+    address.scene_path = gpu::PathChoice::Address;
+    const RenderOutcome by_address = test::render_vulkan_with(scene, address);
+    EXPECT_NE(by_address.stats.data_paths.find("scene: device address"), std::string::npos)
+        << by_address.stats.data_paths;
+    EXPECT_EQ(test::max_abs_difference(by_address.image, own.image), 0.0f);
+}
+
 INSTANTIATE_TEST_SUITE_P(Scenes, MinimumLimits,
                          ::testing::Values("scenes/default.json", "scenes/gallery/h_random_spheres.json",
                                            "scenes/spd/teapot.nff.gz"));

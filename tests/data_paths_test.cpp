@@ -117,6 +117,44 @@ TEST(DataPaths, WhatFitsNowhereIsRefusedNamingTheLimits) {
     }
     // A forced path that cannot hold the scene is refused too.
     EXPECT_THROW(gpu::plan_data_paths(minimum(), true, sizes(70000, 64, 48), PathChoice::Texel), gpu::SceneDoesNotFit);
+    EXPECT_THROW(gpu::plan_data_paths(minimum(), true, sizes(100, 64, 48), PathChoice::Address), gpu::SceneDoesNotFit);
+}
+
+// Why plan_data_paths refused; empty when it did not.
+std::string refusal(const DeviceLimits& limits, const DataSizes& s) {
+    try {
+        gpu::plan_data_paths(limits, false, s);
+    } catch (const gpu::SceneDoesNotFit& e) {
+        return e.what();
+    }
+    return "";
+}
+
+// The minimum's bindings (128 MiB at most), with buffer device addresses.
+DeviceLimits addressing() {
+    DeviceLimits l = minimum();
+    l.buffer_device_address = true;
+    return l;
+}
+
+TEST(DataPaths, ASceneTooLargeForAnyBindingIsReadByAddress) {
+    const std::uint64_t texels = (std::uint64_t(1) << 27) / 16 + 1;  // one texel past 128 MiB
+    const DataPaths p = gpu::plan_data_paths(addressing(), false, sizes(texels, 512, 512));
+    EXPECT_TRUE(p.scene_by_address);
+    EXPECT_TRUE(p.scene_in_storage);  // the pixels
+    EXPECT_EQ(p.slab_rows, 512u);
+    // Below the storage range, the bindings are kept.
+    EXPECT_FALSE(gpu::plan_data_paths(addressing(), false, sizes(texels - 1, 512, 512)).scene_by_address);
+}
+
+TEST(DataPaths, ByAddressTheSceneIsCappedByOneAllocation) {
+    DeviceLimits l = addressing();
+    l.allocation_bytes = std::uint64_t(1) << 28;
+    EXPECT_TRUE(gpu::plan_data_paths(l, false, sizes(l.allocation_bytes / 16, 64, 48)).scene_by_address);
+    const std::string too_large = refusal(l, sizes(l.allocation_bytes / 16 + 1, 64, 48));
+    EXPECT_NE(too_large.find("maxMemoryAllocationSize 268435456"), std::string::npos) << too_large;
+    const std::string no_address = refusal(minimum(), sizes(std::uint64_t(1) << 24, 64, 48));
+    EXPECT_NE(no_address.find("lacks bufferDeviceAddress"), std::string::npos) << no_address;
 }
 
 TEST(DeviceLimits, TheMinimumProfileCanRunTheRenderer) {
@@ -131,13 +169,17 @@ TEST(DeviceLimits, ClampingTakesTheWorseOfEachLimit) {
     DeviceLimits big = minimum();
     big.texel_elements = 1u << 27;
     big.texel_offset_alignment = 16;
+    big.allocation_bytes = std::uint64_t(1) << 34;
     big.mapped_device_memory = true;
     big.timestamps = true;
+    big.buffer_device_address = true;
     const DeviceLimits c = gpu::clamp_to(big, minimum());
     EXPECT_EQ(c.texel_elements, 65536u);
     EXPECT_EQ(c.texel_offset_alignment, 256u);
+    EXPECT_EQ(c.allocation_bytes, std::uint64_t(1) << 30);
     EXPECT_FALSE(c.mapped_device_memory);
     EXPECT_FALSE(c.timestamps);
+    EXPECT_FALSE(c.buffer_device_address);
 }
 
 TEST(DeviceLimits, WhatIsMissingIsNamed) {
@@ -146,7 +188,7 @@ TEST(DeviceLimits, WhatIsMissingIsNamed) {
     l.push_constant_bytes = 32;
     const std::string m = gpu::missing(l);
     EXPECT_NE(m.find("2 storage buffers"), std::string::npos) << m;
-    EXPECT_NE(m.find("64 bytes of push constants"), std::string::npos) << m;
+    EXPECT_NE(m.find("80 bytes of push constants"), std::string::npos) << m;
 }
 
 TEST(DeviceLimits, AnUnknownProfileListsTheKnownOnes) {

@@ -355,7 +355,7 @@ TEST(VulkanBackend, EveryDataPathGivesTheSameSums) {
     const FlatScene scene = tiny_scene();
     const RenderResult reference = lavapipe()->render(scene, SampleRange{0, 3});
     using gpu::PathChoice;
-    for (const PathChoice data : {PathChoice::Texel, PathChoice::Buffer}) {
+    for (const PathChoice data : {PathChoice::Texel, PathChoice::Buffer, PathChoice::Address}) {
         for (const PathChoice params : {PathChoice::Texel, PathChoice::Buffer}) {
             VulkanOptions options;
             options.scene_path = data;

@@ -27,26 +27,39 @@ bool scene_fits_texels(const DeviceLimits& l, const DataSizes& s) {
 
 }  // namespace
 
+std::uint64_t max_addressed_bytes(const DeviceLimits& l) {
+    return std::min(l.allocation_bytes, std::uint64_t(4) << 32);
+}
+
 DataPaths plan_data_paths(const DeviceLimits& l, bool cpu_device, const DataSizes& s, PathChoice scene,
                           PathChoice params) {
-    DataPaths paths;
+    if (params == PathChoice::Address) {
+        throw GpuError("params cannot be read by address; only the scene can");
+    }
+    const std::uint64_t scene_bytes = s.scene_texels * kTexelBytes;
     const std::uint32_t texel_rows = rows_fitting(l.texel_elements, s.width, s.height);
     const std::uint32_t storage_rows = rows_fitting(l.storage_range / kTexelBytes, s.width, s.height);
     const bool texel_ok = scene_fits_texels(l, s) && texel_rows > 0;
-    const bool storage_ok = s.scene_texels * kTexelBytes <= l.storage_range && storage_rows > 0;
+    const bool storage_ok = scene_bytes <= l.storage_range && storage_rows > 0;
+    const bool address_ok = l.buffer_device_address && scene_bytes <= max_addressed_bytes(l) && storage_rows > 0;
     if (scene == PathChoice::Automatic) {
-        paths.scene_in_storage = !texel_ok && storage_ok;
-    } else {
-        paths.scene_in_storage = scene == PathChoice::Buffer;
+        scene = texel_ok ? PathChoice::Texel : storage_ok ? PathChoice::Buffer : PathChoice::Address;
     }
-    if (paths.scene_in_storage ? !storage_ok : !texel_ok) {
+    const bool ok = scene == PathChoice::Texel ? texel_ok : scene == PathChoice::Buffer ? storage_ok : address_ok;
+    if (!ok) {
         const std::string size = std::to_string(s.width) + "x" + std::to_string(s.height);
-        const std::string scene_bytes = std::to_string(s.scene_texels * kTexelBytes);
-        throw SceneDoesNotFit("this device cannot hold the scene (" + scene_bytes + " bytes) and a slab of 8 rows of the " +
-                       size + " image in one buffer each: its maxTexelBufferElements is " +
-                       std::to_string(l.texel_elements) + " and its maxStorageBufferRange " +
-                       std::to_string(l.storage_range) + " bytes");
+        std::string address = l.buffer_device_address
+                                  ? "its maxMemoryAllocationSize " + std::to_string(l.allocation_bytes) + " bytes"
+                                  : "it lacks bufferDeviceAddress";
+        throw SceneDoesNotFit("this device cannot hold the scene (" + std::to_string(scene_bytes) +
+                              " bytes) and a slab of 8 rows of the " + size +
+                              " image: its maxTexelBufferElements is " + std::to_string(l.texel_elements) +
+                              ", its maxStorageBufferRange " + std::to_string(l.storage_range) + " bytes, and " +
+                              address);
     }
+    DataPaths paths;
+    paths.scene_in_storage = scene != PathChoice::Texel;
+    paths.scene_by_address = scene == PathChoice::Address;
     paths.slab_rows = paths.scene_in_storage ? storage_rows : texel_rows;
     paths.params_in_uniform = params == PathChoice::Automatic ? !cpu_device : params == PathChoice::Buffer;
     return paths;

@@ -10,7 +10,9 @@
 
 namespace vkrt::gpu {
 
-enum class PathChoice { Automatic, Texel, Buffer };  // Buffer: storage or uniform buffers
+// Buffer: storage or uniform buffers. Address: the scene through its device address
+// (pixels in a storage buffer); for the scene only.
+enum class PathChoice { Automatic, Texel, Buffer, Address };
 
 // A scene or image too large for every data path of a device.
 class SceneDoesNotFit : public GpuError {
@@ -20,6 +22,10 @@ public:
 
 struct DataPaths {
     bool scene_in_storage = false;   // SCENE_IN_STORAGE_BUFFERS: scene and pixels
+    // The scene read through its buffer's device address (render.comp built with
+    // SCENE_BY_ADDRESS), where no one binding can hold it; pixels as above, in
+    // storage buffers.
+    bool scene_by_address = false;
     bool params_in_uniform = false;  // PARAMS_IN_UNIFORM_BUFFER
     // Rows of the image the pixel buffer holds at once (a slab): all of them when they
     // fit, else a multiple of 8; the image is rendered slab by slab.
@@ -34,11 +40,17 @@ struct DataSizes {
     std::uint32_t height = 0;
 };
 
+// The largest scene, in bytes, the device can read by address: one allocation, and
+// no more words than a 32-bit index reaches.
+std::uint64_t max_addressed_bytes(const DeviceLimits& limits);
+
 // Texel buffers where the scene's and a row of eight pixels' texels fit
 // maxTexelBufferElements (docs/decisions/0001-texel-buffers.md: fastest on lavapipe),
-// else storage buffers; params from a uniform buffer except on CPU devices. A choice
-// other than Automatic forces the path (tests). Throws SceneDoesNotFit naming the
-// limits a scene or image exceeds on every path.
+// else storage buffers where the scene fits maxStorageBufferRange, else the scene by
+// address where the device has bufferDeviceAddress and the scene fits one
+// allocation; params from a uniform buffer except on CPU devices. A choice other
+// than Automatic forces the path (tests). Throws SceneDoesNotFit naming the limits a
+// scene or image exceeds on every path.
 DataPaths plan_data_paths(const DeviceLimits& limits, bool cpu_device, const DataSizes& sizes,
                           PathChoice scene = PathChoice::Automatic, PathChoice params = PathChoice::Automatic);
 

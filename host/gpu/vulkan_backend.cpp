@@ -74,7 +74,10 @@ void check_counts(const FlatScene& scene) {
 }
 
 std::string describe(const DataPaths& paths) {
-    return std::string("scene: ") + (paths.scene_in_storage ? "storage" : "texel") + " buffers, params: " +
+    const char* scene = paths.scene_by_address ? "device address, pixels: storage"
+                        : paths.scene_in_storage ? "storage"
+                                                 : "texel";
+    return std::string("scene: ") + scene + " buffers, params: " +
            (paths.params_in_uniform ? "uniform" : "texel") + " buffer";
 }
 
@@ -93,7 +96,9 @@ struct DeviceState {
           // Stands in for every binding the data paths leave unread: the shader still
           // declares it, but nothing reads it.
           dummy(*context, "unused", 512, kBindingUsage),
-          scene_buffer(*context, "scene", pack.bytes(), kBindingUsage),
+          scene_buffer(*context, "scene", pack.bytes(),
+                       paths.scene_by_address ? kBindingUsage | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT
+                                              : kBindingUsage),
           pixels(*context, "pixels", slab_bytes(scene), kBindingUsage),
           timer(*context) {
         params.upload(&scene.params, sizeof(kernel::Params));
@@ -102,6 +107,12 @@ struct DeviceState {
         // such memory, each slab's last batch copies it into a buffer that is.
         if (!pixels.host_cached()) {
             readback.emplace(*context, "pixels (read-back)", pixels.size(), 0, Placement::Readback);
+        }
+        std::copy(pack.bases.begin(), pack.bases.end(), push.begin());
+        if (paths.scene_by_address) {
+            const std::uint64_t address = scene_buffer.address();
+            push[kBaseLanes] = std::uint32_t(address);
+            push[kBaseLanes + 1] = std::uint32_t(address >> 32);
         }
         views = write_descriptors(context->device(), pipeline.set, bound());
         context->submit_and_wait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, dummy.get(), 0, VK_WHOLE_SIZE, 0); });
@@ -118,7 +129,8 @@ struct DeviceState {
         b[index(Binding::params_texels)] = {&params, 0, VK_WHOLE_SIZE};
         b[index(Binding::params_uniform)] = {&params, 0, VK_WHOLE_SIZE};
         if (paths.scene_in_storage) {
-            b[index(Binding::scene_storage)] = {&scene_buffer, 0, VK_WHOLE_SIZE};
+            // By address, the scene may be larger than one binding may be.
+            if (!paths.scene_by_address) b[index(Binding::scene_storage)] = {&scene_buffer, 0, VK_WHOLE_SIZE};
             b[index(Binding::pixel_storage)] = {&pixels, 0, VK_WHOLE_SIZE};
         } else {
             b[index(Binding::scene_texels)] = {&scene_buffer, 0, std::max<VkDeviceSize>(pack.words_start, 1) * 16};
@@ -141,6 +153,9 @@ struct DeviceState {
     VulkanBuffer pixels;
     std::optional<VulkanBuffer> readback;
     std::vector<BufferView> views;
+    // The push constants after `pass` (render_interface.hpp): the array bases, then
+    // the scene's address when it is read by address.
+    std::array<std::uint32_t, (kPushBytes - kPassBytes) / 4> push{};
     BatchTimer timer;
 };
 
@@ -182,11 +197,14 @@ public:
 
     std::string name() const override { return "vulkan"; }
     AccelPolicy accel_policy() const override {
-        // The grid's arrays are part of the scene buffer: a texel buffer, or a storage
-        // buffer where that is larger (data_paths.hpp).
+        // The grid's arrays are part of the scene buffer: a texel buffer, a storage
+        // buffer or one read by address, whichever holds most (data_paths.hpp).
         const DeviceLimits& l = context_->limits();
         AccelPolicy policy = heuristics_for(context_->cpu_device()).accel;
         policy.max_buffer_entries = std::max<std::uint64_t>(l.texel_elements, l.storage_range / 4);
+        if (l.buffer_device_address) {
+            policy.max_buffer_entries = std::max(policy.max_buffer_entries, max_addressed_bytes(l) / 4);
+        }
         return policy;
     }
     std::string device_name() const override { return context_->properties().deviceName; }
@@ -368,7 +386,7 @@ void VulkanSession::render_slab(SampleRange samples, std::uint32_t slab, std::ui
                 vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.layout.get(), 0, 1,
                                         &s.pipeline.set, 0, nullptr);
                 vkCmdPushConstants(cmd, s.pipeline.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, kPassBytes,
-                                   kPushBytes - kPassBytes, s.pack.bases.data());
+                                   kPushBytes - kPassBytes, s.push.data());
                 for (std::uint32_t i = item; i < item + n; ++i) {
                     const std::uint32_t tile = i % tiles;
                     // A sample adds to the sums the previous one wrote: one barrier where

@@ -28,7 +28,7 @@ std::uint32_t find_memory_type(const VkPhysicalDeviceMemoryProperties& memory,
 
 VulkanBuffer::VulkanBuffer(const VulkanContext& context, std::string name, VkDeviceSize size,
                            VkBufferUsageFlags usage, Placement placement)
-    : context_(&context), name_(std::move(name)), size_(size) {
+    : context_(&context), name_(std::move(name)), size_(size), usage_(usage) {
     if (size == 0) {
         throw GpuError("buffer '" + name_ + "' would be empty");
     }
@@ -65,6 +65,12 @@ void VulkanBuffer::allocate(VkMemoryPropertyFlags wanted, VkMemoryPropertyFlags 
     VkMemoryAllocateInfo info{};
     info.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
     info.allocationSize = req.size;
+    VkMemoryAllocateFlagsInfo address_flags{};
+    address_flags.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO;
+    address_flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+    if (usage_ & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) {
+        info.pNext = &address_flags;
+    }
     VkDeviceMemory raw = VK_NULL_HANDLE;
     auto try_flags = [&](VkMemoryPropertyFlags flags) {
         info.memoryTypeIndex = find_memory_type(memory, req.memoryTypeBits, flags);
@@ -93,6 +99,16 @@ void VulkanBuffer::allocate(VkMemoryPropertyFlags wanted, VkMemoryPropertyFlags 
         check(vkMapMemory(device, raw, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
         cached_ = (flags & VK_MEMORY_PROPERTY_HOST_CACHED_BIT) != 0;
     }
+}
+
+std::uint64_t VulkanBuffer::address() const {
+    if ((usage_ & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) == 0) {
+        throw GpuError("buffer '" + name_ + "' was not made for device addresses");
+    }
+    VkBufferDeviceAddressInfo info{};
+    info.sType = VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO;
+    info.buffer = buffer_.get();
+    return vkGetBufferDeviceAddress(context_->device(), &info);
 }
 
 void VulkanBuffer::upload(const void* data, VkDeviceSize bytes) {

@@ -18,7 +18,8 @@ enum class Placement {
 
 class VulkanBuffer {
 public:
-    // `usage` is how shaders bind it; transfer usage is added as the placement needs.
+    // `usage` is how shaders bind it (with VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+    // how they reach it by address); transfer usage is added as the placement needs.
     // `name` appears in error messages.
     VulkanBuffer(const VulkanContext& context, std::string name, VkDeviceSize size,
                  VkBufferUsageFlags usage, Placement placement = Placement::Device);
@@ -29,6 +30,8 @@ public:
     // Mapped memory the CPU reads through its caches (uncached reads are slow).
     bool host_cached() const { return mapped_ != nullptr && cached_; }
     const void* data() const { return mapped_; }
+    // The buffer's device address; only for a buffer made with the address usage.
+    std::uint64_t address() const;
 
     // Both wait for the device; they are meant for setup and the final read-back.
     void upload(const void* data, VkDeviceSize bytes);
@@ -40,6 +43,7 @@ private:
     const VulkanContext* context_;
     std::string name_;
     VkDeviceSize size_;
+    VkBufferUsageFlags usage_;
     // Declared before the buffer, so the buffer is destroyed first.
     DeviceHandle<VkDeviceMemory, vkFreeMemory> memory_;
     DeviceHandle<VkBuffer, vkDestroyBuffer> buffer_;

@@ -197,6 +197,12 @@ VulkanContext::VulkanContext(const VulkanOptions& options) : instance_(options.v
     info.pQueueCreateInfos = &queue;
     info.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
     info.ppEnabledExtensionNames = extensions.data();
+    VkPhysicalDeviceVulkan12Features v12{};
+    v12.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES;
+    v12.bufferDeviceAddress = VK_TRUE;
+    if (limits_.buffer_device_address) {
+        info.pNext = &v12;
+    }
     check(vkCreateDevice(physical_, &info, nullptr, &device_), "vkCreateDevice");
     vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
 

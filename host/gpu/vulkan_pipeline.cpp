@@ -8,6 +8,7 @@
 
 #include "gpu/spirv_specialize.hpp"
 #include "gpu/vulkan_buffer.hpp"
+#include "render_comp_address_spv.h"
 #include "render_comp_spv.h"
 
 namespace vkrt::gpu {
@@ -165,8 +166,11 @@ Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features,
 
     // The same values folded in on the host (spirv_specialize.hpp says why); should
     // SPIRV-Tools refuse, the driver specializes the module as it is.
+    const std::span<const std::uint32_t> module =
+        paths.scene_by_address ? std::span<const std::uint32_t>(render_comp_address_spv)
+                               : std::span<const std::uint32_t>(render_comp_spv);
     std::string error;
-    const std::vector<std::uint32_t> specialized = specialize_spirv(render_comp_spv, by_id, error);
+    const std::vector<std::uint32_t> specialized = specialize_spirv(module, by_id, error);
     if (specialized.empty()) {
         static bool warned = false;   // once a run: every pipeline would say the same
         if (!warned) {
@@ -176,8 +180,7 @@ Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features,
         }
     }
     const std::span<const std::uint32_t> words =
-        specialized.empty() ? std::span<const std::uint32_t>(render_comp_spv)
-                            : std::span<const std::uint32_t>(specialized);
+        specialized.empty() ? module : std::span<const std::uint32_t>(specialized);
     return make_compute_pipeline(context.device(), words, types, kPushBytes, &specialization);
 }
 
