@@ -127,15 +127,13 @@ TEST_P(MinimumLimits, SlabsAndStorageBuffersGiveTheSameImage) {
     EXPECT_EQ(slabs.stats.data_paths.find("scene: storage") != std::string::npos, large) << slabs.stats.data_paths;
     EXPECT_EQ(slabs.stats.slabs, large ? 1u : 4u) << slabs.stats.data_paths;
     EXPECT_EQ(test::max_abs_difference(slabs.image, own.image), 0.0f);
-    // Tiles as small as they go (a bound no tile meets), in every slab; they shrink
-    // between samples, so only a scene of several samples per pixel gets there.
+    // Tiles as small as they go (a bound no tile meets), in every slab, split in the
+    // middle of the first sample.
     VulkanOptions tiny = minimum;
     tiny.submit_bound_seconds = 1e-9;
     const RenderOutcome tiles = test::render_vulkan_with(scene, tiny);
-    if (own.stats.samples_per_pixel > 1) {
-        EXPECT_EQ(tiles.stats.tile_width, 8u);
-        EXPECT_EQ(tiles.stats.tile_height, 8u);
-    }
+    EXPECT_EQ(tiles.stats.tile_width, 8u);
+    EXPECT_EQ(tiles.stats.tile_height, 8u);
     EXPECT_EQ(test::max_abs_difference(tiles.image, own.image), 0.0f);
     minimum.scene_path = gpu::PathChoice::Buffer;
     const RenderOutcome storage = test::render_vulkan_with(scene, minimum);

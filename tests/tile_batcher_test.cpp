@@ -101,4 +101,46 @@ TEST(Tiling, SplittingHalvesTheLongerSideDownToOneWorkgroup) {
     EXPECT_EQ(t.count(), 64u * 64u);
 }
 
+using vkrt::gpu::Region;
+
+TEST(Tiling, TheRestOfASampleIsTheRestOfItsTileRowThenTheRowsBelow) {
+    const Region region{8, 16, 100, 70};
+    const Tiling t = vkrt::gpu::tile_slab(region.width, region.rows, 32, 32);   // 4 x 3 tiles
+    EXPECT_EQ(vkrt::gpu::rest_of_sample(region, t, 0), std::vector<Region>{region});
+    EXPECT_EQ(vkrt::gpu::rest_of_sample(region, t, 5),
+              (std::vector<Region>{{40, 48, 68, 32}, {8, 80, 100, 6}}));
+    EXPECT_EQ(vkrt::gpu::rest_of_sample(region, t, 4), std::vector<Region>{(Region{8, 48, 100, 38})});
+    EXPECT_EQ(vkrt::gpu::rest_of_sample(region, t, 9), std::vector<Region>{(Region{40, 80, 68, 6})});
+    EXPECT_TRUE(vkrt::gpu::rest_of_sample(region, t, t.count()).empty());
+}
+
+// Whatever tile a sample is cut at, its done tiles and the rest cover the region's
+// pixels exactly once.
+TEST(Tiling, TheRestOfASampleCoversWhatIsLeftExactlyOnce) {
+    const Region region{16, 8, 75, 41};
+    for (const std::uint32_t side : {8u, 16u, 24u, 64u}) {
+        const Tiling t = vkrt::gpu::tile_slab(region.width, region.rows, side, side / 2 + 8);
+        for (std::uint32_t next = 0; next <= t.count(); ++next) {
+            std::vector<int> covered(std::size_t(region.x + region.width) * (region.y + region.rows), 0);
+            auto cover = [&](std::uint32_t x0, std::uint32_t y0, std::uint32_t w, std::uint32_t h) {
+                for (std::uint32_t y = y0; y < y0 + h; ++y)
+                    for (std::uint32_t x = x0; x < x0 + w; ++x) ++covered[y * (region.x + region.width) + x];
+            };
+            for (std::uint32_t tile = 0; tile < next; ++tile) {
+                const std::uint32_t x = tile % t.across() * t.tile_width, y = tile / t.across() * t.tile_height;
+                cover(region.x + x, region.y + y, std::min(t.tile_width, region.width - x),
+                      std::min(t.tile_height, region.rows - y));
+            }
+            for (const Region& r : vkrt::gpu::rest_of_sample(region, t, next)) cover(r.x, r.y, r.width, r.rows);
+            for (std::uint32_t y = 0; y < region.y + region.rows; ++y) {
+                for (std::uint32_t x = 0; x < region.x + region.width; ++x) {
+                    const bool inside = x >= region.x && y >= region.y;
+                    ASSERT_EQ(covered[y * (region.x + region.width) + x], inside ? 1 : 0)
+                        << "tile side " << side << ", cut at tile " << next << ", pixel " << x << "," << y;
+                }
+            }
+        }
+    }
+}
+
 }  // namespace

@@ -252,30 +252,34 @@ TEST(VulkanBackend, ManySamplesSpanSeveralBatches) {
 }
 
 TEST(VulkanBackend, TilesCoverEveryPixelOnce) {
-    // 20 x 200 pixels in tiles as small as they go (a bound no tile can meet):
-    // 8 x 8 tiles, three across and 25 down, the last ones cut by the edges. Every
-    // pixel must receive each sample exactly once.
-    FlatScene scene = tiny_scene();
-    kernel::set_image_width(scene.params, 20);
-    kernel::set_image_height(scene.params, 200);
-    kernel::set_camera_right(scene.params, glm::vec3(2.0f / 20.0f, 0.0f, 0.0f));
-    kernel::set_camera_down(scene.params, glm::vec3(0.0f, -2.0f / 200.0f, 0.0f));
-    VulkanOptions options{"lavapipe", true};
-    options.submit_bound_seconds = 1e-9;
-    const std::unique_ptr<Backend> backend = make_vulkan_backend(options);
-    const std::uint32_t samples = 3;
-    const RenderResult r = backend->render(scene, SampleRange{0, samples});
-    ASSERT_EQ(r.sums.size(), 20u * 200u);
-    for (std::size_t i = 0; i < r.sums.size(); ++i) {
-        ASSERT_EQ(samples_summed(r.sums[i]), samples) << "pixel " << i;
-        ASSERT_EQ(r.counters[i].rays.x, samples) << "pixel " << i;
+    // Tiles as small as they go (a bound no tile can meet), split after the first
+    // tile of the first sample: at 20 x 200 the rest of that sample is the rows below
+    // it, at 600 x 40 the rest of its row of tiles. 8 x 8 tiles then, the last ones
+    // cut by the edges. Every pixel must receive each sample exactly once.
+    for (const auto& [width, height] : {std::pair{20u, 200u}, std::pair{600u, 40u}}) {
+        SCOPED_TRACE(std::to_string(width) + "x" + std::to_string(height));
+        FlatScene scene = tiny_scene();
+        kernel::set_image_width(scene.params, width);
+        kernel::set_image_height(scene.params, height);
+        kernel::set_camera_right(scene.params, glm::vec3(2.0f / float(width), 0.0f, 0.0f));
+        kernel::set_camera_down(scene.params, glm::vec3(0.0f, -2.0f / float(height), 0.0f));
+        VulkanOptions options{"lavapipe", true};
+        options.submit_bound_seconds = 1e-9;
+        const std::unique_ptr<Backend> backend = make_vulkan_backend(options);
+        const std::uint32_t samples = 3;
+        const RenderResult r = backend->render(scene, SampleRange{0, samples});
+        ASSERT_EQ(r.sums.size(), std::size_t(width) * height);
+        for (std::size_t i = 0; i < r.sums.size(); ++i) {
+            ASSERT_EQ(samples_summed(r.sums[i]), samples) << "pixel " << i;
+            ASSERT_EQ(r.counters[i].rays.x, samples) << "pixel " << i;
+        }
+        EXPECT_EQ(r.tile_width, 8u);
+        EXPECT_EQ(r.tile_height, 8u);
+        const RenderResult whole = lavapipe()->render(scene, SampleRange{0, samples});
+        EXPECT_EQ(r.sums, whole.sums);
+        EXPECT_EQ(r.counters, whole.counters);
+        EXPECT_EQ(backend->validation_messages(), 0u);
     }
-    EXPECT_EQ(r.tile_width, 8u);
-    EXPECT_EQ(r.tile_height, 8u);
-    const RenderResult whole = lavapipe()->render(scene, SampleRange{0, samples});
-    EXPECT_EQ(r.sums, whole.sums);
-    EXPECT_EQ(r.counters, whole.counters);
-    EXPECT_EQ(backend->validation_messages(), 0u);
 }
 
 // A triangle far larger than the view, facing the camera, that glows: with the

@@ -31,6 +31,19 @@ Tiling tile_slab(std::uint32_t width, std::uint32_t rows, std::uint32_t tile_wid
     return t;
 }
 
+std::vector<Region> rest_of_sample(const Region& region, const Tiling& tiling, std::uint32_t next_tile) {
+    if (next_tile == 0) return {region};
+    std::vector<Region> rest;
+    if (next_tile >= tiling.count()) return rest;
+    const std::uint32_t column = next_tile % tiling.across() * tiling.tile_width;
+    const std::uint32_t row = next_tile / tiling.across() * tiling.tile_height;
+    if (column == 0) return {{region.x, region.y + row, region.width, region.rows - row}};
+    const std::uint32_t below = std::min(row + tiling.tile_height, region.rows);
+    rest.push_back({region.x + column, region.y + row, region.width - column, below - row});
+    if (below < region.rows) rest.push_back({region.x, region.y + below, region.width, region.rows - below});
+    return rest;
+}
+
 TileBatcher::TileBatcher(std::uint32_t tiles, double target_seconds, std::uint32_t max_batch)
     : tiles_(std::max(tiles, 1u)), target_(target_seconds), max_batch_(std::max(max_batch, 1u)),
       cost_(tiles_, -1.0) {}

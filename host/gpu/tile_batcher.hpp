@@ -28,6 +28,19 @@ struct Tiling {
 // The tiling of a slab with tiles at most `tile_width` x `tile_height`.
 Tiling tile_slab(std::uint32_t width, std::uint32_t rows, std::uint32_t tile_width, std::uint32_t tile_height);
 
+// A rectangle of a slab's pixels, from the slab's corner; its tiles, as tile_slab
+// cuts a slab of its size, start at (x, y).
+struct Region {
+    std::uint32_t x = 0, y = 0, width = 0, rows = 0;
+    bool operator==(const Region&) const = default;
+};
+
+// What remains of one sample of `region`, cut by `tiling`, once its tiles before
+// `next_tile` (in order, row by row) are done: the rest of that tile's row, then the
+// rows below, leaving out what is empty. Tiles can then be split in the middle of a
+// sample, and the rest of it rendered with the smaller ones.
+std::vector<Region> rest_of_sample(const Region& region, const Tiling& tiling, std::uint32_t next_tile);
+
 class TileBatcher {
 public:
     TileBatcher(std::uint32_t tiles, double target_seconds, std::uint32_t max_batch);

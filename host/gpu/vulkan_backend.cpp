@@ -30,7 +30,7 @@ using namespace gpu;
 using Clock = std::chrono::steady_clock;
 
 // Tiles start this size; while one tile of one sample alone takes longer than the
-// bound, they are halved from the next sample on, down to one 8x8 workgroup.
+// bound, they are halved at once, down to one 8x8 workgroup.
 constexpr std::uint32_t kStartTileWidth = 256;
 constexpr std::uint32_t kStartTileHeight = 64;
 constexpr std::uint32_t kMaxBatch = 256;
@@ -173,7 +173,7 @@ public:
 
 private:
     RenderResult render_once(SampleRange samples, const ProgressCallback& progress);
-    bool split_tiles(std::uint32_t slab);
+    bool split_tiles(double costliest, const Tiling& tiling);
     void render_slab(SampleRange samples, std::uint32_t slab, std::uint32_t rows, RenderResult& result,
                      const std::function<void(double)>& progress);
 
@@ -310,25 +310,25 @@ RenderResult VulkanSession::render_once(SampleRange samples, const ProgressCallb
             if (progress) progress(std::uint32_t((slab + fraction) / slabs * kProgressUnits), kProgressUnits);
         });
     }
-    result.tile_width = tilings_.front().tile_width;
-    result.tile_height = tilings_.front().tile_height;
+    const Tiling ended = tile_slab(width_, std::min(slab_rows, height_), tile_width_, tile_height_);
+    result.tile_width = ended.tile_width;
+    result.tile_height = ended.tile_height;
     return result;
 }
 
-// Halves the tiles until the costliest of this slab's, its cost taken as
-// proportional to its area, would fit the bound; false when they cannot shrink.
-// Every slab takes the new size; their costs are measured again.
-bool VulkanSession::split_tiles(std::uint32_t slab) {
-    Tiling tiling = tilings_[slab];
+// Halves the tiles until a tile of `tiling` that took `costliest` seconds, its cost
+// taken as proportional to its area, would fit the bound; false when they cannot
+// shrink. Every slab takes the new size; their costs are measured again.
+bool VulkanSession::split_tiles(double costliest, const Tiling& tiling) {
+    Tiling smaller = tiling;
     const double area = double(tiling.tile_width) * tiling.tile_height;
-    const double costliest = batchers_[slab]->costliest();
     bool split = false;
-    while (costliest * (double(tiling.tile_width) * tiling.tile_height / area) > bound_ && tiling.split()) {
+    while (costliest * (double(smaller.tile_width) * smaller.tile_height / area) > bound_ && smaller.split()) {
         split = true;
     }
     if (split) {
-        tile_width_ = tiling.tile_width;
-        tile_height_ = tiling.tile_height;
+        tile_width_ = smaller.tile_width;
+        tile_height_ = smaller.tile_height;
         for (std::optional<TileBatcher>& batcher : batchers_) batcher.reset();
     }
     return split;
@@ -340,36 +340,48 @@ void VulkanSession::render_slab(SampleRange samples, std::uint32_t slab, std::ui
     const VulkanContext& context = *s.context;
     const std::uint32_t first_row = slab * s.paths.slab_rows;
     const VkDeviceSize bytes = VkDeviceSize(rows) * width_ * kernel::PIXEL_TEXELS * 16;
+    const Region whole{0, 0, width_, rows};
 
-    // The work, in order: sample by sample, each tile by tile. The sums are exact
-    // integers, so neither tiling nor batching changes a bit of the image.
-    std::uint32_t first_sample = samples.first;  // of the chunk being dispatched
-    std::uint32_t samples_left = samples.count;
+    // The work, taken from the back: samples of a region, each tile by tile. It is
+    // the whole slab, but for the rest of a sample whose tiles were split part-way.
+    // The sums are exact integers, so neither tiling, batching nor order changes a
+    // bit of the image.
+    struct Work {
+        Region region;
+        std::uint32_t first_sample, samples;
+    };
+    std::vector<Work> work{{whole, samples.first, samples.count}};
+    const double pixel_samples = double(width_) * rows * samples.count;
+    double pixel_samples_done = 0.0;
     bool dispatched = false;
     const Clock::time_point loop_start = Clock::now();
     double gpu_seconds = 0.0;
-    while (samples_left > 0) {
-        const Tiling wanted = tile_slab(width_, rows, tile_width_, tile_height_);
-        if (!batchers_[slab] || tilings_[slab].rows != rows || tilings_[slab].tile_width != wanted.tile_width ||
-            tilings_[slab].tile_height != wanted.tile_height) {
-            tilings_[slab] = wanted;
-            batchers_[slab].emplace(wanted.count(), bound_, kMaxBatch);
+    std::optional<TileBatcher> rest_batcher;  // for the rest of a sample
+    while (!work.empty()) {
+        const Work w = work.back();
+        work.pop_back();
+        const Tiling tiling = tile_slab(w.region.width, w.region.rows, tile_width_, tile_height_);
+        TileBatcher* batcher = nullptr;
+        if (w.region == whole) {
+            // The slab's tile costs, kept from pass to pass while its tiling holds.
+            const Tiling& kept = tilings_[slab];
+            if (!batchers_[slab] || kept.rows != rows || kept.tile_width != tiling.tile_width ||
+                kept.tile_height != tiling.tile_height) {
+                tilings_[slab] = tiling;
+                batchers_[slab].emplace(tiling.count(), bound_, kMaxBatch);
+            }
+            batcher = &*batchers_[slab];
+        } else {
+            batcher = &rest_batcher.emplace(tiling.count(), bound_, kMaxBatch);
         }
-        const Tiling& tiling = tilings_[slab];
-        TileBatcher& batcher = *batchers_[slab];
         const std::uint32_t tiles = tiling.count();
-        // Item numbers stay in 32 bits: a chunk of the samples, the rest in the next.
-        const std::uint32_t chunk = std::min(samples_left, std::max(1u, (1u << 30) / tiles));
+        // Item numbers stay in 32 bits: a chunk of the samples, the rest later.
+        const std::uint32_t chunk = std::min(w.samples, std::max(1u, (1u << 30) / tiles));
+        if (chunk < w.samples) work.push_back({w.region, w.first_sample + chunk, w.samples - chunk});
         const std::uint32_t items = chunk * tiles;
-        std::uint32_t item = 0;
-        bool retile = false;
-        while (item < items && !retile) {
-            // While a tile alone overruns the bound, a batch ends with its sample, so
-            // that the tiles can be split before the next one.
-            const bool overrun = batcher.costliest() > bound_;
-            const std::uint32_t left = overrun ? tiles - item % tiles : items - item;
-            const std::uint32_t n = batcher.next(item, left);
-            const bool last = item + n == items && chunk == samples_left;
+        for (std::uint32_t item = 0; item < items;) {
+            const std::uint32_t n = batcher->next(item, items - item);
+            const bool last = item + n == items && work.empty();
             const Clock::time_point submitted = Clock::now();
             context.submit_and_wait([&](VkCommandBuffer cmd) {
                 if (!dispatched) {
@@ -389,22 +401,25 @@ void VulkanSession::render_slab(SampleRange samples, std::uint32_t slab, std::ui
                                    kPushBytes - kPassBytes, s.push.data());
                 for (std::uint32_t i = item; i < item + n; ++i) {
                     const std::uint32_t tile = i % tiles;
-                    // A sample adds to the sums the previous one wrote: one barrier where
-                    // a sample starts orders all of the previous one before all of it,
-                    // across batches too (a barrier's scope spans earlier submissions).
-                    // The tiles of one sample write disjoint pixels and may overlap.
+                    // A sample adds to the sums an earlier one wrote: one barrier where
+                    // the samples of a region start orders all that came before (across
+                    // batches too: a barrier's scope spans earlier submissions). The
+                    // tiles of one sample write disjoint pixels and may overlap.
                     if (tile == 0 && dispatched) {
                         memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, kShaderAccess);
                     }
                     const std::uint32_t x = tile % tiling.across() * tiling.tile_width;
                     const std::uint32_t y = tile / tiling.across() * tiling.tile_height;
-                    const std::array<std::uint32_t, 4> pass{first_sample + i / tiles, x, first_row + y, first_row};
+                    const std::array<std::uint32_t, 4> pass{w.first_sample + i / tiles, w.region.x + x,
+                                                            first_row + w.region.y + y, first_row};
                     vkCmdPushConstants(cmd, s.pipeline.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, kPassBytes,
                                        pass.data());
-                    const std::uint32_t w = std::min(tiling.tile_width, width_ - x);
-                    const std::uint32_t h = std::min(tiling.tile_height, rows - y);
-                    vkCmdDispatch(cmd, (w + kWorkgroupSide - 1) / kWorkgroupSide, (h + kWorkgroupSide - 1) / kWorkgroupSide, 1);
+                    const std::uint32_t tw = std::min(tiling.tile_width, w.region.width - x);
+                    const std::uint32_t th = std::min(tiling.tile_height, w.region.rows - y);
+                    vkCmdDispatch(cmd, (tw + kWorkgroupSide - 1) / kWorkgroupSide,
+                                  (th + kWorkgroupSide - 1) / kWorkgroupSide, 1);
+                    pixel_samples_done += double(tw) * th;
                     dispatched = true;
                 }
                 s.timer.end(cmd);
@@ -426,16 +441,19 @@ void VulkanSession::render_slab(SampleRange samples, std::uint32_t slab, std::ui
             const double wall = seconds_since(submitted);
             result.longest_submit_seconds = std::max(result.longest_submit_seconds, wall);
             if (s.timer.on_gpu()) gpu_seconds += s.timer.batch_seconds();
-            batcher.measured(item, n, wall);
+            batcher->measured(item, n, wall);
             item += n;
-            const std::uint32_t samples_done = samples.count - samples_left + item / tiles;
-            if (progress) progress((samples_done + double(item % tiles) / tiles) / samples.count);
-            // Tiles of which one alone overran the bound are split from the next sample
-            // on (a sample is dispatched with one tiling).
-            retile = item < items && item % tiles == 0 && batcher.costliest() > bound_ && split_tiles(slab);
+            if (progress) progress(pixel_samples_done / pixel_samples);
+            // A tile that alone overran the bound: smaller tiles at once, for the rest
+            // of this sample (rest_of_sample), the samples after it and the next slabs.
+            if (batcher->costliest() > bound_ && split_tiles(batcher->costliest(), tiling) && item < items) {
+                const std::uint32_t sample = item / tiles;
+                if (sample + 1 < chunk) work.push_back({w.region, w.first_sample + sample + 1, chunk - sample - 1});
+                const std::vector<Region> rest = rest_of_sample(w.region, tiling, item % tiles);
+                for (auto r = rest.rbegin(); r != rest.rend(); ++r) work.push_back({*r, w.first_sample + sample, 1});
+                break;
+            }
         }
-        first_sample += item / tiles;
-        samples_left -= item / tiles;
     }
     result.render_seconds += s.timer.on_gpu() ? gpu_seconds : seconds_since(loop_start);
 
