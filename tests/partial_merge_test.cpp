@@ -93,13 +93,14 @@ TEST_F(PartialMerge, ReferenceBackendMergesBitForBit) { expect_split_equals_whol
 TEST_F(PartialMerge, VulkanBackendMergesBitForBit) { expect_split_equals_whole(*this, "vulkan"); }
 
 // Three partials merged in any grouping and order give the same file contents, and
-// a merge's .exr output is itself a partial that merges again.
+// a merge's .exr output is itself a partial that merges again (an intermediate one
+// may leave a gap, when allowed).
 TEST_F(PartialMerge, OrderAndGroupingDoNotMatter) {
     render("cpu", "--samples 0:1 -o " + q(at("p0.exr")));
     render("cpu", "--samples 1:3 -o " + q(at("p1.exr")));
     render("cpu", "--samples 3:6 -o " + q(at("p2.exr")));
     ASSERT_EQ(merge(q(at("p0.exr")) + " " + q(at("p1.exr")) + " " + q(at("p2.exr")) + " -q -o " + q(at("flat.exr"))).code, 0);
-    ASSERT_EQ(merge(q(at("p2.exr")) + " " + q(at("p0.exr")) + " -q -o " + q(at("p20.exr"))).code, 0);
+    ASSERT_EQ(merge(q(at("p2.exr")) + " " + q(at("p0.exr")) + " --allow-gaps -q -o " + q(at("p20.exr"))).code, 0);
     ASSERT_EQ(merge(q(at("p1.exr")) + " " + q(at("p20.exr")) + " -q -o " + q(at("nested.exr"))).code, 0);
     const PartialFile flat = read_partial(at("flat.exr"));
     const PartialFile nested = read_partial(at("nested.exr"));
@@ -131,17 +132,88 @@ TEST_F(PartialMerge, PartialFileRecordsItsRenderAndHasADefaultName) {
     for (const kernel::PixelSum& s : p.sums.sums) ASSERT_EQ(s.red.w, 3u);  // every pixel has the 3 samples
 }
 
-// A merge that leaves a hole still works, and says so.
-TEST_F(PartialMerge, GapsAreWarnedAbout) {
+// A merge that leaves a hole is refused, naming it; --allow-gaps merges anyway and
+// says so.
+TEST_F(PartialMerge, GapsAreNamedAndRefusedUnlessAllowed) {
     render("cpu", "--samples 0:2 -o " + q(at("a.exr")));
     render("cpu", "--samples 5:6 -o " + q(at("c.exr")));
-    const test::ProgramRun run = merge(q(at("a.exr")) + " " + q(at("c.exr")) + " -o " + q(at("gap.exr")));
+    const std::string both = q(at("a.exr")) + " " + q(at("c.exr"));
+    test::expect_one_error(merge(both + " -o " + q(at("gap.exr"))), {"samples 2:5 are missing", "--missing", "--allow-gaps"});
+    EXPECT_FALSE(fs::exists(at("gap.exr")));
+    // The samples wanted name what is missing at the ends too: a lost last task.
+    test::expect_one_error(merge(both + " --samples 0:8 -o " + q(at("gap.exr"))), {"samples 2:5,6:8 are missing"});
+    test::expect_one_error(merge(both + " --samples 0:4 -o " + q(at("gap.exr"))), {"c.exr holds samples 5:6", "outside --samples 0:4"});
+    const test::ProgramRun run = merge(both + " --allow-gaps -o " + q(at("gap.exr")));
     ASSERT_EQ(run.code, 0) << run.stderr_text;
     EXPECT_NE(run.stderr_text.find("warning: the partials leave out samples 2:5"), std::string::npos) << run.stderr_text;
     EXPECT_NE(run.stderr_text.find("average of the 3 samples"), std::string::npos) << run.stderr_text;
     const std::string log = read_file(at("stdout.txt"));
     EXPECT_NE(log.find("samples 0:2,5:6: 3 per pixel"), std::string::npos) << log;
     EXPECT_EQ(format_sample_ranges(read_partial(at("gap.exr")).samples), "0:2,5:6");
+}
+
+// --missing lists what is left to render, one range a line, cut for --tasks
+// machines; a damaged partial counts as missing.
+TEST_F(PartialMerge, MissingListsTheRangesLeftToRender) {
+    render("cpu", "--samples 0:2 -o " + q(at("a.exr")));
+    render("cpu", "--samples 5:6 -o " + q(at("c.exr")));
+    const std::string both = q(at("a.exr")) + " " + q(at("c.exr"));
+    auto listed = [&](const std::string& args) {
+        const test::ProgramRun run = merge("--missing " + args);
+        EXPECT_EQ(run.code, 0) << run.stderr_text;
+        return read_file(at("stdout.txt"));
+    };
+    EXPECT_EQ(listed("--samples 0:10 " + both), "2:5\n6:10\n");
+    EXPECT_EQ(listed("--samples 0:10 --tasks 7 " + both), "2:3\n3:4\n4:5\n6:7\n7:8\n8:9\n9:10\n");
+    EXPECT_EQ(listed("--samples 0:6 " + both), "2:5\n");
+    EXPECT_EQ(listed("--samples 0:100 --tasks 4"), "0:25\n25:50\n50:75\n75:100\n");
+    test::expect_one_error(merge("--missing " + both), {"--missing needs --samples"});
+    test::expect_one_error(merge("--missing --samples 0:6 " + both + " -o " + q(at("x.exr"))), {"--missing", "--output"});
+    // Cut short, as by a task killed while writing.
+    fs::copy_file(at("c.exr"), at("cut.exr"));
+    fs::resize_file(at("cut.exr"), fs::file_size(at("cut.exr")) / 2);
+    const test::ProgramRun run = merge("--missing --samples 0:6 " + q(at("a.exr")) + " " + q(at("cut.exr")));
+    EXPECT_EQ(run.code, 0) << run.stderr_text;
+    EXPECT_EQ(read_file(at("stdout.txt")), "2:6\n");
+    EXPECT_NE(run.stderr_text.find("cut.exr"), std::string::npos) << run.stderr_text;
+    EXPECT_NE(run.stderr_text.find("count as missing"), std::string::npos) << run.stderr_text;
+}
+
+// A truncated or damaged partial is refused with what to do, never merged.
+TEST_F(PartialMerge, DamagedPartialsAreRefused) {
+    render("cpu", "--samples 0:2 -o " + q(at("a.exr")));
+    render("cpu", "--samples 2:4 -o " + q(at("b.exr")));
+    fs::copy_file(at("b.exr"), at("cut.exr"));
+    fs::resize_file(at("cut.exr"), fs::file_size(at("cut.exr")) * 3 / 4);
+    test::expect_one_error(merge(q(at("a.exr")) + " " + q(at("cut.exr")) + " -o " + q(at("out.exr"))),
+                           {"cut.exr", "truncated or damaged", "render its samples (2:4) again"});
+    // Bytes changed inside the pixel data, the file's size and header intact.
+    fs::copy_file(at("b.exr"), at("flipped.exr"));
+    {
+        std::fstream f(at("flipped.exr"), std::ios::in | std::ios::out | std::ios::binary);
+        const auto size = std::streamoff(fs::file_size(at("flipped.exr")));
+        for (const std::streamoff at : {size * 6 / 10, size * 7 / 10, size * 8 / 10}) {
+            f.seekg(at);
+            const char c = char(f.get() ^ 0x5a);
+            f.seekp(at);
+            f.put(c);
+        }
+    }
+    test::expect_one_error(merge(q(at("a.exr")) + " " + q(at("flipped.exr")) + " -o " + q(at("out.exr"))),
+                           {"flipped.exr", "damaged", "render its samples (2:4) again"});
+    EXPECT_FALSE(fs::exists(at("out.exr")));
+}
+
+// Partials from builds whose kernels differ are refused, naming both versions.
+TEST_F(PartialMerge, PartialsOfAnotherBuildAreRefused) {
+    render("cpu", "--samples 0:2 -o " + q(at("a.exr")));
+    render("cpu", "--samples 2:4 -o " + q(at("b.exr")));
+    PartialFile b = read_partial(at("b.exr"));
+    EXPECT_EQ(b.version, build_version());
+    b.version = "0.0.1 kernel 000000000000";
+    write_partial(b, at("old.exr"));
+    test::expect_one_error(merge(q(at("a.exr")) + " " + q(at("old.exr")) + " -o " + q(at("out.exr"))),
+                           {"old.exr was rendered by vkrt 0.0.1 kernel 000000000000", build_version(), "render one of them again"});
 }
 
 TEST_F(PartialMerge, BadSampleRangesAreRefused) {
@@ -218,6 +290,19 @@ TEST(SampleRanges, JoinOverlapAndGaps) {
     EXPECT_EQ(format_sample_ranges(sample_gaps({{6, 2}, {0, 2}, {3, 1}})), "2:3,4:6");
     EXPECT_TRUE(sample_gaps({{1, 2}, {3, 1}}).empty());
     EXPECT_EQ(sample_count({{0, 2}, {5, 3}}), 5u);
+}
+
+TEST(SampleRanges, MissingAndSplit) {
+    EXPECT_EQ(format_sample_ranges(missing_samples({0, 10}, {{6, 2}, {0, 2}})), "2:6,8:10");
+    EXPECT_EQ(format_sample_ranges(missing_samples({4, 4}, {{0, 5}, {7, 9}})), "5:7");
+    EXPECT_TRUE(missing_samples({0, 3}, {{0, 3}}).empty());
+    EXPECT_EQ(format_sample_ranges(missing_samples({0, 3}, {})), "0:3");
+    // 10 samples on 3 machines: 3, 3 and 4; a range is never cut finer than samples.
+    EXPECT_EQ(format_sample_ranges(split_sample_ranges({{0, 10}}, 3)), "0:3,3:6,6:10");
+    EXPECT_EQ(format_sample_ranges(split_sample_ranges({{0, 2}}, 5)), "0:1,1:2");
+    // Pieces by share: 90 samples get 9 of 10 machines, a gap of 10 the last.
+    EXPECT_EQ(split_sample_ranges({{0, 90}, {100, 10}}, 10).size(), 10u);
+    EXPECT_EQ(format_sample_ranges(split_sample_ranges({{0, 4}, {9, 1}}, 0)), "0:4,9:10");
 }
 
 }  // namespace

@@ -43,6 +43,10 @@ struct CompareArgs {
 struct MergeArgs {
     std::vector<std::string> partials;
     std::string output;
+    std::string samples;      // "A:B": the samples the partials must cover; empty: from the first to the last
+    bool allow_gaps = false;  // merge even with samples missing
+    bool missing = false;     // list the ranges still to render instead of merging
+    std::uint32_t tasks = 0;  // with missing: cut them into about this many ranges
     bool quiet = false;
 };
 

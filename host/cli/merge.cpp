@@ -15,6 +15,7 @@
 #include "render/partial_file.hpp"
 #include "render/render.hpp"
 #include "render/sample_ranges.hpp"
+#include "scene/limits.hpp"
 
 namespace vkrt::cli {
 namespace {
@@ -32,6 +33,12 @@ void check_mergeable(const std::vector<std::string>& names, const std::vector<Pa
             throw std::runtime_error(fmt::format("{} is {}x{} but {} is {}x{}: only partials of one render merge",
                                                  names[i], p.sums.width, p.sums.height, names[0], first.sums.width,
                                                  first.sums.height));
+        }
+        if (p.version != first.version) {
+            throw std::runtime_error(fmt::format(
+                "{} was rendered by vkrt {} but {} by vkrt {}: builds whose kernels differ draw different samples; "
+                "render one of them again with the other's build",
+                names[i], p.version, names[0], first.version));
         }
         if (p.fingerprint != first.fingerprint || p.corners != first.corners) {
             throw std::runtime_error(fmt::format(
@@ -60,21 +67,80 @@ void check_mergeable(const std::vector<std::string>& names, const std::vector<Pa
     }
 }
 
+// The partials' samples against the ones wanted: samples outside it are an error;
+// returns those of `wanted` that no partial covers.
+std::vector<SampleRange> check_coverage(const std::vector<std::string>& names, const std::vector<PartialFile>& parts,
+                                        SampleRange wanted) {
+    std::vector<SampleRange> covered;
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+        for (const SampleRange& r : parts[i].samples) {
+            if (r.first < wanted.first || r.end() > wanted.end()) {
+                throw std::runtime_error(fmt::format("{} holds samples {}, outside --samples {}", names[i],
+                                                     format_sample_range(r), format_sample_range(wanted)));
+            }
+            covered.push_back(r);
+        }
+    }
+    return missing_samples(wanted, covered);
+}
+
+// vkrt merge --missing: what is left to render, one range a line on stdout.
+int list_missing(const MergeArgs& args) {
+    if (args.samples.empty()) {
+        throw std::runtime_error("--missing needs --samples A:B, the samples the finished image is to have");
+    }
+    const SampleRange wanted = parse_sample_range(args.samples, limits::kMaxSpp);
+    std::vector<std::string> names;
+    std::vector<PartialFile> parts;
+    for (const std::string& name : args.partials) {
+        try {
+            PartialFile part = read_partial(name);  // the pixels too: a damaged file is missing
+            part.sums = RenderResult{};
+            parts.push_back(std::move(part));
+            names.push_back(name);
+        } catch (const ImageError& e) {
+            fmt::print(stderr, "warning: {}; its samples count as missing\n", e.what());
+        }
+    }
+    if (!parts.empty()) check_mergeable(names, parts);
+    const std::vector<SampleRange> missing = check_coverage(names, parts, wanted);
+    for (const SampleRange& r : split_sample_ranges(missing, args.tasks)) fmt::print("{}\n", format_sample_range(r));
+    return 0;
+}
+
 }  // namespace
 
 int run_merge(const MergeArgs& args) {
+    if (args.missing) return list_missing(args);
+    if (args.output.empty()) throw std::runtime_error("--output is required: where to write the merged image");
+    if (args.partials.empty()) throw std::runtime_error("no partial files given: nothing to merge");
     app::check_writable_image(args.output);
-    std::vector<PartialFile> parts;
-    for (const std::string& name : args.partials) parts.push_back(read_partial(name));
-    check_mergeable(args.partials, parts);
+    // Every header checked before any pixels are read: a mistake is found at once,
+    // and only one partial's pixels are in memory at a time.
+    std::vector<PartialFile> headers;
+    for (const std::string& name : args.partials) headers.push_back(read_partial_header(name));
+    check_mergeable(args.partials, headers);
+    std::vector<SampleRange> covered;
+    for (const PartialFile& p : headers) covered.insert(covered.end(), p.samples.begin(), p.samples.end());
+    const std::vector<SampleRange> missing =
+        args.samples.empty() ? sample_gaps(covered)
+                             : check_coverage(args.partials, headers, parse_sample_range(args.samples, limits::kMaxSpp));
+    if (!missing.empty() && !args.allow_gaps) {
+        throw std::runtime_error(fmt::format(
+            "samples {} are missing: no partial holds them. Render them (`vkrt merge --missing --samples A:B "
+            "PARTIAL...` lists them) and merge again, or pass --allow-gaps to average the samples there are",
+            format_sample_ranges(missing)));
+    }
 
     PartialFile merged;
-    merged.scene = parts.front().scene;
-    merged.seed = parts.front().seed;
-    merged.fingerprint = parts.front().fingerprint;
-    merged.corners = parts.front().corners;
+    merged.scene = headers.front().scene;
+    merged.seed = headers.front().seed;
+    merged.fingerprint = headers.front().fingerprint;
+    merged.corners = headers.front().corners;
+    merged.version = headers.front().version;
     std::set<std::string> backends;
-    for (const PartialFile& p : parts) {
+    for (std::size_t i = 0; i < headers.size(); ++i) {
+        const PartialFile p = read_partial(args.partials[i]);
         accumulate(merged.sums, p.sums);
         merged.samples.insert(merged.samples.end(), p.samples.begin(), p.samples.end());
         backends.insert(p.backend);
@@ -89,20 +155,20 @@ int run_merge(const MergeArgs& args) {
     }
 
     if (!args.quiet) {
-        for (std::size_t i = 0; i < parts.size(); ++i) {
-            fmt::print("merged    {}: samples {} ({})\n", args.partials[i], format_sample_ranges(parts[i].samples),
-                       parts[i].backend);
+        for (std::size_t i = 0; i < headers.size(); ++i) {
+            fmt::print("merged    {}: samples {} ({})\n", args.partials[i], format_sample_ranges(headers[i].samples),
+                       headers[i].backend);
         }
         fmt::print("image     {}x{}{}, samples {}: {} per pixel\n", merged.sums.width, merged.sums.height,
                    merged.corners ? " corner rays" : "", format_sample_ranges(merged.samples),
                    sample_count(merged.samples));
         fmt::print("wrote     {}{}\n", args.output, app::is_exr(args.output) ? " (a partial file, mergeable again)" : "");
     }
-    if (const std::vector<SampleRange> gaps = sample_gaps(merged.samples); !gaps.empty()) {
+    if (!missing.empty()) {
         fmt::print(stderr,
                    "warning: the partials leave out samples {}; the image is the average of the {} samples per pixel "
                    "that were rendered\n",
-                   format_sample_ranges(gaps), sample_count(merged.samples));
+                   format_sample_ranges(missing), sample_count(merged.samples));
     }
     if (backends.size() > 1) {
         fmt::print(stderr,

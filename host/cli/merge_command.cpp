@@ -5,17 +5,31 @@
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
+#include "render/sample_ranges.hpp"
+#include "scene/limits.hpp"
 
 namespace vkrt::cli {
 
 Command add_merge_command(CLI::App& program) {
     auto args = std::make_shared<MergeArgs>();
     CLI::App* m = program.add_subcommand("merge", "Add up partial files of disjoint sample ranges into one image");
-    m->add_option("partials", args->partials, "Partial files (.exr) written by vkrt render --samples or vkrt merge")
-        ->required();
-    m->add_option("-o,--output", args->output,
-                  "Output image; .exr writes a partial file again (mergeable), other formats an image")
-        ->required();
+    m->add_option("partials", args->partials, "Partial files (.exr) written by vkrt render --samples or vkrt merge");
+    CLI::Option* output = m->add_option(
+        "-o,--output", args->output, "Output image; .exr writes a partial file again (mergeable), other formats an image");
+    m->add_option("--samples", args->samples,
+                  "The samples A to B-1 the partials must cover, all of them (without it: from their first sample to "
+                  "their last); samples left out are an error, named")
+        ->check(accepted_by([](const std::string& text) { parse_sample_range(text, limits::kMaxSpp); }, "A:B"));
+    m->add_flag("--allow-gaps", args->allow_gaps,
+                "Merge even when samples are left out: each pixel averages the samples there are");
+    CLI::Option* missing = m->add_flag(
+        "--missing", args->missing,
+        "Print the ranges of --samples that no readable partial covers, one A:B a line, and write nothing: what is "
+        "left to render. Damaged or unreadable partials count as missing");
+    m->add_option("--tasks", args->tasks, "With --missing: cut the missing samples into about this many ranges")
+        ->check(CLI::Range(1u, 65536u))
+        ->needs(missing);
+    missing->excludes(output);
     add_quiet(m, args->quiet);
     return {m, [args] { return run_merge(*args); }};
 }

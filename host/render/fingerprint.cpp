@@ -7,28 +7,6 @@
 namespace vkrt {
 namespace {
 
-class Fnv1a {
-public:
-    void add(const void* data, std::size_t bytes) {
-        const auto* p = static_cast<const unsigned char*>(data);
-        for (std::size_t i = 0; i < bytes; ++i) {
-            hash_ = (hash_ ^ p[i]) * 0x100000001b3ull;
-        }
-    }
-    // The length first, so that moving an element from one array to the next
-    // changes the hash.
-    template <class T>
-    void add(const std::vector<T>& items) {
-        const std::uint64_t n = items.size();
-        add(&n, sizeof n);
-        add(items.data(), items.size() * sizeof(T));
-    }
-    std::uint64_t value() const { return hash_; }
-
-private:
-    std::uint64_t hash_ = 0xcbf29ce484222325ull;
-};
-
 // The features that say how the scene is traced, not what it shows.
 bool is_acceleration_feature(std::uint32_t id) {
     switch (Feature(id)) {

@@ -3,12 +3,35 @@
 // (camera, image size, seed, settings, materials, lights, primitives) and the
 // kernel features. Partial files carry it, so that `vkrt merge` can refuse to add
 // up renders of different scenes, sizes, seeds or settings.
+#include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "flatten/flat_scene.hpp"
 
 namespace vkrt {
+
+// 64-bit FNV-1a: the fingerprint's hash, and partial files' checksum.
+class Fnv1a {
+public:
+    void add(const void* data, std::size_t bytes) {
+        const auto* p = static_cast<const unsigned char*>(data);
+        for (std::size_t i = 0; i < bytes; ++i) hash_ = (hash_ ^ p[i]) * 0x100000001b3ull;
+    }
+    // The length first, so that moving an element from one array to the next
+    // changes the hash.
+    template <class T>
+    void add(const std::vector<T>& items) {
+        const std::uint64_t n = items.size();
+        add(&n, sizeof n);
+        add(items.data(), items.size() * sizeof(T));
+    }
+    std::uint64_t value() const { return hash_; }
+
+private:
+    std::uint64_t hash_ = 0xcbf29ce484222325ull;
+};
 
 // 64-bit FNV-1a over those bytes. The uniform grid is left out: it decides how
 // rays find what they hit, not what they hit (tests/grid_image_test.cpp renders

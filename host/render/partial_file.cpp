@@ -3,6 +3,7 @@
 #include <array>
 #include <bit>
 #include <cstring>
+#include <memory>
 #include <stdexcept>
 
 #include <OpenImageIO/imageio.h>
@@ -13,12 +14,14 @@
 #include "render/pixel_sums.hpp"
 #include "render/sample_ranges.hpp"
 #include "scene/limits.hpp"
+#include "vkrt_version.h"
 
 namespace vkrt {
 namespace {
 
 // Bumped when the channels or attributes change meaning; a reader refuses others.
-constexpr int kFormatVersion = 1;
+// 2: vkrt:version and vkrt:checksum.
+constexpr int kFormatVersion = 2;
 
 // The words of a PixelSum and of Counters, in the order of their layout.
 constexpr std::array<const char*, 12> kSumChannels = {
@@ -40,6 +43,14 @@ std::uint32_t& counter_word(kernel::Counters& c, std::size_t i) {
     return v[glm::length_t(i % 4)];
 }
 
+// Over the exact sums and counters, as the file's vkrt:checksum.
+std::uint64_t checksum(const RenderResult& r) {
+    Fnv1a h;
+    h.add(r.sums);
+    h.add(r.counters);
+    return h.value();
+}
+
 [[noreturn]] void not_partial(const std::string& name, const std::string& why) {
     throw ImageError(fmt::format("{}: not a vkrt partial file ({}); partial files come from "
                                  "`vkrt render --samples A:B` or `vkrt merge -o NAME.exr`",
@@ -47,6 +58,8 @@ std::uint32_t& counter_word(kernel::Counters& c, std::size_t i) {
 }
 
 }  // namespace
+
+std::string build_version() { return VKRT_VERSION " kernel " VKRT_KERNEL_HASH; }
 
 void write_partial(const PartialFile& partial, const std::filesystem::path& file) {
     const std::string name = file.string();
@@ -67,6 +80,8 @@ void write_partial(const PartialFile& partial, const std::filesystem::path& file
     spec.attribute("vkrt:fingerprint", format_fingerprint(partial.fingerprint));
     spec.attribute("vkrt:backend", partial.backend);
     spec.attribute("vkrt:corners", partial.corners ? 1 : 0);
+    spec.attribute("vkrt:version", partial.version);
+    spec.attribute("vkrt:checksum", format_fingerprint(checksum(r)));
 
     // Every channel is 4 bytes: one uint32 array holds the pixels in the native
     // per-channel formats, the floats by their bits.
@@ -86,13 +101,11 @@ void write_partial(const PartialFile& partial, const std::filesystem::path& file
     }
 }
 
-PartialFile read_partial(const std::filesystem::path& file) {
-    const std::string name = file.string();
-    if (!std::filesystem::exists(file)) throw ImageError(fmt::format("{}: no such file", name));
-    auto in = OIIO::ImageInput::open(name);
-    if (!in) throw ImageError(fmt::format("{}: cannot read image ({})", name, OIIO::geterror()));
-    const OIIO::ImageSpec& spec = in->spec();
+namespace {
 
+// Opens a partial file and reads its header; the pixels are left to the caller.
+PartialFile read_header(const std::string& name, OIIO::ImageInput& in) {
+    const OIIO::ImageSpec& spec = in.spec();
     PartialFile partial;
     const int version = spec.get_int_attribute("vkrt:partial_version", 0);
     if (version == 0) not_partial(name, "it has no vkrt:partial_version attribute");
@@ -119,7 +132,31 @@ PartialFile read_partial(const std::filesystem::path& file) {
     }
     partial.backend = spec.get_string_attribute("vkrt:backend");
     partial.corners = spec.get_int_attribute("vkrt:corners", 0) != 0;
+    partial.version = spec.get_string_attribute("vkrt:version");
+    partial.sums.width = std::uint32_t(spec.width);
+    partial.sums.height = std::uint32_t(spec.height);
+    return partial;
+}
 
+std::unique_ptr<OIIO::ImageInput> open_partial(const std::string& name) {
+    if (!std::filesystem::exists(name)) throw ImageError(fmt::format("{}: no such file", name));
+    auto in = OIIO::ImageInput::open(name);
+    if (!in) throw ImageError(fmt::format("{}: cannot read image ({})", name, OIIO::geterror()));
+    return in;
+}
+
+}  // namespace
+
+PartialFile read_partial_header(const std::filesystem::path& file) {
+    const std::string name = file.string();
+    return read_header(name, *open_partial(name));
+}
+
+PartialFile read_partial(const std::filesystem::path& file) {
+    const std::string name = file.string();
+    const std::unique_ptr<OIIO::ImageInput> in = open_partial(name);
+    const OIIO::ImageSpec& spec = in->spec();
+    PartialFile partial = read_header(name, *in);
     // Channels by name, wherever the file put them (OpenEXR stores them sorted by
     // name), at their byte offsets in a pixel of native per-channel formats.
     std::vector<std::size_t> offset(std::size_t(spec.nchannels));
@@ -147,11 +184,11 @@ PartialFile read_partial(const std::filesystem::path& file) {
     const std::size_t pixels = std::size_t(spec.width) * std::size_t(spec.height);
     std::vector<unsigned char> data(pixels * pixel_bytes);
     if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UNKNOWN, data.data())) {
-        throw ImageError(fmt::format("{}: reading failed: {}", name, in->geterror()));
+        throw ImageError(fmt::format("{}: cannot read its pixels, the file is truncated or damaged ({}); render its "
+                                     "samples ({}) again",
+                                     name, in->geterror(), format_sample_ranges(partial.samples)));
     }
     RenderResult& r = partial.sums;
-    r.width = std::uint32_t(spec.width);
-    r.height = std::uint32_t(spec.height);
     r.sums.resize(pixels);
     r.counters.resize(pixels);
     auto word = [&](std::size_t p, std::size_t at) {
@@ -162,6 +199,12 @@ PartialFile read_partial(const std::filesystem::path& file) {
     for (std::size_t p = 0; p < pixels; ++p) {
         for (std::size_t i = 0; i < sum_at.size(); ++i) sum_word(r.sums[p], i) = word(p, sum_at[i]);
         for (std::size_t i = 0; i < counter_at.size(); ++i) counter_word(r.counters[p], i) = word(p, counter_at[i]);
+    }
+    const std::string recorded = spec.get_string_attribute("vkrt:checksum");
+    if (recorded != format_fingerprint(checksum(r))) {
+        throw ImageError(fmt::format("{}: its pixels do not match its checksum, the file is damaged; render its samples "
+                                     "({}) again",
+                                     name, format_sample_ranges(partial.samples)));
     }
     return partial;
 }

@@ -104,6 +104,37 @@ std::vector<SampleRange> sample_gaps(const std::vector<SampleRange>& ranges) {
     return gaps;
 }
 
+std::vector<SampleRange> missing_samples(SampleRange wanted, const std::vector<SampleRange>& covered) {
+    std::vector<SampleRange> missing;
+    std::uint32_t from = wanted.first;
+    for (const SampleRange& r : normalize_sample_ranges(covered)) {
+        if (r.end() <= from) continue;
+        if (r.first >= wanted.end()) break;
+        if (r.first > from) missing.push_back({from, r.first - from});
+        from = std::max(from, r.end());
+    }
+    if (from < wanted.end()) missing.push_back({from, wanted.end() - from});
+    return missing;
+}
+
+std::vector<SampleRange> split_sample_ranges(const std::vector<SampleRange>& ranges, std::uint32_t pieces) {
+    const std::uint64_t total = sample_count(ranges);
+    if (pieces == 0 || total == 0) return ranges;
+    std::vector<SampleRange> out;
+    for (const SampleRange& r : ranges) {
+        // Pieces in proportion to the range's share of the samples: at least one, at
+        // most one per sample.
+        const std::uint64_t share = (std::uint64_t(r.count) * pieces + total / 2) / total;
+        const std::uint64_t k = std::clamp<std::uint64_t>(share, 1, r.count);
+        for (std::uint64_t j = 0; j < k; ++j) {
+            const auto a = std::uint32_t(r.first + r.count * j / k);
+            const auto b = std::uint32_t(r.first + r.count * (j + 1) / k);
+            out.push_back({a, b - a});
+        }
+    }
+    return out;
+}
+
 std::uint64_t sample_count(const std::vector<SampleRange>& ranges) {
     std::uint64_t n = 0;
     for (const SampleRange& r : ranges) n += r.count;

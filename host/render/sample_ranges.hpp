@@ -29,6 +29,14 @@ std::optional<SampleRange> overlap(SampleRange a, SampleRange b);
 // The samples between the first and the last that none of the ranges covers.
 std::vector<SampleRange> sample_gaps(const std::vector<SampleRange>& ranges);
 
+// The samples of `wanted` that none of `covered` holds, in order.
+std::vector<SampleRange> missing_samples(SampleRange wanted, const std::vector<SampleRange>& covered);
+
+// Each range cut into nearly equal consecutive ranges, about `pieces` in all, in
+// proportion to its share of the samples (at least one per range): the work of
+// `pieces` machines. 0 leaves the ranges as they are.
+std::vector<SampleRange> split_sample_ranges(const std::vector<SampleRange>& ranges, std::uint32_t pieces);
+
 std::uint64_t sample_count(const std::vector<SampleRange>& ranges);
 
 }  // namespace vkrt
