@@ -5,6 +5,7 @@
 // up renders of different scenes, sizes, seeds or settings.
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,16 @@ public:
         const std::uint64_t n = items.size();
         add(&n, sizeof n);
         add(items.data(), items.size() * sizeof(T));
+    }
+    // The same steps over 64-bit words instead of bytes (bytes a multiple of 8): eight
+    // times fewer, for checksums of large buffers.
+    void add_words(const void* data, std::size_t bytes) {
+        const auto* p = static_cast<const unsigned char*>(data);
+        for (std::size_t i = 0; i + 8 <= bytes; i += 8) {
+            std::uint64_t word = 0;
+            std::memcpy(&word, p + i, sizeof word);
+            hash_ = (hash_ ^ word) * 0x100000001b3ull;
+        }
     }
     std::uint64_t value() const { return hash_; }
 

@@ -45,9 +45,10 @@ std::uint32_t& counter_word(kernel::Counters& c, std::size_t i) {
 
 // Over the exact sums and counters, as the file's vkrt:checksum.
 std::uint64_t checksum(const RenderResult& r) {
+    static_assert(sizeof(kernel::PixelSum) % 8 == 0 && sizeof(kernel::Counters) % 8 == 0);
     Fnv1a h;
-    h.add(r.sums);
-    h.add(r.counters);
+    h.add_words(r.sums.data(), r.sums.size() * sizeof(kernel::PixelSum));
+    h.add_words(r.counters.data(), r.counters.size() * sizeof(kernel::Counters));
     return h.value();
 }
 
