@@ -10,6 +10,7 @@
 
 #include "image/compare.hpp"
 #include "test_support.hpp"
+#include "vkrt_version.h"
 
 namespace {
 
@@ -26,7 +27,7 @@ fs::path scene(const std::string& name) { return test::source_dir() / "scenes" /
 TEST(Cli, VersionAndHelp) {
     const fs::path dir = test::temp_dir("cli_version");
     EXPECT_EQ(test::run_vkrt("--version", dir).code, 0);
-    EXPECT_EQ(read_file(dir / "stdout.txt"), "vkrt " VKRT_VERSION "\n");
+    EXPECT_EQ(read_file(dir / "stdout.txt"), "vkrt " VKRT_VERSION " (kernel " VKRT_KERNEL_HASH ")\n");
     EXPECT_EQ(test::run_vkrt("render --help", dir).code, 0);
     const std::string help = read_file(dir / "stdout.txt");
     for (const char* option : {"--output", "--backend", "--device", "--width", "--height", "--spp", "--time", "--samples", "--seed",
