@@ -368,6 +368,13 @@ TEST_F(SceneLoaderTest, DuplicateKey) {
                  {": camera: ", "'fov'", "more than once"});
 }
 
+// Paths are built only for messages; they must still name the right element.
+TEST_F(SceneLoaderTest, DuplicateKeyDeepInAnArrayNamesItsPath) {
+    expect_error(Parts{.objects = R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "chalk"},
+                                     {"type": "sphere", "center": [0, 0, 0], "radius": 1, "radius": 2}])"},
+                 {": objects[1]: ", "'radius'", "more than once"});
+}
+
 TEST_F(SceneLoaderTest, AbsurdNesting) {
     expect_error(Parts{.objects = std::string(200, '[') + std::string(200, ']')}, {"objects[0]", "nesting"});
 }

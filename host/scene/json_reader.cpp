@@ -183,42 +183,121 @@ glm::dvec3 Node::color() const {
     return {e[0].number_at_least(0.0), e[1].number_at_least(0.0), e[2].number_at_least(0.0)};
 }
 
-// ---- PathTracker -------------------------------------------------------------
+// ---- DocumentBuilder ---------------------------------------------------------
 
-std::string PathTracker::pending_path() const {
-    if (frames_.empty()) return {};
-    const Frame& top = frames_.back();
-    return top.is_object ? path_join(top.path, top.key) : path_index(top.path, top.next_index);
-}
+namespace {
 
-void PathTracker::on_event(int depth, Json::parse_event_t event, const Json& parsed) {
-    using E = Json::parse_event_t;
-    switch (event) {
-        case E::object_start:
-        case E::array_start: {
-            std::string path = pending_path();
-            if (depth > kMaxNesting) {
-                // The path itself is as deep as the nesting: show its start.
-                const std::string shown = path.size() > 80 ? path.substr(0, 80) + "..." : path;
-                fail_at(file_, shown, fmt::format("nesting is deeper than {} levels", kMaxNesting));
-            }
-            advance();
-            frames_.push_back(Frame{event == E::object_start, std::move(path), {}, 0, {}});
-            break;
+// Builds the document from the parser's events (nlohmann's SAX interface), and
+// knows at each event the JSON path of the value being read, so that what the
+// document cannot show afterwards is named by its path. Paths are built only for a
+// message: building one per value cost more than the parse. (nlohmann's callback
+// parser would give the events too, but rescans the parent array at every object's
+// end: quadratic in the length of "objects".)
+class DocumentBuilder {
+public:
+    DocumentBuilder(const std::string& file, std::string_view text) : file_(file), text_(text) {}
+
+    Json take() { return std::move(root_); }
+
+    bool null() { return add(Json(nullptr)); }
+    bool boolean(bool v) { return add(Json(v)); }
+    bool number_integer(Json::number_integer_t v) { return add(Json(v)); }
+    bool number_unsigned(Json::number_unsigned_t v) { return add(Json(v)); }
+    bool number_float(Json::number_float_t v, const std::string&) { return add(Json(v)); }
+    bool string(Json::string_t& v) { return add(Json(std::move(v))); }
+    bool binary(Json::binary_t& v) { return add(Json(std::move(v))); }
+
+    bool start_object(std::size_t) { return open(Json::object()); }
+    bool start_array(std::size_t) { return open(Json::array()); }
+    bool end_object() { return close(); }
+    bool end_array() { return close(); }
+
+    bool key(Json::string_t& k) {
+        Frame& top = frames_.back();
+        if (top.value->contains(k)) {
+            fail_at(file_, path(frames_.size() - 1), fmt::format("field {} is given more than once", quote_user(k)));
         }
-        case E::key: {
-            Frame& top = frames_.back();
-            top.key = parsed.get<std::string>();
-            if (!top.keys.insert(top.key).second) {
-                fail_at(file_, top.path, fmt::format("field {} is given more than once", quote_user(top.key)));
-            }
-            break;
-        }
-        case E::value: advance(); break;
-        case E::object_end:
-        case E::array_end: frames_.pop_back(); break;
+        top.key = std::move(k);
+        return true;
     }
-}
+
+    bool parse_error(std::size_t bytes_read, const std::string&, const nlohmann::detail::exception& e) {
+        // id 406: a literal such as 1e999 overflows a double; it names the value.
+        if (e.id == 406) {
+            std::string token = e.what();
+            const auto open = token.find('\'');
+            const auto close = token.rfind('\'');
+            token = (open != std::string::npos && close > open) ? token.substr(open + 1, close - open - 1) : "?";
+            if (token.size() > 40) token = token.substr(0, 37) + "...";
+            fail_at(file_, pending_path(), fmt::format("expected a finite number, got {} (too large for a double)", token));
+        }
+        const auto [line, column] = line_column(text_, bytes_read);
+        throw SceneError(fmt::format("{}:{}:{}: invalid JSON: {}", file_, line, column, short_parse_reason(e.what())));
+    }
+
+private:
+    // An open object or array, and how it was reached from its parent.
+    struct Frame {
+        Json* value;
+        std::string key;             // objects: the key whose value comes next
+        std::size_t next_index = 0;  // arrays: the index of the next element
+    };
+
+    // Puts a value where the parser is; the slot it returns stays valid while the
+    // value's container is open, since nothing is added to that container meanwhile.
+    Json* place(Json&& v) {
+        if (frames_.empty()) {
+            root_ = std::move(v);
+            return &root_;
+        }
+        Frame& top = frames_.back();
+        if (top.value->is_object()) return &top.value->emplace(top.key, std::move(v)).first.value();  // the key stays, for paths
+        ++top.next_index;
+        top.value->push_back(std::move(v));
+        return &top.value->back();
+    }
+    bool add(Json&& v) {
+        place(std::move(v));
+        return true;
+    }
+    bool open(Json&& container) {
+        if (frames_.size() >= std::size_t(kMaxNesting)) {
+            // The path itself is as deep as the nesting: show its start.
+            const std::string p = pending_path();
+            fail_at(file_, p.size() > 80 ? p.substr(0, 80) + "..." : p,
+                    fmt::format("nesting is deeper than {} levels", kMaxNesting));
+        }
+        frames_.push_back(Frame{place(std::move(container)), {}, 0});
+        return true;
+    }
+    bool close() {
+        frames_.pop_back();
+        return true;
+    }
+
+    // The path of the container frames_[n], or of the value about to be read.
+    std::string path(std::size_t n) const {
+        std::string p;
+        for (std::size_t i = 0; i < n; ++i) {
+            const Frame& f = frames_[i];
+            p = f.value->is_object() ? path_join(p, f.key) : path_index(p, f.next_index - 1);
+        }
+        return p;
+    }
+    std::string pending_path() const {
+        if (frames_.empty()) return {};
+        const Frame& top = frames_.back();
+        const std::string parent = path(frames_.size() - 1);
+        return top.value->is_object() ? path_join(parent, top.key) : path_index(parent, top.next_index);
+    }
+
+    const std::string& file_;
+    std::string_view text_;
+    Json root_;
+    std::vector<Frame> frames_;
+};
+
+}  // namespace
 
 // ---- parsing -----------------------------------------------------------------
 
@@ -258,32 +337,14 @@ std::string short_parse_reason(std::string message) {
 }
 
 Json parse_document(const std::string& file, const std::string& text) {
-    PathTracker tracker(file);
-    const Json::parser_callback_t callback = [&tracker](int depth, Json::parse_event_t event, Json& parsed) {
-        tracker.on_event(depth, event, parsed);
-        return true;
-    };
+    DocumentBuilder builder(file, text);
     try {
-        return Json::parse(text, callback, /*allow_exceptions=*/true, /*ignore_comments=*/true);
-    } catch (const Json::parse_error& e) {
-        const auto [line, column] = line_column(text, e.byte);
-        throw SceneError(fmt::format("{}:{}:{}: invalid JSON: {}", file, line, column, short_parse_reason(e.what())));
-    } catch (const Json::out_of_range& e) {
-        // id 406: a literal such as 1e999 overflows a double. The parser reports
-        // it before producing the value, so the tracker points at that value.
-        if (e.id == 406) {
-            std::string token = e.what();
-            const auto open = token.find('\'');
-            const auto close = token.rfind('\'');
-            token = (open != std::string::npos && close > open) ? token.substr(open + 1, close - open - 1) : "?";
-            if (token.size() > 40) token = token.substr(0, 37) + "...";
-            fail_at(file, tracker.pending_path(),
-                    fmt::format("expected a finite number, got {} (too large for a double)", token));
-        }
-        throw SceneError(fmt::format("{}: invalid JSON: {}", file, e.what()));
+        Json::sax_parse(text, &builder, nlohmann::detail::input_format_t::json, /*strict=*/true,
+                        /*ignore_comments=*/true);
     } catch (const Json::exception& e) {
         throw SceneError(fmt::format("{}: invalid JSON: {}", file, e.what()));
     }
+    return builder.take();
 }
 
 }  // namespace vkrt::json

@@ -9,7 +9,6 @@
 #include <cstdint>
 #include <initializer_list>
 #include <optional>
-#include <set>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -124,36 +123,6 @@ private:
     std::string path_;
 };
 
-// Follows the parser's events so that problems the DOM cannot show afterwards
-// (a key given twice, where the last one would silently win; a number too large
-// for a double, which nlohmann reports without a position) can still be named by
-// their JSON path.
-class PathTracker {
-public:
-    explicit PathTracker(const std::string& file) : file_(file) {}
-
-    // The path of the value the parser is about to produce.
-    std::string pending_path() const;
-
-    void on_event(int depth, Json::parse_event_t event, const Json& parsed);
-
-private:
-    struct Frame {
-        bool is_object;
-        std::string path;
-        std::string key;             // objects: the key whose value comes next
-        std::size_t next_index = 0;  // arrays: the index of the next element
-        std::set<std::string, std::less<>> keys;
-    };
-
-    void advance() {
-        if (!frames_.empty() && !frames_.back().is_object) ++frames_.back().next_index;
-    }
-
-    const std::string& file_;
-    std::vector<Frame> frames_;
-};
-
 // nlohmann reports the 1-based count of bytes read; turn it into the line and
 // column (in characters, not UTF-8 bytes) that an editor shows.
 std::pair<std::size_t, std::size_t> line_column(std::string_view text, std::size_t bytes_read);
@@ -163,7 +132,10 @@ std::pair<std::size_t, std::size_t> line_column(std::string_view text, std::size
 std::string short_parse_reason(std::string message);
 
 // Parses JSON text with // and /* */ comments allowed. Throws SceneError with
-// "<file>:<line>:<col>: invalid JSON: <reason>" or a path-named message.
+// "<file>:<line>:<col>: invalid JSON: <reason>", or a message naming the JSON path
+// of what the document cannot show afterwards: a key given twice (where the last
+// would silently win), a number too large for a double, nesting deeper than
+// kMaxNesting.
 Json parse_document(const std::string& file, const std::string& text);
 
 }  // namespace vkrt::json
