@@ -10,7 +10,6 @@
 #include "cli/commands.hpp"
 #include "app/output_paths.hpp"
 #include "image/image.hpp"
-#include "render/accumulate.hpp"
 #include "render/fingerprint.hpp"
 #include "render/partial_file.hpp"
 #include "render/render.hpp"
@@ -140,8 +139,7 @@ int run_merge(const MergeArgs& args) {
     merged.version = headers.front().version;
     std::set<std::string> backends;
     for (std::size_t i = 0; i < headers.size(); ++i) {
-        const PartialFile p = read_partial(args.partials[i]);
-        accumulate(merged.sums, p.sums);
+        const PartialFile p = add_partial(args.partials[i], merged.sums);
         merged.samples.insert(merged.samples.end(), p.samples.begin(), p.samples.end());
         backends.insert(p.backend);
     }

@@ -1,5 +1,6 @@
 #include "render/partial_file.hpp"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cstring>
@@ -43,13 +44,18 @@ std::uint32_t& counter_word(kernel::Counters& c, std::size_t i) {
     return v[glm::length_t(i % 4)];
 }
 
-// Over the exact sums and counters, as the file's vkrt:checksum.
-std::uint64_t checksum(const RenderResult& r) {
+// The file's vkrt:checksum: FNV-1a steps over the 64-bit words of each pixel's sums
+// and then its counters, pixel by pixel, so that a reader can check it block by block.
+void add_to_checksum(Fnv1a& hash, const kernel::PixelSum& sum, const kernel::Counters& counters) {
     static_assert(sizeof(kernel::PixelSum) % 8 == 0 && sizeof(kernel::Counters) % 8 == 0);
-    Fnv1a h;
-    h.add_words(r.sums.data(), r.sums.size() * sizeof(kernel::PixelSum));
-    h.add_words(r.counters.data(), r.counters.size() * sizeof(kernel::Counters));
-    return h.value();
+    hash.add_words(&sum, sizeof sum);
+    hash.add_words(&counters, sizeof counters);
+}
+
+std::uint64_t checksum(const RenderResult& r) {
+    Fnv1a hash;
+    for (std::size_t p = 0; p < r.sums.size(); ++p) add_to_checksum(hash, r.sums[p], r.counters[p]);
+    return hash.value();
 }
 
 [[noreturn]] void not_partial(const std::string& name, const std::string& why) {
@@ -153,11 +159,18 @@ PartialFile read_partial_header(const std::filesystem::path& file) {
     return read_header(name, *open_partial(name));
 }
 
-PartialFile read_partial(const std::filesystem::path& file) {
-    const std::string name = file.string();
-    const std::unique_ptr<OIIO::ImageInput> in = open_partial(name);
-    const OIIO::ImageSpec& spec = in->spec();
-    PartialFile partial = read_header(name, *in);
+namespace {
+
+// Rows read at once: the pixels of a 4K partial are 1 GB in the file's layout; a
+// block of rows keeps memory to the sums and a few megabytes.
+constexpr int kRowsPerRead = 64;
+
+// Reads the pixels of the open partial `in` a block of rows at a time and hands each
+// pixel's sums and counters to use(p, sum, counters), in order; then verifies the
+// checksum. Throws ImageError naming the file for a truncated or damaged one.
+template <class Use>
+void read_pixels(const std::string& name, OIIO::ImageInput& in, const PartialFile& header, Use use) {
+    const OIIO::ImageSpec& spec = in.spec();
     // Channels by name, wherever the file put them (OpenEXR stores them sorted by
     // name), at their byte offsets in a pixel of native per-channel formats.
     std::vector<std::size_t> offset(std::size_t(spec.nchannels));
@@ -182,31 +195,72 @@ PartialFile read_partial(const std::filesystem::path& file) {
     std::array<std::size_t, kCounterChannels.size()> counter_at{};
     for (std::size_t i = 0; i < kCounterChannels.size(); ++i) counter_at[i] = find(kCounterChannels[i]);
 
-    const std::size_t pixels = std::size_t(spec.width) * std::size_t(spec.height);
-    std::vector<unsigned char> data(pixels * pixel_bytes);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UNKNOWN, data.data())) {
-        throw ImageError(fmt::format("{}: cannot read its pixels, the file is truncated or damaged ({}); render its "
+    const std::size_t width = std::size_t(spec.width);
+    std::vector<unsigned char> data(std::size_t(kRowsPerRead) * width * pixel_bytes);
+    Fnv1a hash;
+    for (int y = 0; y < spec.height; y += kRowsPerRead) {
+        const int rows = std::min(kRowsPerRead, spec.height - y);
+        if (!in.read_scanlines(0, 0, spec.y + y, spec.y + y + rows, 0, 0, spec.nchannels, OIIO::TypeDesc::UNKNOWN,
+                               data.data())) {
+            throw ImageError(fmt::format("{}: cannot read its pixels, the file is truncated or damaged ({}); "
+                                         "render its samples ({}) again",
+                                         name, in.geterror(), format_sample_ranges(header.samples)));
+        }
+        for (std::size_t i = 0; i < std::size_t(rows) * width; ++i) {
+            const unsigned char* pixel = &data[i * pixel_bytes];
+            kernel::PixelSum sum{};
+            kernel::Counters counters{};
+            for (std::size_t k = 0; k < sum_at.size(); ++k) std::memcpy(&sum_word(sum, k), pixel + sum_at[k], 4);
+            for (std::size_t k = 0; k < counter_at.size(); ++k) {
+                std::memcpy(&counter_word(counters, k), pixel + counter_at[k], 4);
+            }
+            add_to_checksum(hash, sum, counters);
+            use(std::size_t(y) * width + i, sum, counters);
+        }
+    }
+    if (spec.get_string_attribute("vkrt:checksum") != format_fingerprint(hash.value())) {
+        throw ImageError(fmt::format("{}: its pixels do not match its checksum, the file is damaged; render its "
                                      "samples ({}) again",
-                                     name, in->geterror(), format_sample_ranges(partial.samples)));
+                                     name, format_sample_ranges(header.samples)));
     }
+}
+
+}  // namespace
+
+PartialFile read_partial(const std::filesystem::path& file) {
+    const std::string name = file.string();
+    const std::unique_ptr<OIIO::ImageInput> in = open_partial(name);
+    PartialFile partial = read_header(name, *in);
     RenderResult& r = partial.sums;
-    r.sums.resize(pixels);
-    r.counters.resize(pixels);
-    auto word = [&](std::size_t p, std::size_t at) {
-        std::uint32_t w = 0;
-        std::memcpy(&w, &data[p * pixel_bytes + at], sizeof w);
-        return w;
-    };
-    for (std::size_t p = 0; p < pixels; ++p) {
-        for (std::size_t i = 0; i < sum_at.size(); ++i) sum_word(r.sums[p], i) = word(p, sum_at[i]);
-        for (std::size_t i = 0; i < counter_at.size(); ++i) counter_word(r.counters[p], i) = word(p, counter_at[i]);
+    r.sums.resize(std::size_t(r.width) * r.height);
+    r.counters.resize(r.sums.size());
+    read_pixels(name, *in, partial, [&r](std::size_t p, const kernel::PixelSum& sum, const kernel::Counters& counters) {
+        r.sums[p] = sum;
+        r.counters[p] = counters;
+    });
+    return partial;
+}
+
+PartialFile add_partial(const std::filesystem::path& file, RenderResult& total) {
+    const std::string name = file.string();
+    const std::unique_ptr<OIIO::ImageInput> in = open_partial(name);
+    PartialFile partial = read_header(name, *in);
+    const RenderResult& size = partial.sums;
+    if (total.sums.empty()) {
+        total.width = size.width;
+        total.height = size.height;
+        total.sums.assign(std::size_t(size.width) * size.height, kernel::PixelSum{});
+        total.counters.assign(total.sums.size(), kernel::Counters{});
     }
-    const std::string recorded = spec.get_string_attribute("vkrt:checksum");
-    if (recorded != format_fingerprint(checksum(r))) {
-        throw ImageError(fmt::format("{}: its pixels do not match its checksum, the file is damaged; render its samples "
-                                     "({}) again",
-                                     name, format_sample_ranges(partial.samples)));
+    if (total.width != size.width || total.height != size.height) {
+        throw ImageError(fmt::format("{} is {}x{}, not {}x{} as the partials added before it", name, size.width,
+                                     size.height, total.width, total.height));
     }
+    read_pixels(name, *in, partial,
+                [&total](std::size_t p, const kernel::PixelSum& sum, const kernel::Counters& counters) {
+                    total.sums[p] = kernel::add_sums(total.sums[p], sum);
+                    total.counters[p] = total.counters[p] + counters;
+                });
     return partial;
 }
 

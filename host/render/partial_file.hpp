@@ -40,6 +40,12 @@ void write_partial(const PartialFile& partial, const std::filesystem::path& file
 // match its checksum (a truncated or damaged file).
 PartialFile read_partial(const std::filesystem::path& file);
 
+// Reads a partial and adds its sums and counters into `total` (sized to it when
+// empty), a block of rows at a time: memory for the total, not for the partial too.
+// Returns the header (read_partial_header). Throws as read_partial, and ImageError
+// when its size is not total's.
+PartialFile add_partial(const std::filesystem::path& file, RenderResult& total);
+
 // The header alone: everything but the sums (whose width and height are set).
 // Cheap, for checking many partials before adding any.
 PartialFile read_partial_header(const std::filesystem::path& file);
