@@ -93,9 +93,7 @@ int list_missing(const MergeArgs& args) {
     std::vector<PartialFile> parts;
     for (const std::string& name : args.partials) {
         try {
-            PartialFile part = read_partial(name);  // the pixels too: a damaged file is missing
-            part.sums = RenderResult{};
-            parts.push_back(std::move(part));
+            parts.push_back(check_partial(name));  // the pixels too: a damaged file is missing
             names.push_back(name);
         } catch (const ImageError& e) {
             fmt::print(stderr, "warning: {}; its samples count as missing\n", e.what());

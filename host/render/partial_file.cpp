@@ -241,6 +241,14 @@ PartialFile read_partial(const std::filesystem::path& file) {
     return partial;
 }
 
+PartialFile check_partial(const std::filesystem::path& file) {
+    const std::string name = file.string();
+    const std::unique_ptr<OIIO::ImageInput> in = open_partial(name);
+    const PartialFile partial = read_header(name, *in);
+    read_pixels(name, *in, partial, [](std::size_t, const kernel::PixelSum&, const kernel::Counters&) {});
+    return partial;
+}
+
 PartialFile add_partial(const std::filesystem::path& file, RenderResult& total) {
     const std::string name = file.string();
     const std::unique_ptr<OIIO::ImageInput> in = open_partial(name);

@@ -46,6 +46,10 @@ PartialFile read_partial(const std::filesystem::path& file);
 // when its size is not total's.
 PartialFile add_partial(const std::filesystem::path& file, RenderResult& total);
 
+// The header, after reading every pixel to verify the file as read_partial does,
+// keeping none of them.
+PartialFile check_partial(const std::filesystem::path& file);
+
 // The header alone: everything but the sums (whose width and height are set).
 // Cheap, for checking many partials before adding any.
 PartialFile read_partial_header(const std::filesystem::path& file);

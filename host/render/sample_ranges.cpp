@@ -95,13 +95,10 @@ std::optional<SampleRange> overlap(SampleRange a, SampleRange b) {
 }
 
 std::vector<SampleRange> sample_gaps(const std::vector<SampleRange>& ranges) {
+    if (ranges.empty()) return {};
     const std::vector<SampleRange> sorted = normalize_sample_ranges(ranges);
-    std::vector<SampleRange> gaps;
-    for (std::size_t i = 1; i < sorted.size(); ++i) {
-        const std::uint32_t end = sorted[i - 1].end();
-        if (sorted[i].first > end) gaps.push_back({end, sorted[i].first - end});
-    }
-    return gaps;
+    const std::uint32_t first = sorted.front().first;
+    return missing_samples({first, sorted.back().end() - first}, sorted);
 }
 
 std::vector<SampleRange> missing_samples(SampleRange wanted, const std::vector<SampleRange>& covered) {
