@@ -168,6 +168,11 @@ TEST_F(PartialMerge, MissingListsTheRangesLeftToRender) {
     EXPECT_EQ(listed("--samples 0:6 " + both), "2:5\n");
     EXPECT_EQ(listed("--samples 0:100 --tasks 4"), "0:25\n25:50\n50:75\n75:100\n");
     test::expect_one_error(merge("--missing " + both), {"--missing needs --samples"});
+    test::expect_one_error(merge("--missing --samples 5:2 " + both), {"--samples", "'5:2'", "empty range"});
+    test::expect_one_error(merge("--missing --samples 0:6 --tasks 0 " + both), {"--tasks"});
+    test::expect_one_error(merge("--samples 0:6 --tasks 2 " + both + " -o " + q(at("x.exr"))), {"--tasks", "--missing"});
+    test::expect_one_error(merge("--samples 0:6"), {"--output is required"});
+    test::expect_one_error(merge("--samples 0:6 -o " + q(at("x.exr"))), {"no partial files given"});
     test::expect_one_error(merge("--missing --samples 0:6 " + both + " -o " + q(at("x.exr"))), {"--missing", "--output"});
     // Cut short, as by a task killed while writing.
     fs::copy_file(at("c.exr"), at("cut.exr"));
