@@ -36,6 +36,14 @@ float linear_to_srgb(float linear) {
     return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
+std::vector<std::uint8_t> to_srgb8(const Image& image) {
+    std::vector<std::uint8_t> bytes(image.rgb.size());
+    for (std::size_t i = 0; i < bytes.size(); ++i) {
+        bytes[i] = static_cast<std::uint8_t>(std::lround(linear_to_srgb(image.rgb[i]) * 255.0f));
+    }
+    return bytes;
+}
+
 void write_image(const Image& image, const std::filesystem::path& file) {
     const std::string name = file.string();
     auto out = OIIO::ImageOutput::create(name);
@@ -60,11 +68,7 @@ void write_image(const Image& image, const std::filesystem::path& file) {
     } else {
         // Encode here rather than trusting a format's colour-space handling: the
         // stored bytes are then the same for every 8-bit format.
-        std::vector<std::uint8_t> bytes(image.rgb.size());
-        for (std::size_t i = 0; i < bytes.size(); ++i) {
-            bytes[i] = static_cast<std::uint8_t>(std::lround(linear_to_srgb(image.rgb[i]) * 255.0f));
-        }
-        ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+        ok = out->write_image(OIIO::TypeDesc::UINT8, to_srgb8(image).data());
     }
     if (!ok || !out->close()) {
         throw ImageError(fmt::format("{}: writing failed: {}", name, out->geterror()));

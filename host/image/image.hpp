@@ -36,6 +36,9 @@ bool can_write_image_format(const std::filesystem::path& file);
 // The sRGB transfer function (IEC 61966-2-1) for a linear value clamped to [0, 1].
 float linear_to_srgb(float linear);
 
+// The bytes an 8-bit file stores: each channel clamped, sRGB-encoded and rounded.
+std::vector<std::uint8_t> to_srgb8(const Image& image);
+
 void write_image(const Image& image, const std::filesystem::path& file);
 
 // Reads the first three channels (one channel is repeated as grey) as stored: 8-bit
