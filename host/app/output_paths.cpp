@@ -5,6 +5,7 @@
 #include <string>
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include "image/image.hpp"
 
@@ -31,6 +32,24 @@ bool is_exr(const std::filesystem::path& file) {
     std::string ext = file.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     return ext == ".exr";
+}
+
+void write_atomically(const std::filesystem::path& file,
+                      const std::function<void(const std::filesystem::path& temporary)>& write) {
+    // Hidden, and named for this process, so two renders into one directory never
+    // share a temporary; the extension stays last, where OpenImageIO reads the format.
+    const std::filesystem::path temporary =
+        file.parent_path() / fmt::format(".{}.vkrt-{}{}", file.stem().string(), ::getpid(), file.extension().string());
+    try {
+        write(temporary);
+        std::error_code error;
+        std::filesystem::rename(temporary, file, error);
+        if (error) throw std::runtime_error(fmt::format("{}: cannot replace it: {}", file.string(), error.message()));
+    } catch (...) {
+        std::error_code ignored;
+        std::filesystem::remove(temporary, ignored);
+        throw;
+    }
 }
 
 }  // namespace vkrt::app
