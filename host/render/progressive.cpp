@@ -14,6 +14,13 @@ double ProgressiveRender::elapsed() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }
 
+double ProgressiveRender::seconds_left() const {
+    const std::uint32_t remaining = limits_.samples.count - done_;
+    double left = done_ > 0 && pass_seconds_ > 0.0 ? remaining * (pass_seconds_ / done_) : 0.0;
+    if (limits_.seconds) left = std::min(left, std::max(0.0, *limits_.seconds - elapsed()));
+    return left;
+}
+
 bool ProgressiveRender::next_pass(std::uint32_t stop_at, const ProgressiveCallback& progress) {
     const std::uint32_t limit = std::min(limits_.samples.count, stop_at);
     PassPlanInput plan;

@@ -48,10 +48,13 @@ public:
     double seconds() const { return pass_seconds_; }
     // True when the time budget, not the sample limit, ended the render.
     bool stopped_by_time() const { return stopped_by_time_; }
+    // Seconds since the first pass started (the time budget's clock).
+    double elapsed() const;
+    // Estimated from the passes so far: to the sample limit or the time budget,
+    // whichever comes first.
+    double seconds_left() const;
 
 private:
-    double elapsed() const;
-
     RenderSession& session_;
     ProgressiveLimits limits_;
     std::chrono::steady_clock::time_point start_;

@@ -69,6 +69,18 @@ Image resolve_image(const RenderResult& result, bool corners) {
     return image;
 }
 
+std::uint64_t total_rays(const RenderResult& result) {
+    std::uint64_t rays = 0;
+    for (const kernel::Counters& c : result.counters) {
+        for (std::uint32_t kind : {kernel::RAYS_EYE, kernel::RAYS_SHADOW, kernel::RAYS_REFLECTION,
+                                   kernel::RAYS_REFRACTION}) {
+            rays += c.rays[kind];
+        }
+        rays += c.paths[kernel::PATHS_BOUNCE_RAYS];
+    }
+    return rays;
+}
+
 RenderStats collect_stats(const FlatScene& scene, const Backend& backend, const RenderResult& result) {
     RenderStats s;
     s.backend = backend.name();
@@ -117,8 +129,15 @@ RenderOutcome render_scene(const Scene& scene, Backend& backend, const RenderPla
     const auto flattened = clock::now();
     const std::unique_ptr<RenderSession> session = backend.begin(gpu);
     const SampleRange samples{plan.first_sample, plan.samples.value_or(gpu.samples_per_pixel)};
+    const std::uint64_t fingerprint = scene_fingerprint(gpu);
     ProgressiveRender render(*session, {samples, plan.seconds});
-    while (render.next_pass(std::numeric_limits<std::uint32_t>::max(), progress)) {
+    bool stopped_by_request = false;
+    while (!stopped_by_request && render.next_pass(std::numeric_limits<std::uint32_t>::max(), progress)) {
+        if (plan.after_pass) {
+            stopped_by_request = !plan.after_pass(PassView{render.total(), gpu.corners, plan.first_sample,
+                                                           render.samples_done(), samples.count, render.passes(),
+                                                           render.elapsed(), render.seconds_left(), fingerprint});
+        }
     }
     RenderResult result = render.total();
     result.setup_seconds = session->setup_seconds();
@@ -130,9 +149,10 @@ RenderOutcome render_scene(const Scene& scene, Backend& backend, const RenderPla
     out.stats.first_sample = plan.first_sample;
     out.stats.passes = render.passes();
     out.stats.stopped_by_time = render.stopped_by_time();
+    out.stats.stopped_by_request = stopped_by_request && render.samples_done() < samples.count;
     out.stats.pass_seconds = render.seconds();
     out.sums = std::move(result);
-    out.fingerprint = scene_fingerprint(gpu);
+    out.fingerprint = fingerprint;
     out.stats.flatten_seconds = std::chrono::duration<double>(flattened - start).count();
     out.stats.total_seconds = std::chrono::duration<double>(clock::now() - start).count();
     return out;

@@ -4,6 +4,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,6 +27,7 @@ struct RenderStats {
     std::uint32_t first_sample = 0;       // the first sample index rendered (split rendering)
     std::uint32_t passes = 0;             // progressive passes (render/progressive.hpp)
     bool stopped_by_time = false;         // the time budget ended the render, not the sample count
+    bool stopped_by_request = false;      // a watcher (RenderPlan::after_pass) ended it, e.g. a Stop button
     std::uint64_t eye_rays = 0;
     std::uint64_t shadow_rays = 0;
     std::uint64_t reflection_rays = 0;
@@ -75,13 +77,33 @@ struct RenderOutcome {
     std::uint64_t fingerprint = 0;  // of the flattened scene (render/fingerprint.hpp)
 };
 
+// A render as it stands after one of its passes, for whoever watches it (a live
+// preview, checkpoints): the exact sums so far and how far the plan has come.
+struct PassView {
+    const RenderResult& total;    // every pass so far; resolve_image(total, corners) is the image
+    bool corners = false;
+    std::uint32_t first_sample = 0;
+    std::uint32_t samples = 0;    // per pixel, done
+    std::uint32_t target = 0;     // per pixel, the plan's most
+    std::uint32_t passes = 0;
+    double elapsed = 0.0;         // seconds since the first pass started
+    double seconds_left = 0.0;    // estimated, to the sample count or the time budget
+    std::uint64_t fingerprint = 0;  // of the flattened scene, as RenderOutcome's
+};
+// Called after every pass; false ends the render there, as a time budget running out would.
+using PassObserver = std::function<bool(const PassView&)>;
+
 // What to render of a scene: by default every sample it asks for, in one go of
 // progressive passes.
 struct RenderPlan {
     std::uint32_t first_sample = 0;        // the first sample index (split rendering)
     std::optional<std::uint32_t> samples;  // how many samples at most; default the scene's spp
     std::optional<double> seconds;         // a time budget (render/pass_plan.hpp)
+    PassObserver after_pass;               // optional
 };
+
+// Every ray the counters hold, of all kinds (RenderStats::rays() from the sums alone).
+std::uint64_t total_rays(const RenderResult& result);
 
 // Each pixel's sum divided by its count of good samples (black where there is none).
 // The average radiance of each pixel; with `corners`, of each pixel's four corner

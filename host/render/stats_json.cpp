@@ -14,6 +14,7 @@ nlohmann::json stats_to_json(const RenderStats& s) {
         {"first_sample", s.first_sample},
         {"passes", s.passes},
         {"stopped_by_time", s.stopped_by_time},
+        {"stopped_by_request", s.stopped_by_request},
         {"rays", {{"total", s.rays()}, {"eye", s.eye_rays}, {"shadow", s.shadow_rays},
                   {"reflection", s.reflection_rays}, {"refraction", s.refraction_rays},
                   {"bounce", s.bounce_rays}, {"eye_hits", s.eye_hits}}},
