@@ -215,6 +215,14 @@ std::vector<BadOption> option_cases() {
         {"scene_format", "render OUT", {"unknown scene format '.png'"}},
         {"compare_threshold", "compare OUT OUT --threshold -1", {"--threshold", ">= 0"}},
         {"devices_extra", "devices extra", {"extra"}},
+        {"serve_port_too_big", "render SCENE -o OUT --serve 70000", {"--serve", "'70000'", "0 to 65535"}},
+        {"serve_port_text", "render SCENE -o OUT --serve localhost", {"--serve", "[ADDRESS:]PORT"}},
+        {"serve_no_address", "render SCENE -o OUT --serve :8080", {"--serve", "no address"}},
+        {"serve_foreign_address", "render SCENE -o OUT --serve 203.0.113.7:0", {"203.0.113.7", "cannot listen"}},
+        {"converge_serve_port", "converge SCENE --csv OUT.csv --serve 1:2:x", {"--serve", "'1:2:x'"}},
+        {"checkpoint_zero", "render SCENE -o OUT --checkpoint 0", {"--checkpoint", "above 0"}},
+        {"reference_8bit", "render SCENE -o OUT --reference ref.png", {"--reference ref.png", ".exr or .hdr"}},
+        {"reference_missing", "render SCENE -o OUT --reference /nonexistent/ref.exr", {"ref.exr", "no such file"}},
     };
 }
 

@@ -14,6 +14,9 @@
 #include "gpu/float_probe.hpp"
 #include "gpu/vulkan_backend.hpp"
 #include "image/compare.hpp"
+#include "image/error_metrics.hpp"
+#include "live/live_server.hpp"
+#include "live/pass_feed.hpp"
 #include "probe/cpu_float_probe.hpp"
 #include "probe/float_profile.hpp"
 #include "cpu/cpu_backend.hpp"
@@ -83,13 +86,32 @@ std::string default_output(const std::string& scene, const std::optional<SampleR
     return samples ? fmt::format("{}_{}-{}.exr", stem, samples->first, samples->end()) : stem + ".png";
 }
 
+// The render's output: the image, or for --samples the partial file of the samples
+// done so far. Written whole or not at all, also when it replaces a checkpoint.
+void write_output(const std::string& output, const RenderArgs& args, const Scene& scene, const std::string& backend,
+                  const RenderResult& sums, const std::optional<SampleRange>& samples, std::uint32_t samples_done,
+                  std::uint64_t fingerprint, bool corners) {
+    app::write_atomically(output, [&](const std::filesystem::path& file) {
+        if (samples) {
+            write_partial(PartialFile{sums, {SampleRange{samples->first, samples_done}},
+                                      std::filesystem::path(args.scene).filename().string(), scene.render.seed,
+                                      fingerprint, backend, corners},
+                          file);
+        } else {
+            write_image(resolve_image(sums, corners), file);
+        }
+    });
+}
+
 void print_summary(const RenderStats& s, const std::string& output, bool partial) {
     fmt::print("backend   {} on {}\n", s.backend, s.device);
     const std::string range = partial ? fmt::format("samples {}:{}, ", s.first_sample, s.first_sample + s.samples_per_pixel)
                                       : std::string();
     fmt::print("image     {}x{}, {}{} samples per pixel in {} pass{}{}\n", s.width, s.height, range,
                s.samples_per_pixel, s.passes, s.passes == 1 ? "" : "es",
-               s.stopped_by_time ? " (stopped by --time)" : "");
+               s.stopped_by_request ? " (stopped from the live preview)"
+               : s.stopped_by_time  ? " (stopped by --time)"
+                                    : "");
     auto list = [](const std::vector<std::string>& names) {
         return names.empty() ? std::string("(none)") : fmt::format("{}", fmt::join(names, ", "));
     };
@@ -163,9 +185,20 @@ int run_render(const RenderArgs& args) {
     if (!args.stats_file.empty()) app::check_writable_file(args.stats_file, "stats file");
     warn_ignored_options(args);
 
+    Image reference;
+    if (!args.reference.empty()) reference = read_reference(args.reference, scene.camera.width, scene.camera.height);
+    // The server listens before the slow work, so a port in use is refused at once.
+    live::LiveFeed feed;
+    std::unique_ptr<live::LiveServer> server;
+    if (!args.serve.empty()) {
+        server = std::make_unique<live::LiveServer>(feed, live::parse_endpoint(args.serve));
+        fmt::print(stderr, "live      {} shows the render as it converges\n", server->url());
+    }
+
     const auto backend_start = std::chrono::steady_clock::now();
     auto backend = make_backend(args);
     const double backend_seconds = seconds_since(backend_start);
+    feed.set_renderer(backend->name(), backend->device_name());
     RenderPlan plan;
     plan.seconds = args.time;
     // A time budget alone renders as many samples as fit, up to the most a pixel takes.
@@ -174,18 +207,26 @@ int run_render(const RenderArgs& args) {
         plan.first_sample = samples->first;
         plan.samples = samples->count;
     }
+    const std::string label = std::filesystem::path(args.scene).filename().string();
+    const live::PassLabels labels{label, backend->name(), args.reference.empty() ? nullptr : &reference,
+                                  args.time && !args.spp};
+    auto last_checkpoint = std::chrono::steady_clock::now();
+    plan.after_pass = [&](const PassView& view) {
+        if (server) live::feed_pass(feed, view, labels);
+        if (args.checkpoint && seconds_since(last_checkpoint) >= *args.checkpoint) {
+            write_output(output, args, scene, backend->name(), view.total, samples, view.samples, view.fingerprint,
+                         view.corners);
+            last_checkpoint = std::chrono::steady_clock::now();
+        }
+        return !feed.stop_requested();
+    };
     ProgressReporter progress("rendering", !args.quiet);
     RenderOutcome outcome = render_scene(scene, *backend, plan, [&](const ProgressiveStatus& status) {
         progress.update(status.fraction(), status.seconds_left, progress_detail(status));
     });
     progress.finish();
-    if (samples) {
-        write_partial(PartialFile{outcome.sums, {*samples}, std::filesystem::path(args.scene).filename().string(),
-                                  scene.render.seed, outcome.fingerprint, backend->name(), outcome.corners},
-                      output);
-    } else {
-        write_image(outcome.image, output);
-    }
+    write_output(output, args, scene, backend->name(), outcome.sums, samples, outcome.stats.samples_per_pixel,
+                 outcome.fingerprint, outcome.corners);
 
     RenderStats& s = outcome.stats;
     s.setup_seconds += backend_seconds;         // device and instance creation
@@ -196,6 +237,16 @@ int run_render(const RenderArgs& args) {
         if (!out) throw std::runtime_error(fmt::format("{}: cannot write the stats file", args.stats_file));
     }
     if (!args.quiet) print_summary(s, output, samples.has_value());
+    if (!args.reference.empty() && !args.quiet) {
+        const ErrorMetrics error = error_metrics(outcome.image, reference);
+        fmt::print("error     RMSE {:.6g}, relMSE {:.6g}, mean {:.6g} against {:.6g} of {}\n", error.rmse, error.relmse,
+                   error.mean, error.mean - error.mean_diff, args.reference);
+    }
+    if (server) {
+        live::feed_outcome(feed, outcome, label);
+        feed.finish(output);
+        feed.wait_until_seen(2.0);
+    }
 
     if (s.nonfinite_samples > 0) {
         fmt::print(stderr, "warning: {} samples were NaN or infinite and were left out of the average\n",

@@ -24,6 +24,9 @@ struct RenderArgs {
     std::string grid;    // empty: the scene's choice; else auto, on or off
     unsigned threads = 0;
     std::string stats_file;
+    std::string serve;           // "[ADDRESS:]PORT" of the live preview; empty: none
+    std::string reference;       // linear image to report the error against; empty: none
+    std::optional<double> checkpoint;  // seconds between writes of the image so far
     bool validate = false;
     bool quiet = false;
 };

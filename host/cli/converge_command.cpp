@@ -7,6 +7,7 @@
 #include "cli/command.hpp"
 #include "cli/options.hpp"
 #include "converge/converge.hpp"
+#include "live/live_server.hpp"
 #include "scene/estimator_spec.hpp"
 #include "scene/limits.hpp"
 
@@ -39,6 +40,11 @@ Command add_converge_command(CLI::App& program) {
         ->check(whole_number(1, limits::kMaxSpp));
     v->add_option("--csv", args->csv, "CSV file of the measurements, one row per checkpoint")->required();
     v->add_option("--plot", args->plot, "Draw RMSE against seconds into this PNG (needs gnuplot)");
+    v->add_option("--serve", args->serve,
+                  "Serve a live preview at [ADDRESS:]PORT (address default 127.0.0.1, this machine only; port 0: "
+                  "any free one): a web page drawing the curves as they are measured, with the current image and a "
+                  "Stop button that ends the measurement after the current pass")
+        ->check(accepted_by([](const std::string& text) { live::parse_endpoint(text); }, "[ADDRESS:]PORT"));
     add_image_size(v, args->width, args->height);
     add_seed(v, args->seed);
     add_device(v, args->device);

@@ -7,6 +7,7 @@
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
+#include "live/live_server.hpp"
 #include "render/sample_ranges.hpp"
 #include "scene/limits.hpp"
 
@@ -48,6 +49,17 @@ Command add_render_command(CLI::App& program) {
             "auto|on|off|NXxNYxNZ"));
     add_threads(r, args->threads);
     r->add_option("--stats", args->stats_file, "Write render statistics as JSON to this file");
+    r->add_option("--serve", args->serve,
+                  "Serve a live preview at [ADDRESS:]PORT (address default 127.0.0.1, this machine only; port 0: "
+                  "any free one): a web page showing the image after every pass, with a Stop button")
+        ->check(accepted_by([](const std::string& text) { live::parse_endpoint(text); }, "[ADDRESS:]PORT"));
+    r->add_option("--reference", args->reference,
+                  "Reference image (.exr or .hdr, linear) of the same size: the summary gives the RMSE against it, "
+                  "and the live preview plots it against time");
+    r->add_option("--checkpoint", args->checkpoint,
+                  "Write the image so far (with --samples, the partial file of the samples so far) every this many "
+                  "seconds, replacing the output atomically, so a render that is killed leaves a usable file")
+        ->check(positive_seconds());
     add_validate(r, args->validate);
     add_quiet(r, args->quiet);
     // A partial file is a fixed range of samples: a count or a time budget would

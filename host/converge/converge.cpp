@@ -16,6 +16,8 @@
 #include "gpu/vulkan_backend.hpp"
 #include "image/error_metrics.hpp"
 #include "image/image.hpp"
+#include "live/live_server.hpp"
+#include "live/pass_feed.hpp"
 #include "cpu/cpu_backend.hpp"
 #include "render/partial_file.hpp"
 #include "render/progressive.hpp"
@@ -91,7 +93,8 @@ std::vector<Curve> plan_curves(const ConvergeArgs& args, const Scene& scene) {
 // Renders the reference on `backend`: path tracing with next-event estimation at
 // reference_spp, another seed; saved as a partial file, so more samples can be
 // merged into it later.
-Image render_reference(const ConvergeArgs& args, Scene scene, Backend& backend, const std::filesystem::path& file) {
+Image render_reference(const ConvergeArgs& args, Scene scene, Backend& backend, const std::filesystem::path& file,
+                       live::LiveFeed& feed) {
     EstimatorSpec{Estimator::Path, Hemisphere::Cosine, true}.apply(scene.render);
     scene.render.seed ^= kReferenceSeedXor;
     fmt::print(stderr,
@@ -100,6 +103,11 @@ Image render_reference(const ConvergeArgs& args, Scene scene, Backend& backend, 
                backend.name(), args.reference_spp, scene.render.seed, file.string());
     RenderPlan plan;
     plan.samples = args.reference_spp;
+    feed.set_renderer(backend.name(), backend.device_name());
+    plan.after_pass = [&](const PassView& view) {
+        live::feed_pass(feed, view, {"reference", "", nullptr});
+        return true;  // the curves need the whole reference
+    };
     ProgressReporter progress("reference", !args.quiet);
     const RenderOutcome outcome = render_scene(scene, backend, plan, [&](const ProgressiveStatus& s) {
         progress.update(s.fraction(), s.seconds_left, fmt::format("{} spp", s.whole_samples));
@@ -112,28 +120,11 @@ Image render_reference(const ConvergeArgs& args, Scene scene, Backend& backend, 
     return outcome.image;
 }
 
-Image load_reference(const std::string& file, const Scene& scene) {
-    if (!is_float_format(file)) {
-        throw std::runtime_error(fmt::format(
-            "--reference {}: the reference must hold linear radiance, an .exr or .hdr file (8-bit images are "
-            "sRGB-encoded and clamped)",
-            file));
-    }
-    Image image = read_image(file);
-    if (image.width != scene.camera.width || image.height != scene.camera.height) {
-        throw std::runtime_error(fmt::format("--reference {} is {}x{} but the render is {}x{}: give --width and "
-                                             "--height to match, or another reference",
-                                             file, image.width, image.height, scene.camera.width,
-                                             scene.camera.height));
-    }
-    return image;
-}
-
 // One curve: progressive passes that stop at every checkpoint (1, 2, 4, ... and
 // the last sample), where the image is compared with the reference. The seconds
 // are the passes' own, so the comparisons do not count as render time.
 std::vector<Row> run_curve(const ConvergeArgs& args, Scene scene, const Curve& curve, Backend& backend,
-                           const Image& reference, std::uint64_t& truncated) {
+                           const Image& reference, std::uint64_t& truncated, live::LiveFeed& feed) {
     if (curve.spec) curve.spec->apply(scene.render);
     const FlatScene gpu = flatten_scene(scene, backend.accel_policy());
     const std::unique_ptr<RenderSession> session = backend.begin(gpu);
@@ -145,12 +136,26 @@ std::vector<Row> run_curve(const ConvergeArgs& args, Scene scene, const Curve& c
                         fmt::format("{} spp, {:.3g} spp/s", s.whole_samples, s.samples_per_second()));
     };
     std::vector<Row> rows;
+    const std::string name = curve.backend + "/" + curve.label;
     auto record = [&] {
         rows.push_back({render.samples_done(), render.seconds(),
                         error_metrics(resolve_image(render.total(), gpu.corners), reference)});
+        feed.add_error_point(name, rows.back().seconds, rows.back().error.rmse);
     };
+    feed.set_renderer(backend.name(), backend.device_name());
     for (std::uint32_t checkpoint = 1;;) {
         const bool rendered = render.next_pass(checkpoint, report);
+        if (rendered) {
+            live::feed_pass(feed,
+                            PassView{render.total(), gpu.corners, 0, render.samples_done(), limit, render.passes(),
+                                     render.elapsed(), render.seconds_left(), 0},
+                            {name, name, nullptr});
+        }
+        if (feed.stop_requested()) {
+            // Stopped from the live preview: the state so far is the curve's last row.
+            if (render.samples_done() > 0 && (rows.empty() || rows.back().spp != render.samples_done())) record();
+            break;
+        }
         if (render.samples_done() == checkpoint) {
             record();
             if (checkpoint == limit) break;
@@ -202,7 +207,15 @@ int run_converge(const ConvergeArgs& args) {
         args.reference.empty() ? csv_path.parent_path() / (csv_path.stem().string() + "_reference.exr")
                                : std::filesystem::path(args.reference);
     Image reference;
-    if (!args.reference.empty()) reference = load_reference(args.reference, scene);
+    if (!args.reference.empty()) reference = read_reference(args.reference, scene.camera.width, scene.camera.height);
+
+    // The server listens before the slow work, so a port in use is refused at once.
+    live::LiveFeed feed;
+    std::unique_ptr<live::LiveServer> server;
+    if (!args.serve.empty()) {
+        server = std::make_unique<live::LiveServer>(feed, live::parse_endpoint(args.serve));
+        fmt::print(stderr, "live      {} shows the curves as they are measured\n", server->url());
+    }
 
     std::vector<std::unique_ptr<Backend>> backends;
     std::vector<std::string> names;
@@ -211,7 +224,7 @@ int run_converge(const ConvergeArgs& args) {
         names.push_back(c.backend);
         backends.push_back(make_named_backend(c.backend, args));
     }
-    if (args.reference.empty()) reference = render_reference(args, scene, *backends.front(), reference_file);
+    if (args.reference.empty()) reference = render_reference(args, scene, *backends.front(), reference_file, feed);
     if (!args.quiet) {
         fmt::print("reference {} ({})\n", reference_file.string(),
                    args.reference.empty() ? fmt::format("rendered here, {} spp", args.reference_spp) : "given");
@@ -223,8 +236,13 @@ int run_converge(const ConvergeArgs& args) {
     bool any_error = false;
     std::vector<std::string> drawn;
     for (const Curve& curve : curves) {
+        if (feed.stop_requested()) {
+            fmt::print(stderr, "warning: stopped from the live preview: curve {}/{} not measured\n", curve.backend,
+                       curve.label);
+            continue;
+        }
         Backend& backend = *backends[std::size_t(std::find(names.begin(), names.end(), curve.backend) - names.begin())];
-        for (const Row& r : run_curve(args, scene, curve, backend, reference, truncated)) {
+        for (const Row& r : run_curve(args, scene, curve, backend, reference, truncated, feed)) {
             csv << fmt::format("{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", curve.backend, curve.label, r.spp,
                                r.seconds, r.error.rmse, r.error.relmse, r.error.mean, r.error.mean_diff);
             any_error = any_error || r.error.rmse > 0.0;
@@ -244,6 +262,10 @@ int run_converge(const ConvergeArgs& args) {
                        "warning: every RMSE is 0 (the scene has no randomness, so each sample equals the reference): "
                        "no plot drawn, a log scale cannot show it\n");
         }
+    }
+    if (server) {
+        feed.finish(args.csv);
+        feed.wait_until_seen(2.0);
     }
     std::uint32_t messages = 0;
     for (const auto& b : backends) messages += b->validation_messages();

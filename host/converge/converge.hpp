@@ -23,6 +23,7 @@ struct ConvergeArgs {
     std::optional<std::uint32_t> height;
     std::optional<std::uint32_t> seed;
     std::string device;
+    std::string serve;                     // "[ADDRESS:]PORT" of a live preview; empty: none
     unsigned threads = 0;
     bool validate = false;
     bool quiet = false;

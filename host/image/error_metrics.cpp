@@ -6,6 +6,22 @@
 
 namespace vkrt {
 
+Image read_reference(const std::string& file, std::uint32_t width, std::uint32_t height) {
+    if (!is_float_format(file)) {
+        throw ImageError(fmt::format(
+            "--reference {}: the reference must hold linear radiance, an .exr or .hdr file (8-bit images are "
+            "sRGB-encoded and clamped)",
+            file));
+    }
+    Image image = read_image(file);
+    if (image.width != width || image.height != height) {
+        throw ImageError(fmt::format("--reference {} is {}x{} but the render is {}x{}: give --width and "
+                                     "--height to match, or another reference",
+                                     file, image.width, image.height, width, height));
+    }
+    return image;
+}
+
 ErrorMetrics error_metrics(const Image& image, const Image& reference) {
     if (image.width != reference.width || image.height != reference.height) {
         throw ImageError(fmt::format("image is {}x{} but the reference is {}x{}", image.width, image.height,

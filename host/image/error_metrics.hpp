@@ -1,6 +1,9 @@
 #pragma once
 // How far an image is from a reference, as `vkrt converge` records it per
 // checkpoint: the figures of an error-versus-time curve.
+#include <cstdint>
+#include <string>
+
 #include "image/image.hpp"
 
 namespace vkrt {
@@ -11,6 +14,11 @@ struct ErrorMetrics {
     double mean = 0.0;       // mean radiance of the image, over pixels and channels
     double mean_diff = 0.0;  // mean - the reference's mean: the bias that survives averaging
 };
+
+// A reference image to measure renders of width x height against (--reference of
+// `vkrt render` and `vkrt converge`): linear radiance, so .exr or .hdr, of that size.
+// Throws ImageError saying what is wrong.
+Image read_reference(const std::string& file, std::uint32_t width, std::uint32_t height);
 
 // The 0.01 keeps relMSE finite on black reference pixels (the usual choice in the
 // rendering literature). Throws ImageError when the sizes differ.
