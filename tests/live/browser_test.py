@@ -1,6 +1,7 @@
 """The live preview in a real browser: headless Chromium loads the page while vkrt
 renders, sees the image change at least twice, shows the render's own figures, and
-its Stop button ends the render with a valid output file.
+its Stop button ends the render with a valid output file. Then `vkrt converge
+--serve` draws its curves in the page as it measures them, one colour each.
 
     browser_test.py VKRT SOURCE_DIR"""
 import json
@@ -43,7 +44,7 @@ with tempfile.TemporaryDirectory() as work:
     scene = os.path.join(source, "scenes", "gallery", "k_room.json")
     size = ["--width", str(WIDTH), "--height", str(HEIGHT)]
     # A reference for the error curve: another seed, so not the render's own samples.
-    subprocess.run([vkrt, "render", scene, *size, "--spp", "16", "--seed", "99", "-q", "-o", "ref.exr"], cwd=work,
+    subprocess.run([vkrt, "render", scene, *size, "--spp", "256", "--seed", "99", "-q", "-o", "ref.exr"], cwd=work,
                    check=True)
     proc, url = start_vkrt(vkrt, ["render", scene, *size, "--time", "300", "--serve", "0", "--reference", "ref.exr",
                                   "-o", "out.png", "--stats", "stats.json"], work)
@@ -114,6 +115,29 @@ with tempfile.TemporaryDirectory() as work:
         # The page broke no rule of its own security policy and threw nothing.
         errors = [e for e in browser.get_log("browser") if e["level"] == "SEVERE"]
         check(not errors, f"the browser reported errors: {errors}")
+        browser.quit()
+
+        # converge: two curves, drawn as they are measured, with the points of its CSV.
+        proc, url = start_vkrt(vkrt, ["converge", scene, *size, "--reference", "ref.exr", "--spp", "32",
+                                      "--estimator", "path+nee", "--estimator", "path", "--serve", "0",
+                                      "--csv", "curves.csv", "-q"], work)
+        browser = chromium()
+        browser.get(url)
+        curves = wait_for("two curves in the plot", lambda: browser.execute_script(
+            "const c = document.getElementById('plot');"
+            "if (getComputedStyle(c).display === 'none') return 0;"
+            "const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;"
+            "let blue = 0, red = 0;"
+            "for (let i = 0; i < d.length; i += 4) {"
+            "  if (d[i] === 31 && d[i + 1] === 119 && d[i + 2] === 180) blue++;"
+            "  if (d[i] === 214 && d[i + 1] === 39 && d[i + 2] === 40) red++;"
+            "}"
+            "return blue > 50 && red > 50;"), 120)
+        wait_for("the page to show converge finished", lambda: text("state").startswith("finished"), 120)
+        code = proc.wait(timeout=60)
+        check(code == 0, f"vkrt converge exited with {code}:\n{open(os.path.join(work, 'stderr.txt')).read()}")
+        rows = open(os.path.join(work, "curves.csv")).read().split()[1:]
+        check(len(rows) == 12, f"curves.csv has {len(rows)} rows, expected 2 curves of 6 checkpoints")
         print(f"ok: {len(sources)} images shown, stopped at {stats['samples_per_pixel']} spp, "
               f"{stats['passes']} passes, figures as in the stats")
     finally:
