@@ -115,7 +115,9 @@ LiveServer::LiveServer(LiveFeed& feed, const Endpoint& where) : impl_(std::make_
     server.new_task_queue = [] { return new httplib::ThreadPool(kWorkers); };
     server.set_read_timeout(kTimeoutSeconds);
     server.set_write_timeout(kTimeoutSeconds);
-    server.set_keep_alive_timeout(kTimeoutSeconds);
+    // One request a connection: a browser's idle keep-alive connection would hold a
+    // worker, and the program's exit, for the whole keep-alive timeout.
+    server.set_keep_alive_max_count(1);
     server.set_payload_max_length(kMaxBody);
     server.set_default_headers(kHeaders);
     serve_routes(server, feed);
