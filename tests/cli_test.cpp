@@ -31,7 +31,7 @@ TEST(Cli, VersionAndHelp) {
     EXPECT_EQ(test::run_vkrt("render --help", dir).code, 0);
     const std::string help = read_file(dir / "stdout.txt");
     for (const char* option : {"--output", "--backend", "--device", "--width", "--height", "--spp", "--time", "--samples", "--seed",
-                               "--threads", "--stats", "--validate", "--quiet"}) {
+                               "--threads", "--stats", "--serve", "--reference", "--checkpoint", "--validate", "--quiet"}) {
         EXPECT_NE(help.find(option), std::string::npos) << option;
     }
 }

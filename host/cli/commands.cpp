@@ -187,13 +187,8 @@ int run_render(const RenderArgs& args) {
 
     Image reference;
     if (!args.reference.empty()) reference = read_reference(args.reference, scene.camera.width, scene.camera.height);
-    // The server listens before the slow work, so a port in use is refused at once.
     live::LiveFeed feed;
-    std::unique_ptr<live::LiveServer> server;
-    if (!args.serve.empty()) {
-        server = std::make_unique<live::LiveServer>(feed, live::parse_endpoint(args.serve));
-        fmt::print(stderr, "live      {} shows the render as it converges\n", server->url());
-    }
+    const std::unique_ptr<live::LiveServer> server = live::serve_if_asked(feed, args.serve, "the render as it converges");
 
     const auto backend_start = std::chrono::steady_clock::now();
     auto backend = make_backend(args);

@@ -209,13 +209,8 @@ int run_converge(const ConvergeArgs& args) {
     Image reference;
     if (!args.reference.empty()) reference = read_reference(args.reference, scene.camera.width, scene.camera.height);
 
-    // The server listens before the slow work, so a port in use is refused at once.
     live::LiveFeed feed;
-    std::unique_ptr<live::LiveServer> server;
-    if (!args.serve.empty()) {
-        server = std::make_unique<live::LiveServer>(feed, live::parse_endpoint(args.serve));
-        fmt::print(stderr, "live      {} shows the curves as they are measured\n", server->url());
-    }
+    const std::unique_ptr<live::LiveServer> server = live::serve_if_asked(feed, args.serve, "the curves as they are measured");
 
     std::vector<std::unique_ptr<Backend>> backends;
     std::vector<std::string> names;

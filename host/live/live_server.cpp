@@ -142,4 +142,11 @@ std::string LiveServer::url() const {
     return fmt::format("http://{}{}{}:{}/", v6 ? "[" : "", impl_->host, v6 ? "]" : "", impl_->port);
 }
 
+std::unique_ptr<LiveServer> serve_if_asked(LiveFeed& feed, const std::string& serve, const char* what) {
+    if (serve.empty()) return nullptr;
+    auto server = std::make_unique<LiveServer>(feed, parse_endpoint(serve));
+    fmt::print(stderr, "live      {} shows {}\n", server->url(), what);
+    return server;
+}
+
 }  // namespace vkrt::live

@@ -36,4 +36,9 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
+// The server of a command's --serve option: none when `serve` is empty; else it
+// listens at once (a port in use is refused before the slow work) and says where
+// on standard error, `what` saying what the page shows.
+std::unique_ptr<LiveServer> serve_if_asked(LiveFeed& feed, const std::string& serve, const char* what);
+
 }  // namespace vkrt::live
