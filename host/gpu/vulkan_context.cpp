@@ -216,12 +216,14 @@ VulkanContext::VulkanContext(const VulkanOptions& options) : instance_(options.v
         vkDestroyDevice(device_, nullptr);
         check(made, "vkCreateCommandPool");
     }
+    pipeline_cache_ = std::make_unique<PipelineCache>(device_, properties_, cache_dir_);
 }
 
 VulkanContext::~VulkanContext() {
     // Nothing may still run on the device when its objects go; a failure here has
     // nowhere to be reported, and destruction proceeds regardless.
     (void)vkDeviceWaitIdle(device_);
+    pipeline_cache_.reset();
     vkDestroyCommandPool(device_, pool_, nullptr);
     vkDestroyDevice(device_, nullptr);
 }

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -12,6 +13,7 @@
 #include <vulkan/vulkan.h>
 
 #include "gpu/device_limits.hpp"
+#include "gpu/pipeline_cache.hpp"
 #include "gpu/vulkan_backend.hpp"
 
 namespace vkrt::gpu {
@@ -143,6 +145,13 @@ public:
     std::uint32_t timestamp_valid_bits() const { return limits_.timestamps ? timestamp_bits_ : 0; }
     std::uint32_t validation_messages() const { return instance_.validation_messages(); }
 
+    // The pipeline cache kept between runs (gpu/pipeline_cache.hpp); pipelines are
+    // made through it, and save_pipeline_cache writes what they added.
+    VkPipelineCache pipeline_cache() const { return pipeline_cache_->get(); }
+    // Where that cache and the specialized SPIR-V live; empty: nowhere.
+    const std::filesystem::path& cache_dir() const { return cache_dir_; }
+    void save_pipeline_cache() const { pipeline_cache_->save(); }
+
     // Records one command buffer, submits it to the compute queue and waits for it.
     void submit_and_wait(const std::function<void(VkCommandBuffer)>& record) const;
 
@@ -161,6 +170,8 @@ private:
     VkDevice device_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;
     VkCommandPool pool_ = VK_NULL_HANDLE;
+    std::filesystem::path cache_dir_ = pipeline_cache_dir();
+    std::unique_ptr<PipelineCache> pipeline_cache_;
 };
 
 }  // namespace vkrt::gpu

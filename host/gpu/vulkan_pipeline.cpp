@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "gpu/pipeline_cache.hpp"
 #include "gpu/spirv_specialize.hpp"
 #include "gpu/vulkan_buffer.hpp"
 #include "render_comp_address_spv.h"
@@ -65,7 +66,7 @@ VkFormat texel_format(Binding binding) {
 
 Pipeline make_compute_pipeline(VkDevice device, std::span<const std::uint32_t> spirv,
                                std::span<const VkDescriptorType> types, std::uint32_t push_bytes,
-                               const VkSpecializationInfo* specialization) {
+                               const VkSpecializationInfo* specialization, VkPipelineCache cache) {
     Pipeline p;
     std::vector<VkDescriptorSetLayoutBinding> bindings(types.size());
     std::vector<VkDescriptorPoolSize> sizes;
@@ -116,7 +117,7 @@ Pipeline make_compute_pipeline(VkDevice device, std::span<const std::uint32_t> s
     pipeline_info.stage.pSpecializationInfo = specialization;
     pipeline_info.layout = layout;
     VkPipeline pipeline = VK_NULL_HANDLE;
-    check(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipeline_info, nullptr, &pipeline),
+    check(vkCreateComputePipelines(device, cache, 1, &pipeline_info, nullptr, &pipeline),
           "vkCreateComputePipelines");
     p.pipeline = {device, pipeline};
 
@@ -169,8 +170,15 @@ Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features,
     const std::span<const std::uint32_t> module =
         paths.scene_by_address ? std::span<const std::uint32_t>(render_comp_address_spv)
                                : std::span<const std::uint32_t>(render_comp_spv);
+    // A feature set specialized before is read back rather than specialized again
+    // (gpu/pipeline_cache.hpp).
+    const std::uint64_t key = specialization_key(module, by_id);
+    std::vector<std::uint32_t> specialized = read_cached_spirv(context.cache_dir(), key);
     std::string error;
-    const std::vector<std::uint32_t> specialized = specialize_spirv(module, by_id, error);
+    if (specialized.empty()) {
+        specialized = specialize_spirv(module, by_id, error);
+        if (!specialized.empty()) write_cached_spirv(context.cache_dir(), key, specialized);
+    }
     if (specialized.empty()) {
         static bool warned = false;   // once a run: every pipeline would say the same
         if (!warned) {
@@ -181,7 +189,10 @@ Pipeline make_pipeline(const VulkanContext& context, const FeatureSet& features,
     }
     const std::span<const std::uint32_t> words =
         specialized.empty() ? module : std::span<const std::uint32_t>(specialized);
-    return make_compute_pipeline(context.device(), words, types, kPushBytes, &specialization);
+    Pipeline pipeline =
+        make_compute_pipeline(context.device(), words, types, kPushBytes, &specialization, context.pipeline_cache());
+    context.save_pipeline_cache();
+    return pipeline;
 }
 
 std::vector<BufferView> write_descriptors(VkDevice device, VkDescriptorSet set,

@@ -52,11 +52,12 @@ struct Pipeline {
 // A compute pipeline from SPIR-V words: a set layout with one binding per entry of
 // `types` (binding i of type types[i]), a pipeline layout with `push_bytes` of push
 // constants (0: none), the pipeline (specialized when `specialization` is given),
-// and one descriptor set from a pool sized for exactly those bindings. Shared by the
-// renderer and the float probe (gpu/float_probe.cpp).
+// and one descriptor set from a pool sized for exactly those bindings, compiled
+// through `cache` when one is given. Shared by the renderer and the float probe
+// (gpu/float_probe.cpp).
 Pipeline make_compute_pipeline(VkDevice device, std::span<const std::uint32_t> spirv,
                                std::span<const VkDescriptorType> types, std::uint32_t push_bytes,
-                               const VkSpecializationInfo* specialization);
+                               const VkSpecializationInfo* specialization, VkPipelineCache cache = VK_NULL_HANDLE);
 
 // The renderer's pipeline (render.comp), specialized for the scene's features and
 // the device's data paths.
