@@ -75,11 +75,18 @@ with tempfile.TemporaryDirectory() as work:
     for t in threads:
         t.start()
 
-    # Connections opened and dropped at once, and a storm of good requests; the
-    # render may end meanwhile (the slow clients keep the workers busy for seconds).
+    # Connections opened and dropped at once, browsers closed in the middle of an
+    # image, and a storm of good requests; the render may end meanwhile (the slow
+    # clients keep the workers busy for seconds).
     try:
         for _ in range(200):
             socket.create_connection((host, port)).close()
+        exchange(url, b"GET /status HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n", timeout=6)
+        time.sleep(1.0)  # watched now: the next pass publishes an image
+        for _ in range(50):
+            with socket.create_connection((host, port)) as s:
+                s.sendall(b"GET /image.png HTTP/1.1\r\nHost: x\r\n\r\n")
+                s.setsockopt(socket.SOL_SOCKET, socket.SO_LINGER, b"\x01\x00\x00\x00\x00\x00\x00\x00")
         for _ in range(100):
             exchange(url, b"GET /status HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n", timeout=6)
     except ConnectionRefusedError:
