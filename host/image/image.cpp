@@ -3,9 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
-#include <OpenImageIO/imageio.h>
+#include <fstream>
+
 #include <fmt/format.h>
 #include <fmt/std.h>
+
+#include "image/image_files.hpp"
+#include "image/png_encode.hpp"
 
 namespace vkrt {
 
@@ -25,7 +29,8 @@ bool is_float_format(const std::filesystem::path& file) {
 }
 
 bool can_write_image_format(const std::filesystem::path& file) {
-    return !file.extension().empty() && OIIO::ImageOutput::create(file.string()) != nullptr;
+    if (lower_extension(file) == ".png") return true;  // written here, without the plug-in
+    return !file.extension().empty() && image_files().can_write(file.string());
 }
 
 float linear_to_srgb(float linear) {
@@ -46,33 +51,37 @@ std::vector<std::uint8_t> to_srgb8(const Image& image) {
 
 void write_image(const Image& image, const std::filesystem::path& file) {
     const std::string name = file.string();
-    auto out = OIIO::ImageOutput::create(name);
-    if (!out) {
-        throw ImageError(fmt::format("{}: cannot write this image format ({})", name, OIIO::geterror()));
+    if (lower_extension(file) == ".png") {
+        // The most common output needs no image library (image/image_files.hpp).
+        const std::vector<std::uint8_t> png = encode_png(image);
+        std::ofstream out(file, std::ios::binary);
+        out.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+        if (!out) throw ImageError(fmt::format("{}: writing failed", name));
+        return;
     }
     const bool linear = is_float_format(file);
-    OIIO::ImageSpec spec(int(image.width), int(image.height), 3, linear ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-    spec.attribute("oiio:ColorSpace", linear ? "Linear" : "sRGB");
-    if (!out->open(name, spec)) {
-        throw ImageError(fmt::format("{}: cannot open for writing: {}", name, out->geterror()));
-    }
+    FileSpec spec;
+    spec.width = image.width;
+    spec.height = image.height;
+    spec.channels = {"R", "G", "B"};
+    spec.types.assign(3, linear ? ChannelType::Float : ChannelType::UInt8);
+    spec.strings["oiio:ColorSpace"] = linear ? "Linear" : "sRGB";
+    std::string error;
     bool ok = false;
     if (linear && lower_extension(file) == ".hdr") {
         // RGBE shares one exponent across a pixel and has no sign: a negative channel
         // would corrupt its neighbours, so it is stored as 0.
         std::vector<float> positive(image.rgb);
         for (float& v : positive) v = std::max(v, 0.0f);
-        ok = out->write_image(OIIO::TypeDesc::FLOAT, positive.data());
+        ok = image_files().write(name, spec, positive.data(), error);
     } else if (linear) {
-        ok = out->write_image(OIIO::TypeDesc::FLOAT, image.rgb.data());
+        ok = image_files().write(name, spec, image.rgb.data(), error);
     } else {
         // Encode here rather than trusting a format's colour-space handling: the
         // stored bytes are then the same for every 8-bit format.
-        ok = out->write_image(OIIO::TypeDesc::UINT8, to_srgb8(image).data());
+        ok = image_files().write(name, spec, to_srgb8(image).data(), error);
     }
-    if (!ok || !out->close()) {
-        throw ImageError(fmt::format("{}: writing failed: {}", name, out->geterror()));
-    }
+    if (!ok) throw ImageError(fmt::format("{}: {}", name, error));
 }
 
 Image read_image(const std::filesystem::path& file) {
@@ -80,17 +89,18 @@ Image read_image(const std::filesystem::path& file) {
     if (!std::filesystem::exists(file)) {
         throw ImageError(fmt::format("{}: no such file", name));
     }
-    auto in = OIIO::ImageInput::open(name);
+    std::string error;
+    const std::unique_ptr<ImageFileReader> in = image_files().open(name, error);
     if (!in) {
-        throw ImageError(fmt::format("{}: cannot read image ({})", name, OIIO::geterror()));
+        throw ImageError(fmt::format("{}: cannot read image ({})", name, error));
     }
-    const OIIO::ImageSpec& spec = in->spec();
-    const int channels = spec.nchannels;
+    const FileSpec& spec = in->spec();
+    const std::size_t channels = spec.channels.size();
     std::vector<float> all(std::size_t(spec.width) * spec.height * channels);
-    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, all.data())) {
-        throw ImageError(fmt::format("{}: reading failed: {}", name, in->geterror()));
+    if (!in->read_floats(all.data())) {
+        throw ImageError(fmt::format("{}: reading failed: {}", name, in->error()));
     }
-    Image image(std::uint32_t(spec.width), std::uint32_t(spec.height));
+    Image image(spec.width, spec.height);
     for (std::size_t p = 0; p < std::size_t(spec.width) * spec.height; ++p) {
         for (int c = 0; c < 3; ++c) {
             // Grey (with or without alpha) fills all three; alpha is never colour.

@@ -1,7 +1,8 @@
 #pragma once
-// Linear float RGB images and their files. The extension picks the format through
-// OpenImageIO: .exr and .hdr are written as linear float; every other format
-// (.png, .ppm, .jpg, ...) is clamped to [0, 1], sRGB-encoded and stored in 8 bits.
+// Linear float RGB images and their files. The extension picks the format: .png is
+// written here, every other format through OpenImageIO (image/image_files.hpp).
+// .exr and .hdr are written as linear float; every other format (.png, .ppm, .jpg,
+// ...) is clamped to [0, 1], sRGB-encoded and stored in 8 bits.
 #include <cstdint>
 #include <filesystem>
 #include <stdexcept>
@@ -30,7 +31,7 @@ struct Image {
 // True for the formats written as linear floats.
 bool is_float_format(const std::filesystem::path& file);
 
-// True when OpenImageIO has a writer for the file's extension.
+// True for .png (written here) and when OpenImageIO has a writer for the extension.
 bool can_write_image_format(const std::filesystem::path& file);
 
 // The sRGB transfer function (IEC 61966-2-1) for a linear value clamped to [0, 1].

@@ -7,10 +7,10 @@
 #include <memory>
 #include <stdexcept>
 
-#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include "image/image.hpp"
+#include "image/image_files.hpp"
 #include "render/fingerprint.hpp"
 #include "render/pixel_sums.hpp"
 #include "render/sample_ranges.hpp"
@@ -71,24 +71,24 @@ std::string build_version() { return VKRT_VERSION " kernel " VKRT_KERNEL_HASH; }
 void write_partial(const PartialFile& partial, const std::filesystem::path& file) {
     const std::string name = file.string();
     const RenderResult& r = partial.sums;
-    auto out = OIIO::ImageOutput::create(name);
-    if (!out) throw ImageError(fmt::format("{}: cannot write this image format ({})", name, OIIO::geterror()));
-    OIIO::ImageSpec spec(int(r.width), int(r.height), kChannels, OIIO::TypeDesc::FLOAT);
-    spec.channelnames = {"R", "G", "B"};
-    spec.channelformats.assign(3, OIIO::TypeDesc::FLOAT);
-    for (const char* c : kSumChannels) spec.channelnames.emplace_back(c);
-    for (const char* c : kCounterChannels) spec.channelnames.emplace_back(c);
-    spec.channelformats.resize(kChannels, OIIO::TypeDesc::UINT32);
-    spec.attribute("oiio:ColorSpace", "Linear");
-    spec.attribute("vkrt:partial_version", kFormatVersion);
-    spec.attribute("vkrt:samples", format_sample_ranges(partial.samples));
-    spec.attribute("vkrt:scene", partial.scene);
-    spec.attribute("vkrt:seed", std::to_string(partial.seed));  // a string: EXR has no unsigned attribute
-    spec.attribute("vkrt:fingerprint", format_fingerprint(partial.fingerprint));
-    spec.attribute("vkrt:backend", partial.backend);
-    spec.attribute("vkrt:corners", partial.corners ? 1 : 0);
-    spec.attribute("vkrt:version", partial.version);
-    spec.attribute("vkrt:checksum", format_fingerprint(checksum(r)));
+    FileSpec spec;
+    spec.width = r.width;
+    spec.height = r.height;
+    spec.channels = {"R", "G", "B"};
+    spec.types.assign(3, ChannelType::Float);
+    for (const char* c : kSumChannels) spec.channels.emplace_back(c);
+    for (const char* c : kCounterChannels) spec.channels.emplace_back(c);
+    spec.types.resize(kChannels, ChannelType::UInt32);
+    spec.strings["oiio:ColorSpace"] = "Linear";
+    spec.ints["vkrt:partial_version"] = kFormatVersion;
+    spec.strings["vkrt:samples"] = format_sample_ranges(partial.samples);
+    spec.strings["vkrt:scene"] = partial.scene;
+    spec.strings["vkrt:seed"] = std::to_string(partial.seed);  // a string: EXR has no unsigned attribute
+    spec.strings["vkrt:fingerprint"] = format_fingerprint(partial.fingerprint);
+    spec.strings["vkrt:backend"] = partial.backend;
+    spec.ints["vkrt:corners"] = partial.corners ? 1 : 0;
+    spec.strings["vkrt:version"] = partial.version;
+    spec.strings["vkrt:checksum"] = format_fingerprint(checksum(r));
 
     // Every channel is 4 bytes: one uint32 array holds the pixels in the native
     // per-channel formats, the floats by their bits.
@@ -102,31 +102,29 @@ void write_partial(const PartialFile& partial, const std::filesystem::path& file
         kernel::Counters k = r.counters[p];
         for (std::size_t i = 0; i < kCounterChannels.size(); ++i) px[3 + kSumChannels.size() + i] = counter_word(k, i);
     }
-    if (!out->open(name, spec)) throw ImageError(fmt::format("{}: cannot open for writing: {}", name, out->geterror()));
-    if (!out->write_image(OIIO::TypeDesc::UNKNOWN, pixels.data()) || !out->close()) {
-        throw ImageError(fmt::format("{}: writing failed: {}", name, out->geterror()));
-    }
+    std::string error;
+    if (!image_files().write(name, spec, pixels.data(), error)) throw ImageError(fmt::format("{}: {}", name, error));
 }
 
 namespace {
 
 // Opens a partial file and reads its header; the pixels are left to the caller.
-PartialFile read_header(const std::string& name, OIIO::ImageInput& in) {
-    const OIIO::ImageSpec& spec = in.spec();
+PartialFile read_header(const std::string& name, ImageFileReader& in) {
+    const FileSpec& spec = in.spec();
     PartialFile partial;
-    const int version = spec.get_int_attribute("vkrt:partial_version", 0);
+    const int version = spec.int_or("vkrt:partial_version", 0);
     if (version == 0) not_partial(name, "it has no vkrt:partial_version attribute");
     if (version != kFormatVersion) {
         throw ImageError(fmt::format("{}: a vkrt partial file of format version {}, but this vkrt reads version {}",
                                      name, version, kFormatVersion));
     }
-    const std::string samples = spec.get_string_attribute("vkrt:samples");
+    const std::string samples = spec.string_or("vkrt:samples");
     const auto ranges = parse_sample_ranges(samples, limits::kMaxSpp);
     if (!ranges) not_partial(name, fmt::format("its vkrt:samples attribute '{}' is no list of ranges A:B", samples));
     partial.samples = normalize_sample_ranges(*ranges);
-    partial.scene = spec.get_string_attribute("vkrt:scene");
-    const std::string seed = spec.get_string_attribute("vkrt:seed");
-    const std::string fingerprint = spec.get_string_attribute("vkrt:fingerprint");
+    partial.scene = spec.string_or("vkrt:scene");
+    const std::string seed = spec.string_or("vkrt:seed");
+    const std::string fingerprint = spec.string_or("vkrt:fingerprint");
     try {
         std::size_t used = 0;
         const unsigned long long value = std::stoull(seed, &used);
@@ -137,18 +135,19 @@ PartialFile read_header(const std::string& name, OIIO::ImageInput& in) {
     } catch (const std::logic_error&) {  // invalid_argument and out_of_range alike
         not_partial(name, fmt::format("its vkrt:seed '{}' or vkrt:fingerprint '{}' is no number", seed, fingerprint));
     }
-    partial.backend = spec.get_string_attribute("vkrt:backend");
-    partial.corners = spec.get_int_attribute("vkrt:corners", 0) != 0;
-    partial.version = spec.get_string_attribute("vkrt:version");
-    partial.sums.width = std::uint32_t(spec.width);
-    partial.sums.height = std::uint32_t(spec.height);
+    partial.backend = spec.string_or("vkrt:backend");
+    partial.corners = spec.int_or("vkrt:corners", 0) != 0;
+    partial.version = spec.string_or("vkrt:version");
+    partial.sums.width = spec.width;
+    partial.sums.height = spec.height;
     return partial;
 }
 
-std::unique_ptr<OIIO::ImageInput> open_partial(const std::string& name) {
+std::unique_ptr<ImageFileReader> open_partial(const std::string& name) {
     if (!std::filesystem::exists(name)) throw ImageError(fmt::format("{}: no such file", name));
-    auto in = OIIO::ImageInput::open(name);
-    if (!in) throw ImageError(fmt::format("{}: cannot read image ({})", name, OIIO::geterror()));
+    std::string error;
+    auto in = image_files().open(name, error);
+    if (!in) throw ImageError(fmt::format("{}: cannot read image ({})", name, error));
     return in;
 }
 
@@ -163,29 +162,29 @@ namespace {
 
 // Rows read at once: the pixels of a 4K partial are 1 GB in the file's layout; a
 // block of rows keeps memory to the sums and a few megabytes.
-constexpr int kRowsPerRead = 64;
+constexpr std::uint32_t kRowsPerRead = 64;
 
 // Reads the pixels of the open partial `in` a block of rows at a time and hands each
 // pixel's sums and counters to use(p, sum, counters), in order; then verifies the
 // checksum. Throws ImageError naming the file for a truncated or damaged one.
 template <class Use>
-void read_pixels(const std::string& name, OIIO::ImageInput& in, const PartialFile& header, Use use) {
-    const OIIO::ImageSpec& spec = in.spec();
+void read_pixels(const std::string& name, ImageFileReader& in, const PartialFile& header, Use use) {
+    const FileSpec& spec = in.spec();
     // Channels by name, wherever the file put them (OpenEXR stores them sorted by
     // name), at their byte offsets in a pixel of native per-channel formats.
-    std::vector<std::size_t> offset(std::size_t(spec.nchannels));
+    std::vector<std::size_t> offset(spec.channels.size());
     std::size_t pixel_bytes = 0;
-    for (int c = 0; c < spec.nchannels; ++c) {
-        offset[std::size_t(c)] = pixel_bytes;
-        pixel_bytes += spec.channelformat(c).size();
+    for (std::size_t c = 0; c < spec.channels.size(); ++c) {
+        offset[c] = pixel_bytes;
+        pixel_bytes += channel_bytes(spec.types[c]);
     }
     auto find = [&](const char* channel) {
-        for (int c = 0; c < spec.nchannels; ++c) {
-            if (spec.channelnames[std::size_t(c)] == channel) {
-                if (spec.channelformat(c) != OIIO::TypeDesc::UINT32) {
+        for (std::size_t c = 0; c < spec.channels.size(); ++c) {
+            if (spec.channels[c] == channel) {
+                if (spec.types[c] != ChannelType::UInt32) {
                     not_partial(name, fmt::format("channel {} is not 32-bit unsigned", channel));
                 }
-                return offset[std::size_t(c)];
+                return offset[c];
             }
         }
         not_partial(name, fmt::format("it has no channel {}", channel));
@@ -198,13 +197,12 @@ void read_pixels(const std::string& name, OIIO::ImageInput& in, const PartialFil
     const std::size_t width = std::size_t(spec.width);
     std::vector<unsigned char> data(std::size_t(kRowsPerRead) * width * pixel_bytes);
     Fnv1a hash;
-    for (int y = 0; y < spec.height; y += kRowsPerRead) {
-        const int rows = std::min(kRowsPerRead, spec.height - y);
-        if (!in.read_scanlines(0, 0, spec.y + y, spec.y + y + rows, 0, 0, spec.nchannels, OIIO::TypeDesc::UNKNOWN,
-                               data.data())) {
+    for (std::uint32_t y = 0; y < spec.height; y += kRowsPerRead) {
+        const std::uint32_t rows = std::min(kRowsPerRead, spec.height - y);
+        if (!in.read_rows(y, y + rows, data.data())) {
             throw ImageError(fmt::format("{}: cannot read its pixels, the file is truncated or damaged ({}); "
                                          "render its samples ({}) again",
-                                         name, in.geterror(), format_sample_ranges(header.samples)));
+                                         name, in.error(), format_sample_ranges(header.samples)));
         }
         for (std::size_t i = 0; i < std::size_t(rows) * width; ++i) {
             const unsigned char* pixel = &data[i * pixel_bytes];
@@ -218,7 +216,7 @@ void read_pixels(const std::string& name, OIIO::ImageInput& in, const PartialFil
             use(std::size_t(y) * width + i, sum, counters);
         }
     }
-    if (spec.get_string_attribute("vkrt:checksum") != format_fingerprint(hash.value())) {
+    if (spec.string_or("vkrt:checksum") != format_fingerprint(hash.value())) {
         throw ImageError(fmt::format("{}: its pixels do not match its checksum, the file is damaged; render its "
                                      "samples ({}) again",
                                      name, format_sample_ranges(header.samples)));
@@ -229,7 +227,7 @@ void read_pixels(const std::string& name, OIIO::ImageInput& in, const PartialFil
 
 PartialFile read_partial(const std::filesystem::path& file) {
     const std::string name = file.string();
-    const std::unique_ptr<OIIO::ImageInput> in = open_partial(name);
+    const std::unique_ptr<ImageFileReader> in = open_partial(name);
     PartialFile partial = read_header(name, *in);
     RenderResult& r = partial.sums;
     r.sums.resize(std::size_t(r.width) * r.height);
@@ -243,7 +241,7 @@ PartialFile read_partial(const std::filesystem::path& file) {
 
 PartialFile check_partial(const std::filesystem::path& file) {
     const std::string name = file.string();
-    const std::unique_ptr<OIIO::ImageInput> in = open_partial(name);
+    const std::unique_ptr<ImageFileReader> in = open_partial(name);
     const PartialFile partial = read_header(name, *in);
     read_pixels(name, *in, partial, [](std::size_t, const kernel::PixelSum&, const kernel::Counters&) {});
     return partial;
@@ -251,7 +249,7 @@ PartialFile check_partial(const std::filesystem::path& file) {
 
 PartialFile add_partial(const std::filesystem::path& file, RenderResult& total) {
     const std::string name = file.string();
-    const std::unique_ptr<OIIO::ImageInput> in = open_partial(name);
+    const std::unique_ptr<ImageFileReader> in = open_partial(name);
     PartialFile partial = read_header(name, *in);
     const RenderResult& size = partial.sums;
     if (total.sums.empty()) {
