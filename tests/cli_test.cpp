@@ -169,3 +169,30 @@ TEST(Cli, GridOptionChoosesTheAcceleration) {
 }
 
 }  // namespace
+
+namespace {
+
+// OpenImageIO (some 260 shared libraries) loads only for the formats that need it
+// (image/image_files.hpp): not for --version, nor for a render to PNG.
+TEST(Cli, APngRenderLoadsNoImageLibrary) {
+    const fs::path dir = test::temp_dir("cli_no_oiio");
+    setenv("LD_DEBUG", "files", 1);
+    const test::ProgramRun version = test::run_vkrt("--version", dir);
+    const test::ProgramRun png = test::run_vkrt(
+        "render " + test::shell_quote(scene("default").string()) + " --width 16 --height 16 -q -o " +
+            test::shell_quote((dir / "x.png").string()),
+        dir);
+    const test::ProgramRun exr = test::run_vkrt(
+        "render " + test::shell_quote(scene("default").string()) + " --width 16 --height 16 -q -o " +
+            test::shell_quote((dir / "x.exr").string()),
+        dir);
+    unsetenv("LD_DEBUG");
+    EXPECT_EQ(version.stderr_text.find("libOpenImageIO"), std::string::npos);
+    EXPECT_EQ(png.code, 0);
+    EXPECT_EQ(png.stderr_text.find("libOpenImageIO"), std::string::npos);
+    EXPECT_EQ(exr.code, 0);
+    EXPECT_NE(exr.stderr_text.find("libOpenImageIO"), std::string::npos) << "the check itself sees the library";
+    EXPECT_EQ(read_image(dir / "x.png").width, 16u);
+}
+
+}  // namespace
