@@ -137,7 +137,7 @@ void print_summary(const RenderStats& s, const std::string& output, bool partial
     }
     fmt::print("per ray   {:.2f} cells visited, {:.2f} intersection tests\n", s.per_ray(s.cells_visited),
                s.per_ray(s.intersection_tests));
-    fmt::print("seconds   setup {:.3f}, render {:.3f}, passes {:.3f}, total {:.3f}\n",
+    fmt::print("seconds   load {:.3f}, setup {:.3f}, render {:.3f}, passes {:.3f}, total {:.3f}\n", s.load_seconds,
                s.flatten_seconds + s.setup_seconds, s.render_seconds, s.pass_seconds, s.total_seconds);
     fmt::print("wrote     {}{}\n", output, partial ? " (a partial file: vkrt merge adds it up with others)" : "");
 }
@@ -170,6 +170,7 @@ std::optional<GridSettings> parse_grid_option(const std::string& text) {
 int run_render(const RenderArgs& args) {
     const auto start = std::chrono::steady_clock::now();
     Scene scene = load_scene(args.scene);
+    const double load_seconds = seconds_since(start);
     for (const std::string& warning : scene.warnings) fmt::print(stderr, "warning: {}\n", warning);
     apply_overrides(args, scene);
     std::optional<SampleRange> samples;
@@ -225,6 +226,7 @@ int run_render(const RenderArgs& args) {
 
     RenderStats& s = outcome.stats;
     s.setup_seconds += backend_seconds;         // device and instance creation
+    s.load_seconds = load_seconds;
     s.total_seconds = seconds_since(start);     // from loading the scene to the written image
     if (!args.stats_file.empty()) {
         std::ofstream out(args.stats_file);

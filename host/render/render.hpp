@@ -43,6 +43,7 @@ struct RenderStats {
     std::uint64_t truncated_samples = 0;  // stopped by the loop budget: the image is wrong there
     std::uint64_t nonfinite_samples = 0;  // discarded for NaN or infinity
     std::uint64_t clamped_samples = 0;    // a channel above SUM_SAMPLE_MAX (kernel/sums.glsl), clamped
+    double load_seconds = 0.0;            // reading and parsing the scene file (set by the command)
     double flatten_seconds = 0.0;         // Scene -> FlatScene
     double setup_seconds = 0.0;           // backend set-up (pipelines, uploads)
     double render_seconds = 0.0;

@@ -30,7 +30,7 @@ nlohmann::json stats_to_json(const RenderStats& s) {
         {"samples", {{"truncated", s.truncated_samples}, {"nonfinite", s.nonfinite_samples},
                      {"clamped", s.clamped_samples},
                      {"loop_budget", s.loop_budget}}},
-        {"seconds", {{"flatten", s.flatten_seconds}, {"setup", s.setup_seconds},
+        {"seconds", {{"load", s.load_seconds}, {"flatten", s.flatten_seconds}, {"setup", s.setup_seconds},
                      {"render", s.render_seconds}, {"passes", s.pass_seconds},
                      {"longest_submission", s.longest_submit_seconds}, {"total", s.total_seconds}}},
         {"rays_per_second", s.render_seconds > 0.0 ? double(s.rays()) / s.render_seconds : 0.0},

@@ -60,7 +60,13 @@ std::string read_text(const std::filesystem::path& file, const std::string& name
         throw SceneError(fmt::format("{}: cannot open {} file ({})", name, kind,
                                      std::generic_category().message(errno)));
     }
-    std::string bytes;
+    // Sized once from the file's length (a 10 MB scene is otherwise copied as it
+    // grows); a file that grows meanwhile, or a pipe, is read on in chunks.
+    std::error_code size_error;
+    const std::uintmax_t size = std::filesystem::file_size(file, size_error);
+    std::string bytes(size_error ? 0 : std::size_t(size), '\0');
+    const std::size_t used = bytes.empty() ? 0 : std::fread(bytes.data(), 1, bytes.size(), f.get());
+    bytes.resize(used);
     char buffer[1 << 16];
     std::size_t n = 0;
     while ((n = std::fread(buffer, 1, sizeof buffer, f.get())) > 0) bytes.append(buffer, n);
@@ -68,7 +74,8 @@ std::string read_text(const std::filesystem::path& file, const std::string& name
         throw SceneError(fmt::format("{}: cannot open {} file (read failed: {})", name, kind,
                                      std::generic_category().message(errno)));
     }
-    return is_gzip(bytes) ? gunzip(bytes, name) : bytes;
+    if (is_gzip(bytes)) return gunzip(bytes, name);
+    return bytes;
 }
 
 std::string format_extension(const std::filesystem::path& file) {
