@@ -196,3 +196,29 @@ TEST(Cli, APngRenderLoadsNoImageLibrary) {
 }
 
 }  // namespace
+
+namespace {
+
+// --reference: the summary gives the error against the reference, 0 for the very
+// same render, and a reference of another size is refused before rendering.
+TEST(Cli, ReferenceGivesTheErrorInTheSummary) {
+    const fs::path dir = test::temp_dir("cli_reference");
+    const std::string render = "render " + test::shell_quote(scene("area_light").string()) + " --width 40 --height 30";
+    ASSERT_EQ(test::run_vkrt(render + " -q -o " + test::shell_quote((dir / "ref.exr").string()), dir).code, 0);
+    ASSERT_EQ(test::run_vkrt(render + " -o " + test::shell_quote((dir / "again.exr").string()) + " --reference " +
+                                 test::shell_quote((dir / "ref.exr").string()),
+                             dir)
+                  .code,
+              0);
+    EXPECT_NE(read_file(dir / "stdout.txt").find("error     RMSE 0, relMSE 0,"), std::string::npos)
+        << read_file(dir / "stdout.txt");
+    test::expect_one_error(test::run_vkrt("render " + test::shell_quote(scene("area_light").string()) +
+                                              " --width 41 --height 30 -o " +
+                                              test::shell_quote((dir / "other.png").string()) + " --reference " +
+                                              test::shell_quote((dir / "ref.exr").string()),
+                                          dir),
+                           {"--reference", "is 40x30 but the render is 41x30"});
+    EXPECT_FALSE(fs::exists(dir / "other.png"));
+}
+
+}  // namespace

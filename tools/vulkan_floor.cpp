@@ -84,7 +84,6 @@ int main(int argc, char** argv) {
     const double device_s = seconds_since(mark);
 
     VkShaderModuleCreateInfo module_info{};
-
     module_info.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
     module_info.codeSize = sizeof(empty_comp_spv);
     module_info.pCode = empty_comp_spv;
@@ -107,7 +106,6 @@ int main(int argc, char** argv) {
     const double pipeline_s = seconds_since(mark);
 
     VkCommandPoolCreateInfo pool_info{};
-
     pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
     pool_info.queueFamilyIndex = compute;
     VkCommandPool pool = VK_NULL_HANDLE;

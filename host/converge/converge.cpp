@@ -142,6 +142,10 @@ std::vector<Row> run_curve(const ConvergeArgs& args, Scene scene, const Curve& c
                         error_metrics(resolve_image(render.total(), gpu.corners), reference)});
         feed.add_error_point(name, rows.back().seconds, rows.back().error.rmse);
     };
+    // Where the render stopped between checkpoints (time, or the Stop button): a row too.
+    auto record_last = [&] {
+        if (render.samples_done() > 0 && (rows.empty() || rows.back().spp != render.samples_done())) record();
+    };
     feed.set_renderer(backend.name(), backend.device_name());
     for (std::uint32_t checkpoint = 1;;) {
         const bool rendered = render.next_pass(checkpoint, report);
@@ -152,8 +156,7 @@ std::vector<Row> run_curve(const ConvergeArgs& args, Scene scene, const Curve& c
                             {name, name, nullptr});
         }
         if (feed.stop_requested()) {
-            // Stopped from the live preview: the state so far is the curve's last row.
-            if (render.samples_done() > 0 && (rows.empty() || rows.back().spp != render.samples_done())) record();
+            record_last();
             break;
         }
         if (render.samples_done() == checkpoint) {
@@ -161,8 +164,7 @@ std::vector<Row> run_curve(const ConvergeArgs& args, Scene scene, const Curve& c
             if (checkpoint == limit) break;
             checkpoint = std::min(checkpoint * 2, limit);
         } else if (!rendered) {
-            // The time ran out between checkpoints: the last state is a row too.
-            if (render.samples_done() > 0 && (rows.empty() || rows.back().spp != render.samples_done())) record();
+            record_last();
             break;
         }
     }

@@ -59,9 +59,13 @@ bool LiveFeed::stop_requested() const {
     return stop_;
 }
 
+bool LiveFeed::watched_locked() const {
+    return polled_ && std::chrono::duration<double>(Clock::now() - last_poll_).count() < kWatchSeconds;
+}
+
 bool LiveFeed::watched() const {
     const std::lock_guard lock(mutex_);
-    return polled_ && std::chrono::duration<double>(Clock::now() - last_poll_).count() < kWatchSeconds;
+    return watched_locked();
 }
 
 std::string LiveFeed::status_json() {
@@ -121,9 +125,7 @@ std::shared_ptr<const std::vector<std::uint8_t>> LiveFeed::png(std::uint64_t& ve
 
 void LiveFeed::wait_until_seen(double seconds) {
     std::unique_lock lock(mutex_);
-    const bool watching =
-        polled_ && std::chrono::duration<double>(Clock::now() - last_poll_).count() < kWatchSeconds;
-    if (!watching) return;
+    if (!watched_locked()) return;
     seen_.wait_for(lock, std::chrono::duration<double>(seconds),
                    [&] { return final_seen_ && served_version_ == image_version_; });
 }

@@ -61,6 +61,7 @@ public:
 
 private:
     using Clock = std::chrono::steady_clock;
+    bool watched_locked() const;  // watched(), with mutex_ held
     struct Curve {
         std::string name;
         std::vector<std::pair<double, double>> points;

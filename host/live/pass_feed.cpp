@@ -16,14 +16,15 @@ void feed_pass(LiveFeed& feed, const PassView& view, const PassLabels& labels) {
     status.seconds_left = view.seconds_left;
     status.rays = total_rays(view.total);
     status.rays_per_second = view.total.render_seconds > 0.0 ? double(status.rays) / view.total.render_seconds : 0.0;
+    const bool watched = feed.watched();
     std::shared_ptr<const Image> image;
-    if (feed.watched() || labels.reference) {
+    if (watched || labels.reference) {
         image = std::make_shared<const Image>(resolve_image(view.total, view.corners));
     }
     if (labels.reference) {
         feed.add_error_point(labels.curve, view.elapsed, error_metrics(*image, *labels.reference).rmse);
     }
-    feed.publish(status, feed.watched() ? image : nullptr);
+    feed.publish(status, watched ? image : nullptr);
 }
 
 void feed_outcome(LiveFeed& feed, const RenderOutcome& outcome, const std::string& label) {
