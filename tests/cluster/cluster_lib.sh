@@ -11,9 +11,22 @@ spp=8
 scratch=$(mktemp -d "${TMPDIR:-/tmp}/vkrt-cluster.XXXXXX")
 chmod 755 "$scratch"
 cleanups=()
+# Stops the daemon whose pid FILE holds and waits (up to 10 s) until it has gone: a
+# daemon still saving its state on the way out would race the scratch removal.
+stop_daemon() {
+  local pid i
+  pid=$(cat "$1" 2>/dev/null) || return 0
+  kill "$pid" 2>/dev/null || return 0
+  for ((i = 0; i < 100; i++)); do
+    kill -0 "$pid" 2>/dev/null || return 0
+    sleep 0.1
+  done
+  kill -9 "$pid" 2>/dev/null || true
+}
+# Last started, first stopped: slurmd before slurmctld before munged.
 cleanup() {
-  local c
-  for c in "${cleanups[@]+"${cleanups[@]}"}"; do eval "$c" || true; done
+  local i
+  for ((i = ${#cleanups[@]} - 1; i >= 0; i--)); do eval "${cleanups[i]}" || true; done
   rm -rf "$scratch"
 }
 trap cleanup EXIT

@@ -30,7 +30,7 @@ StrictModes no
 CONF
 mkdir -p /run/sshd   # sshd's privilege separation directory
 /usr/sbin/sshd -f "$scratch/ssh/sshd_config" -E "$scratch/ssh/sshd.log"
-cleanups+=('kill "$(cat "$scratch/ssh/sshd.pid")"')
+cleanups+=('stop_daemon "$scratch/ssh/sshd.pid"')
 ssh_command="ssh -p $port -i $scratch/ssh/client_key -o BatchMode=yes -o StrictHostKeyChecking=no -o UserKnownHostsFile=/dev/null -o LogLevel=ERROR"
 ssh_ready() { $ssh_command "$(id -un)@127.0.0.1" true; }
 wait_for 30 ssh_ready || fail "cannot ssh to 127.0.0.1:$port: $(cat "$scratch/ssh/sshd.log")"

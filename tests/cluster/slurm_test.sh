@@ -17,7 +17,7 @@ head -c 1024 /dev/urandom >"$scratch/munge/munge.key"
 chmod 400 "$scratch/munge/munge.key"
 munged --force --key-file="$scratch/munge/munge.key" --socket="$scratch/munge/socket" \
   --pid-file="$scratch/munge/pid" --log-file="$scratch/munge/log" --seed-file="$scratch/munge/seed"
-cleanups+=('kill "$(cat "$scratch/munge/pid")"')
+cleanups+=('stop_daemon "$scratch/munge/pid"')
 node=$(hostname -s)
 export SLURM_CONF="$scratch/slurm.conf"
 cat >"$SLURM_CONF" <<CONF
@@ -47,9 +47,9 @@ NodeName=$node NodeAddr=127.0.0.1 CPUs=$(nproc) State=UNKNOWN
 PartitionName=test Nodes=ALL Default=YES MaxTime=INFINITE State=UP
 CONF
 slurmctld -f "$SLURM_CONF"
-cleanups+=('kill "$(cat "$scratch/slurmctld.pid")"')
+cleanups+=('stop_daemon "$scratch/slurmctld.pid"')
 slurmd -f "$SLURM_CONF" -N "$node"
-cleanups+=('kill "$(cat "$scratch/slurmd.pid")"')
+cleanups+=('stop_daemon "$scratch/slurmd.pid"')
 node_idle() { [ "$(sinfo -h -o %t)" = idle ]; }
 wait_for 60 node_idle || fail "the node never became idle: $(sinfo 2>&1); $(tail -5 "$scratch/slurmctld.log")"
 
