@@ -207,6 +207,7 @@ std::vector<BadOption> option_cases() {
         {"time_text", "render SCENE -o OUT --time soon", {"--time", "'soon'"}},
         {"time_infinite", "render SCENE -o OUT --time inf", {"--time", "'inf'"}},
         {"seed_negative", "render SCENE -o OUT --seed -1", {"--seed", "'-1'"}},
+        {"sampler_unknown", "render SCENE -o OUT --sampler halton", {"--sampler", "halton"}},
         {"image_too_large", "render SCENE -o OUT --width 32768 --height 32768", {"--width/--height", "limit"}},
         {"unknown_option", "render SCENE -o OUT --fast", {"--fast"}},
         {"unknown_format", "render SCENE -o OUT.xyz", {".xyz", "unknown image format"}},

@@ -150,7 +150,7 @@ TEST(Converge, OneCurvePerEstimator) {
     EXPECT_NE(run.stderr_text.find("local mode"), std::string::npos) << run.stderr_text;
     const auto curves = by_curve(read_csv(dir / "c.csv"));
     ASSERT_EQ(curves.size(), 3u);
-    for (const char* name : {"cpu/path:uniform", "cpu/path+nee:cosine", "cpu/paper:angles"}) {
+    for (const char* name : {"cpu/path:uniform@sobol", "cpu/path+nee:cosine@sobol", "cpu/paper:angles@sobol"}) {
         ASSERT_EQ(curves.count(name), 1u) << name;
         EXPECT_EQ(curves.at(name).size(), 2u) << name;
     }
@@ -163,14 +163,14 @@ TEST(Converge, EstimatorsReachTheGlobalModeKernel) {
     const std::string room = q(test::source_dir() / "scenes" / "gallery" / "k_room.json");
     const std::string base = "converge " + room + " --width 16 --height 12 --backend cpu --spp 2 -q --reference-spp 4 ";
     const test::ProgramRun run = test::run_vkrt(
-        base + "--estimator path:uniform --estimator path:cosine --estimator paper --csv " + q(dir / "c.csv"), dir);
+        base + "--estimator path:uniform@hash --estimator path:cosine --estimator paper --csv " + q(dir / "c.csv"), dir);
     ASSERT_EQ(run.code, 0) << run.stderr_text;
     EXPECT_EQ(run.stderr_text.find("local mode"), std::string::npos) << run.stderr_text;
     const auto curves = by_curve(read_csv(dir / "c.csv"));
     ASSERT_EQ(curves.size(), 3u);
-    const double uniform = curves.at("cpu/path:uniform").front().rmse;
-    const double cosine = curves.at("cpu/path:cosine").front().rmse;
-    const double paper = curves.at("cpu/paper:angles").front().rmse;
+    const double uniform = curves.at("cpu/path:uniform@hash").front().rmse;
+    const double cosine = curves.at("cpu/path:cosine@sobol").front().rmse;
+    const double paper = curves.at("cpu/paper:angles@sobol").front().rmse;
     EXPECT_NE(uniform, cosine);
     EXPECT_NE(uniform, paper);
     EXPECT_NE(cosine, paper);
@@ -179,7 +179,7 @@ TEST(Converge, EstimatorsReachTheGlobalModeKernel) {
     ASSERT_EQ(own.code, 0) << own.stderr_text;
     const auto own_curves = by_curve(read_csv(dir / "own.csv"));
     ASSERT_EQ(own_curves.size(), 1u);
-    EXPECT_EQ(own_curves.begin()->first, "cpu/path+nee:cosine");
+    EXPECT_EQ(own_curves.begin()->first, "cpu/path+nee:cosine@sobol");
 }
 
 // --until: the curve ends when its time is spent, at checkpoints of 1, 2, 4, ...
@@ -210,6 +210,9 @@ TEST(Converge, MistakesAreOneClearError) {
     test::expect_one_error(test::run_vkrt(base + " --estimator path:sphere", dir), {"--estimator", "path:sphere", "angles, uniform or cosine"});
     test::expect_one_error(test::run_vkrt(base + " --estimator bidir", dir), {"--estimator", "'bidir'", "paper, path or path+nee"});
     test::expect_one_error(test::run_vkrt(base + " --estimator paper+nee", dir), {"--estimator", "no next-event estimation"});
+    test::expect_one_error(test::run_vkrt(base + " --estimator path+nee@halton", dir),
+                           {"--estimator", "unknown sampler 'halton'", "sobol or hash"});
+    test::expect_one_error(test::run_vkrt(base + " --estimator path@sobol --estimator path", dir), {"given twice"});
     test::expect_one_error(test::run_vkrt(base + " --estimator path --estimator path:cosine", dir), {"--estimator", "given twice"});
     test::expect_one_error(test::run_vkrt(base + " --backend cpu", dir), {"--backend cpu", "given twice"});
     test::expect_one_error(test::run_vkrt(base + " --backend metal", dir), {"--backend", "metal"});

@@ -97,10 +97,14 @@ void expect_furnace(const RenderOutcome& out, std::uint32_t bounces, const std::
     EXPECT_NEAR(s.mean, expected, 4.0 * s.standard_error + 1e-6)
         << "standard error " << s.standard_error << ", " << out.stats.samples_per_pixel << " spp";
     // And no pixel strays: each pixel's own standard error is the spread's times
-    // sqrt(pixels); 5 of them leave a chance of 1 in 1.7 million per pixel.
+    // sqrt(pixels); 5 of them leave a chance of 1 in 1.7 million per pixel for
+    // Gaussian errors. Sobol points make most pixels much closer than independent
+    // samples would, so a pixel with one rare large sample (a light that covers half
+    // its sky, picked by power) stands further out: a stray of interest, a crack
+    // in the box, is off by a third or more, so 5% of the value bounds it too.
     const double pixel_error = s.standard_error * std::sqrt(double(out.image.width) * out.image.height);
     for (std::size_t p = 0; p < out.image.rgb.size(); p += 3) {
-        ASSERT_NEAR(out.image.rgb[p], expected, 5.0 * pixel_error + 1e-6) << "pixel " << p / 3;
+        ASSERT_NEAR(out.image.rgb[p], expected, 5.0 * pixel_error + 0.05 * expected) << "pixel " << p / 3;
     }
 }
 

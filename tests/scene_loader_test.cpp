@@ -669,6 +669,9 @@ TEST_F(SceneLoaderTest, GlobalModeFieldsAndTheirMistakes) {
     expect_error(Parts{.render = R"({"mode": "global", "estimator": "paper", "nee": true})"},
                  {": render.nee: the paper estimator has no next-event estimation"});
     expect_error(Parts{.render = R"({"mode": "global", "max_bounces": 1001})"}, {": render.max_bounces: "});
+    expect_error(Parts{.render = R"({"sampler": "halton"})"},
+                 {": render.sampler: unknown sampler 'halton'", "\"sobol\" or \"hash\""});
+    EXPECT_EQ(load(Parts{.render = R"({"sampler": "hash"})"}.text()).render.sampler, vkrt::Sampler::Hash);
 
     const vkrt::Scene path = load(Parts{.render = R"({"mode": "global"})"}.text());
     EXPECT_EQ(path.render.mode, vkrt::RenderMode::Global);
@@ -677,6 +680,7 @@ TEST_F(SceneLoaderTest, GlobalModeFieldsAndTheirMistakes) {
     EXPECT_TRUE(path.render.nee);
     EXPECT_TRUE(path.render.jitter);
     EXPECT_EQ(path.render.max_bounces, 8u);
+    EXPECT_EQ(path.render.sampler, vkrt::Sampler::Sobol);
     EXPECT_EQ(path.render.samples_per_pixel(), 16u);
     const vkrt::Scene paper = load(Parts{.render = R"({"mode": "global", "estimator": "paper", "max_bounces": 0,
                                                        "jitter": false, "spp": 3})"}.text());

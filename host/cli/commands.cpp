@@ -24,6 +24,7 @@
 #include "render/render.hpp"
 #include "render/sample_ranges.hpp"
 #include "render/stats_json.hpp"
+#include "scene/estimator_spec.hpp"
 #include "scene/limits.hpp"
 #include "scene/load_scene.hpp"
 #include "scene/read_text.hpp"
@@ -48,6 +49,7 @@ void apply_overrides(const RenderArgs& args, Scene& scene) {
                            "(render.corners, on for NFF scenes), which replaces aa and spp\n");
     }
     if (args.seed) scene.render.seed = *args.seed;
+    if (!args.sampler.empty()) scene.render.sampler = parse_sampler(args.sampler).value();  // checked by the parser
     if (!args.grid.empty()) {
         const GridSettings grid = parse_grid_option(args.grid).value();  // checked by the parser
         if (args.grid == "on") {

@@ -21,6 +21,7 @@ struct RenderArgs {
     std::optional<double> time;  // seconds of progressive passes; with spp, whichever ends first
     std::string samples;         // "A:B": render samples [A, B) only, to a partial file
     std::optional<std::uint32_t> seed;
+    std::string sampler;  // empty: the scene's; else sobol or hash
     std::string grid;    // empty: the scene's choice; else auto, on or off
     unsigned threads = 0;
     std::string stats_file;

@@ -36,6 +36,9 @@ Command add_render_command(CLI::App& program) {
                       "up with others (default output: <scene name>_A-B.exr)")
             ->check(accepted_by([](const std::string& text) { parse_sample_range(text, limits::kMaxSpp); }, "A:B"));
     add_seed(r, args->seed);
+    r->add_option("--sampler", args->sampler,
+                  "Random numbers: sobol (Owen-scrambled Sobol points) or hash (independent); overrides the scene")
+        ->check(CLI::IsMember({"sobol", "hash"}));
     r->add_option("--grid", args->grid,
                   "Uniform grid: auto (when the scene has enough primitives for it to pay), on, off, or a "
                   "resolution NXxNYxNZ in cells (e.g. 46x46x3); overrides the scene")

@@ -93,69 +93,90 @@ kernel::Triangle flatten(const Triangle& t, const dvec3& origin) {
     return out;
 }
 
-// The emissive primitives as area lights (kernel/emitters.glsl): one Emitter each,
-// with the running fraction of the total area that lets the kernel pick one with
-// probability proportional to its area. A point picked uniformly on the chosen one
-// is then uniform over all emitting area, of density 1 / total area.
+// Whether triangle i and i + 1 are the halves of a rectangular quad: made by
+// quad_triangles (in that order) from perpendicular edges. A quad whose edges are not
+// perpendicular stays two triangles, each its own emitter sampled by area.
+bool rectangle_at(const std::vector<Triangle>& triangles, std::size_t i) {
+    if (i + 1 >= triangles.size() || triangles[i].quad_half != 1 || triangles[i + 1].quad_half != 2) return false;
+    const auto& v = triangles[i].vertices;
+    const dvec3 e1 = v[1] - v[0];
+    const dvec3 e2 = v[2] - v[1];
+    return std::abs(glm::dot(e1, e2)) <= 1e-6 * glm::length(e1) * glm::length(e2);
+}
+
+// Tags the halves of each rectangle (kernel::Triangle meta.z), which the kernel
+// samples as one light by solid angle (kernel/emitters.glsl).
+void mark_rectangles(const std::vector<Triangle>& triangles, std::vector<kernel::Triangle>& out) {
+    for (std::size_t i = 0; i + 1 < triangles.size(); ++i) {
+        if (rectangle_at(triangles, i)) {
+            out[i].meta.z = kernel::RECT_FIRST_HALF;
+            out[i + 1].meta.z = kernel::RECT_SECOND_HALF;
+            ++i;
+        }
+    }
+}
+
+double mean(const dvec3& c) { return (c.x + c.y + c.z) / 3.0; }
+
+// The emissive primitives as area lights (kernel/emitters.glsl): one Emitter each (a
+// rectangle one for its two triangles), with the running fraction of the total power
+// (area times mean emitted radiance) that lets the kernel pick one with probability
+// proportional to its power.
 void add_emitters(const Scene& scene, FlatScene& g) {
     struct Found {
         std::uint32_t ref;
         double area;
+        double power;            // area * mean radiance
         std::uint32_t part = 0;  // of a cylinder: kernel::CYLINDER_SIDE, _BASE_CAP, _TOP_CAP
     };
     std::vector<Found> found;
-    auto emits = [&](std::uint32_t material) { return is_nonzero(scene.materials[material].emission); };
+    auto emission = [&](std::uint32_t material) { return scene.materials[material].emission; };
+    auto add = [&](std::uint32_t kind, std::size_t i, double area, std::uint32_t material, std::uint32_t part = 0) {
+        if (!is_nonzero(emission(material))) return;
+        found.push_back({(kind << kernel::REF_KIND_SHIFT) | std::uint32_t(i), area, area * mean(emission(material)), part});
+    };
+    const double pi = glm::pi<double>();
     for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
         const Sphere& s = scene.spheres[i];
-        if (emits(s.material)) {
-            found.push_back({(kernel::REF_SPHERE << kernel::REF_KIND_SHIFT) | std::uint32_t(i),
-                             4.0 * glm::pi<double>() * s.radius * s.radius});
-        }
+        add(kernel::REF_SPHERE, i, 4.0 * pi * s.radius * s.radius, s.material);
     }
     for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
         const Triangle& t = scene.triangles[i];
-        if (emits(t.material)) {
-            const dvec3 c = glm::cross(t.vertices[1] - t.vertices[0], t.vertices[2] - t.vertices[0]);
-            found.push_back({(kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | std::uint32_t(i),
-                             0.5 * glm::length(c)});
-        }
+        const dvec3 c = glm::cross(t.vertices[1] - t.vertices[0], t.vertices[2] - t.vertices[0]);
+        const bool rectangle = rectangle_at(scene.triangles, i);
+        add(kernel::REF_TRIANGLE, i, (rectangle ? 1.0 : 0.5) * glm::length(c), t.material);
+        if (rectangle) ++i;  // the second half is part of the same emitter
     }
-    const double pi = glm::pi<double>();
     for (std::size_t i = 0; i < scene.rings.size(); ++i) {
         const Ring& r = scene.rings[i];
-        if (emits(r.material)) {
-            found.push_back({(kernel::REF_RING << kernel::REF_KIND_SHIFT) | std::uint32_t(i),
-                             pi * (r.outer * r.outer - r.inner * r.inner)});
-        }
+        add(kernel::REF_RING, i, pi * (r.outer * r.outer - r.inner * r.inner), r.material);
     }
     // A cylinder is up to three emitters, its side and its caps, so that each is
-    // picked by its own area and sampled by its own parameterization.
+    // picked by its own power and sampled by its own parameterization.
     for (std::size_t i = 0; i < scene.cylinders.size(); ++i) {
         const Cylinder& c = scene.cylinders[i];
-        if (!emits(c.material)) continue;
-        const std::uint32_t ref = (kernel::REF_CYLINDER << kernel::REF_KIND_SHIFT) | std::uint32_t(i);
-        found.push_back({ref, 2.0 * pi * c.radius * glm::length(c.top - c.base), kernel::CYLINDER_SIDE});
+        add(kernel::REF_CYLINDER, i, 2.0 * pi * c.radius * glm::length(c.top - c.base), c.material, kernel::CYLINDER_SIDE);
         if (c.capped) {
-            found.push_back({ref, pi * c.radius * c.radius, kernel::CYLINDER_BASE_CAP});
-            found.push_back({ref, pi * c.radius * c.radius, kernel::CYLINDER_TOP_CAP});
+            add(kernel::REF_CYLINDER, i, pi * c.radius * c.radius, c.material, kernel::CYLINDER_BASE_CAP);
+            add(kernel::REF_CYLINDER, i, pi * c.radius * c.radius, c.material, kernel::CYLINDER_TOP_CAP);
         }
     }
     double total = 0.0;
-    for (const Found& f : found) total += f.area;
+    for (const Found& f : found) total += f.power;
     double running = 0.0;
     for (std::size_t i = 0; i < found.size(); ++i) {
-        running += found[i].area;
-        // Areas too small for double (all below ~1e-300) fall back to equal chances.
+        running += found[i].power;
+        // Powers too small for double (all below ~1e-300) fall back to equal chances.
         const double cdf = total > 0.0 ? running / total : double(i + 1) / double(found.size());
         g.emitters.push_back(kernel::Emitter(uvec4(found[i].ref, found[i].part, 0u, 0u),
                                              vec4(static_cast<float>(cdf), static_cast<float>(found[i].area), 0.0f, 0.0f)));
     }
     // Exactly 1, whatever the rounding of the sum: the kernel's search for the first
     // fraction above a number in [0, 1) must always end on an emitter.
-    if (!g.emitters.empty()) g.emitters.back().cdf_area.x = 1.0f;
+    if (!g.emitters.empty()) g.emitters.back().cdf.x = 1.0f;
     kernel::set_emitter_count(g.params, static_cast<std::uint32_t>(g.emitters.size()));
     kernel::set_light_samples(g.params, scene.render.light_samples);
-    kernel::set_emitter_area(g.params, static_cast<float>(total));
+    kernel::set_emitter_power(g.params, static_cast<float>(total));
 }
 
 template <class T>
@@ -322,6 +343,7 @@ FlatScene flatten_scene(const Scene& scene, const AccelPolicy& policy) {
     kernel::set_estimator(p, estimator);
     kernel::set_hemisphere_rule(p, hemisphere);
     kernel::set_max_bounces(p, r.max_bounces);
+    kernel::set_sampler_kind(p, r.sampler == Sampler::Sobol ? kernel::SAMPLER_SOBOL : kernel::SAMPLER_HASH);
 
     // Buffers only the left-out features read are not built (and so not uploaded).
     const bool any_geometry = scene.primitive_count() != 0;
@@ -335,6 +357,7 @@ FlatScene flatten_scene(const Scene& scene, const AccelPolicy& policy) {
     }
     if (g.features.has(Feature::HAS_TRIANGLES)) {
         for (const Triangle& t : scene.triangles) g.triangles.push_back(flatten(t, o));
+        mark_rectangles(scene.triangles, g.triangles);
     }
     if (g.features.has(Feature::HAS_RINGS)) {
         for (const Ring& ring : scene.rings) {

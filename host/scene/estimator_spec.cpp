@@ -16,20 +16,8 @@ const char* hemisphere_name(Hemisphere h) {
     return "?";
 }
 
-}  // namespace
-
-std::string EstimatorSpec::label() const {
-    const char* base = estimator == Estimator::Paper ? "paper" : nee ? "path+nee" : "path";
-    return fmt::format("{}:{}", base, hemisphere_name(hemisphere));
-}
-
-void EstimatorSpec::apply(RenderSettings& render) const {
-    render.estimator = estimator;
-    render.hemisphere = hemisphere;
-    render.nee = nee;
-}
-
-EstimatorSpec parse_estimator_spec(const std::string& text) {
+// The spec before its @sampler.
+EstimatorSpec parse_estimator_without_sampler(const std::string& text) {
     const std::size_t colon = text.find(':');
     const std::string base = text.substr(0, colon);
     EstimatorSpec spec;
@@ -45,7 +33,7 @@ EstimatorSpec parse_estimator_spec(const std::string& text) {
     } else {
         throw std::invalid_argument(fmt::format(
             "unknown estimator '{}' (expected paper, path or path+nee, each optionally with :angles, :uniform or "
-            ":cosine, e.g. path:uniform)",
+            ":cosine and @sobol or @hash, e.g. path:uniform@hash)",
             text));
     }
     if (colon != std::string::npos) {
@@ -61,8 +49,48 @@ EstimatorSpec parse_estimator_spec(const std::string& text) {
     return spec;
 }
 
+}  // namespace
+
+const char* sampler_name(Sampler sampler) {
+    return sampler == Sampler::Sobol ? "sobol" : "hash";
+}
+
+std::optional<Sampler> parse_sampler(std::string_view name) {
+    if (name == "sobol") return Sampler::Sobol;
+    if (name == "hash") return Sampler::Hash;
+    return std::nullopt;
+}
+
+std::string EstimatorSpec::label() const {
+    const char* base = estimator == Estimator::Paper ? "paper" : nee ? "path+nee" : "path";
+    return fmt::format("{}:{}@{}", base, hemisphere_name(hemisphere), sampler_name(sampler));
+}
+
+void EstimatorSpec::apply(RenderSettings& render) const {
+    render.estimator = estimator;
+    render.hemisphere = hemisphere;
+    render.nee = nee;
+    render.sampler = sampler;
+}
+
+EstimatorSpec parse_estimator_spec(const std::string& spelled) {
+    const std::size_t at = spelled.find('@');
+    const std::string text = spelled.substr(0, at);
+    std::optional<Sampler> sampler = Sampler::Sobol;
+    if (at != std::string::npos) {
+        sampler = parse_sampler(std::string_view(spelled).substr(at + 1));
+        if (!sampler) {
+            throw std::invalid_argument(fmt::format("'{}': unknown sampler '{}' (expected sobol or hash)", spelled,
+                                                    spelled.substr(at + 1)));
+        }
+    }
+    EstimatorSpec spec = parse_estimator_without_sampler(text);
+    spec.sampler = *sampler;
+    return spec;
+}
+
 EstimatorSpec estimator_spec_of(const RenderSettings& render) {
-    return {render.estimator, render.hemisphere, render.estimator == Estimator::Path && render.nee};
+    return {render.estimator, render.hemisphere, render.estimator == Estimator::Path && render.nee, render.sampler};
 }
 
 }  // namespace vkrt

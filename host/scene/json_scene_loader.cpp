@@ -14,6 +14,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "scene/estimator_spec.hpp"
 #include "scene/generators.hpp"
 #include "scene/json_reader.hpp"
 #include "scene/limits.hpp"
@@ -126,7 +127,7 @@ void read_global(const Node& n, RenderSettings& r) {
 RenderSettings read_render(const Node& n) {
     n.allow_only({"mode", "aa", "jitter", "shadows", "max_depth", "min_weight", "corners", "ambient", "background",
                   "seed", "spp", "loop_budget", "grid", "light_samples", "estimator", "hemisphere", "nee",
-                  "max_bounces"});
+                  "max_bounces", "sampler"});
     RenderSettings r;
     if (auto mode = n.find("mode")) {
         const std::string m = mode->string();
@@ -137,6 +138,11 @@ RenderSettings read_render(const Node& n) {
     read_global(n, r);
     if (auto aa = n.find("aa")) r.aa = whole32(*aa, 1, limits::kMaxAa);
     if (auto jitter = n.find("jitter")) r.jitter = jitter->boolean();
+    if (auto v = n.find("sampler")) {
+        const std::optional<Sampler> s = parse_sampler(v->string());
+        if (!s) v->fail(fmt::format("unknown sampler {} (expected \"sobol\" or \"hash\")", json::quote_user(v->string())));
+        r.sampler = *s;
+    }
     if (auto shadows = n.find("shadows")) r.shadows = shadows->boolean();
     if (auto depth = n.find("max_depth")) r.max_depth = whole32(*depth, 0, limits::kMaxDepth);
     if (auto weight = n.find("min_weight")) {

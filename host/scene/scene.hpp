@@ -35,6 +35,10 @@ enum class Estimator { Paper, Path };
 // How a diffuse bounce draws its direction (kernel/hemisphere.glsl).
 enum class Hemisphere { Angles, Uniform, Cosine };
 
+// Where a sample's random numbers come from (kernel/rng.glsl): Owen-scrambled Sobol
+// points, or an independent hash per number.
+enum class Sampler { Sobol, Hash };
+
 // The uniform grid (host/accel/grid.hpp). Auto builds it unless the scene is small
 // enough that brute force is faster on the chosen backend (a measured threshold).
 enum class GridMode { Auto, On, Off };
@@ -56,6 +60,7 @@ struct RenderSettings {
     dvec3 ambient{0.0};
     dvec3 background{0.0};
     std::uint32_t seed = 0;
+    Sampler sampler = Sampler::Sobol;
     std::uint32_t spp = 0;         // samples per pixel; 0 means aa * aa
     std::uint32_t loop_budget = 0; // per-invocation loop iterations; 0 means the kernel default
     // Shadow rays toward the emissive primitives per hit (local mode); 0 turns their
@@ -106,13 +111,16 @@ struct Triangle {
     std::array<dvec3, 3> vertices{};
     std::optional<std::array<dvec3, 3>> normals;  // interpolated when present
     std::uint32_t material = 0;
+    // 1 and 2 for the first and second triangle of quad_triangles, else 0: a
+    // rectangle's halves are one area light, sampled by solid angle (host/flatten).
+    std::uint32_t quad_half = 0;
 };
 
 // The quad corner, corner + e1, corner + e1 + e2, corner + e2 as two triangles
 // sharing the diagonal, both facing cross(e1, e2): what the scene file's "quad" is.
 inline std::array<Triangle, 2> quad_triangles(dvec3 corner, dvec3 e1, dvec3 e2, std::uint32_t material) {
-    return {Triangle{{corner, corner + e1, corner + e1 + e2}, std::nullopt, material},
-            Triangle{{corner, corner + e1 + e2, corner + e2}, std::nullopt, material}};
+    return {Triangle{{corner, corner + e1, corner + e1 + e2}, std::nullopt, material, 1},
+            Triangle{{corner, corner + e1 + e2, corner + e2}, std::nullopt, material, 2}};
 }
 
 // An annulus: the points of the plane through `center` perpendicular to `normal`

@@ -1,13 +1,14 @@
 // Direct light from the area lights (the emissive primitives) at a hit, in local
-// mode: an estimate with render.light_samples points y drawn uniformly over the total
-// emitting area A (emitters.glsl), one shadow ray each:
+// mode: an estimate with render.light_samples points y drawn by sample_light
+// (emitters.glsl), each with its density p over solid angle, one shadow ray each:
 //
 //   L = 1/N * sum  Le(y) * (kd diffuse cos(theta) + ks specular cos(alpha)^shininess)
-//                  * cos(theta') * A / (pi r^2)        [0 where y is hidden or faces away]
+//                  / (pi p)        [0 where y is hidden or faces away]
 //
-// theta between the normal and the direction l to y, theta' between y's front-face
-// normal and -l (emission leaves the front face only), r the distance, alpha as for
-// point lights (shade.glsl).
+// theta between the normal and the direction l to y, alpha as for point lights
+// (shade.glsl); emission leaves the front face only. For a point drawn uniformly on
+// an area A, 1 / p is cos(theta') A / r^2, with theta' between y's front-face normal
+// and -l and r the distance.
 //
 // Why 1/pi. The paper's point light adds intensity * diffuse * cos(theta) with no
 // fall-off: that is the radiance of a Lambertian surface of albedo `diffuse` under an
@@ -41,16 +42,14 @@ vec3 shade_area_lights(Ray ray, Hit hit, Material m, INOUT(Rng) rng, INOUT(uint)
             break;
         }
         // Drawn before any test, so every light sample takes the same numbers.
-        EmitterPoint y = sample_emitters(rng);
-        vec3 to_light = y.position - p;
-        float r2 = dot(to_light, to_light);
-        vec3 l = to_light / sqrt(r2);
+        LightSample y = sample_light(shadow_origin, rng);
+        vec3 to_light = y.position - shadow_origin;
+        vec3 l = to_light / sqrt(dot(to_light, to_light));
         // The emitter's front must face the point (visibility.glsl tests the rest).
-        float cos_emitter = -dot(y.normal, l);
-        if (light_reaches(hit, shadow_origin, l, y.position, cos_emitter > 0.0f, shadow_rays)) {
-            sum += y.emission * phong_term(m, diffuse, hit.normal, l, dot(hit.normal, l), to_eye) *
-                   (cos_emitter / r2);
+        bool facing = y.pdf > 0.0f && -dot(y.normal, l) > 0.0f;
+        if (light_reaches(hit, shadow_origin, l, y.position, facing, shadow_rays)) {
+            sum += y.emission * phong_term(m, diffuse, hit.normal, l, dot(hit.normal, l), to_eye) / y.pdf;
         }
     }
-    return sum * (emitter_area() / (PI * float(max(samples, 1u))));
+    return sum * (1.0f / (PI * float(max(samples, 1u))));
 }

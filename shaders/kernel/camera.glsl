@@ -14,15 +14,14 @@ Ray camera_ray(float x, float y) {
 
 // Position inside the pixel for one sample: sample k covers sub-pixel k mod aa^2 of
 // the paper's regular aa x aa grid (Fig. 6), at the sub-pixel's centre, or at a
-// uniformly random point inside it when jitter is on.
+// uniformly random point inside it when jitter is on (the camera's slot, rng.glsl).
 vec2 subpixel_position(uint sample_index, INOUT(Rng) rng) {
     uint aa = aa_per_side();
     uint k = sample_index % (aa * aa);
-    float jx = 0.5f;
-    float jy = 0.5f;
+    vec2 jitter = vec2(0.5f);
     if (HAS_JITTER) {
-        jx = rng_next(rng);
-        jy = rng_next(rng);
+        rng_seek(rng, SLOT_CAMERA);
+        jitter = rng_2d(rng);
     }
-    return vec2((float(k % aa) + jx) / float(aa), (float(k / aa) + jy) / float(aa));
+    return vec2((float(k % aa) + jitter.x) / float(aa), (float(k / aa) + jitter.y) / float(aa));
 }

@@ -44,6 +44,11 @@ const uint CYLINDER_SIDE = 0u;
 const uint CYLINDER_BASE_CAP = 1u;
 const uint CYLINDER_TOP_CAP = 2u;
 
+// The triangles of a rectangle (Triangle.meta.z): corner, corner + ex, corner + ex + ey
+// and corner, corner + ex + ey, corner + ey.
+const uint RECT_FIRST_HALF = 1u;
+const uint RECT_SECOND_HALF = 2u;
+
 // Mesa's lavapipe stops an invocation's loops silently after 65,535 iterations in
 // total (docs/architecture.md). The kernel counts its own iterations the way lavapipe does
 // (budget.glsl) against a budget below that cap, with room to spare.
@@ -61,6 +66,21 @@ const uint HEMISPHERE_COSINE = 2u;   // density proportional to cos(theta)
 // Global mode's estimators (global.glsl), Params.global.x.
 const uint ESTIMATOR_PAPER = 0u;
 const uint ESTIMATOR_PATH = 1u;
+
+// Where the random numbers come from (rng.glsl), render.sampler.
+const uint SAMPLER_HASH = 0u;   // an independent hash per number
+const uint SAMPLER_SOBOL = 1u;  // Owen-scrambled Sobol points, one shuffled 2-D set per slot
+
+// The slots a path draws from (rng.glsl, global.glsl): the camera's first, then
+// BOUNCE_SLOTS per bounce in this order, so a decision always takes the same slot
+// whichever branches the path took before it.
+const uint SLOT_CAMERA = 0u;
+const uint SLOT_LIGHT_CHOICE = 0u;  // offsets within a bounce's slots
+const uint SLOT_LIGHT_POINT = 1u;
+const uint SLOT_LOBE = 2u;
+const uint SLOT_DIRECTION = 3u;
+const uint SLOT_ROULETTE = 4u;
+const uint BOUNCE_SLOTS = 5u;
 
 const float INFINITY_T = 3.0e38f;   // "no hit yet"; finite so comparisons stay ordered
 

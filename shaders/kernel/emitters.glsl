@@ -1,10 +1,13 @@
 // Points on the area lights: the emissive primitives of the Emitter list
 // (layout.glsl; built by host/flatten/flat_scene.cpp). An emitter is picked with
-// probability proportional to its area, then a point uniformly on it, so the point
-// is uniform over the total emitting area, of density 1 / total area whichever
-// emitter it lies on: the estimator (area_lights.glsl) needs no per-emitter pdf.
+// probability proportional to its power, area times mean emitted radiance, so a
+// bright small lamp is not starved by a dim large one. Then a point on it: through
+// the solid angle it covers where that can be drawn (solid_angle.glsl: a sphere's
+// cone, a rectangle's spherical rectangle), else uniformly on its area. Picked so,
+// a point of an emitter of mean radiance w has density w / emitter_power() over
+// the emitting area, whichever emitter it lies on.
 //
-// Every draw takes exactly three random numbers, in one fixed order, whatever it
+// Every draw takes exactly two slots (rng.glsl), in one fixed order, whatever it
 // picks: both backends then consume identical streams, and the numbers a sample draws
 // after a light sample do not depend on which emitter that sample chose.
 
@@ -14,7 +17,7 @@ struct EmitterPoint {
     vec3 emission;   // radiance leaving the front face
 };
 
-// The first emitter whose cumulative area fraction exceeds u in [0, 1). The last
+// The first emitter whose cumulative power fraction exceeds u in [0, 1). The last
 // fraction is exactly 1, so there always is one.
 uint pick_emitter(float u) {
     uint lo = 0u;
@@ -25,7 +28,7 @@ uint pick_emitter(float u) {
             break;  // the sample is flagged truncated; any index in range will do
         }
         uint mid = (lo + hi) / 2u;
-        if (u < load_emitter(mid).cdf_area.x) {
+        if (u < load_emitter(mid).cdf.x) {
             hi = mid;
         } else {
             lo = mid + 1u;
@@ -40,7 +43,8 @@ vec3 uniform_sphere_direction(float u1, float u2) {
     float z = 1.0f - 2.0f * u1;
     float s = sqrt(max(0.0f, 1.0f - z * z));
     float phi = (2.0f * PI) * u2;
-    return vec3(s * cos(phi), s * sin(phi), z);
+    vec2 sc = sin_cos(phi);
+    return vec3(s * sc.y, s * sc.x, z);
 }
 
 // A point uniform by area on the emitter, from two uniform numbers.
@@ -61,7 +65,8 @@ EmitterPoint emitter_point(Emitter e, float u1, float u2) {
         float inner2 = r.center_inner.w * r.center_inner.w;
         float radius = sqrt(inner2 + u1 * (r.normal_outer.w * r.normal_outer.w - inner2));
         float phi = (2.0f * PI) * u2;
-        precise vec3 y = vec3(r.center_inner) + (radius * cos(phi)) * f.t + (radius * sin(phi)) * f.b;
+        vec2 sc = sin_cos(phi);
+        precise vec3 y = vec3(r.center_inner) + (radius * sc.y) * f.t + (radius * sc.x) * f.b;
         return EmitterPoint(y, n, vec3(load_material(r.meta.x).emission_fresnel));
     }
     if (HAS_CYLINDERS && kind == REF_CYLINDER) {
@@ -73,7 +78,8 @@ EmitterPoint emitter_point(Emitter e, float u1, float u2) {
         vec3 axis = axis_vector / sqrt(dot(axis_vector, axis_vector));
         Basis f = basis_around(axis);
         float phi = (2.0f * PI) * u2;
-        vec3 radial = cos(phi) * f.t + sin(phi) * f.b;
+        vec2 sc = sin_cos(phi);
+        vec3 radial = sc.y * f.t + sc.x * f.b;
         vec3 emission = vec3(load_material(c.meta.x).emission_fresnel);
         if (e.prim.y == CYLINDER_SIDE) {
             precise vec3 y = base + u1 * axis_vector + c.base_radius.w * radial;
@@ -100,11 +106,131 @@ EmitterPoint emitter_point(Emitter e, float u1, float u2) {
     return EmitterPoint(vec3(0.0f), vec3(0.0f), vec3(0.0f));
 }
 
-// A point uniform over all emitting area: one number picks the emitter, two place
-// the point, always drawn in this order.
-EmitterPoint sample_emitters(INOUT(Rng) rng) {
-    float u_pick = rng_next(rng);
-    float u1 = rng_next(rng);
-    float u2 = rng_next(rng);
-    return emitter_point(load_emitter(pick_emitter(u_pick)), u1, u2);
+// The mean of an emission's channels: an emitter's power over pi times its area.
+float emission_weight(vec3 emission) {
+    return (emission.x + emission.y + emission.z) * (1.0f / 3.0f);
+}
+
+// A point on the lights as seen from a point o, and the density over solid angle at
+// o of having drawn the direction toward it. pdf = 0: the sample carries no light
+// (o lies behind a one-sided emitter), and no shadow ray need be traced.
+struct LightSample {
+    vec3 position;
+    vec3 normal;     // unit geometric normal on the emitting (front) side
+    vec3 emission;   // radiance leaving the front face
+    float pdf;
+};
+
+// The rectangle a triangle is half of (Triangle.meta.z, set by the host for the two
+// triangles of a rectangular "quad"), as a corner and two perpendicular edges.
+struct Rect {
+    vec3 corner;
+    vec3 ex;
+    vec3 ey;
+};
+
+Rect rect_of_half(Triangle tri) {
+    vec3 p0 = vec3(tri.p0);
+    vec3 p1 = vec3(tri.p1);
+    vec3 p2 = vec3(tri.p2);
+    // First half: corner, corner + ex, corner + ex + ey; second: corner, corner + ex + ey, corner + ey.
+    if (tri.meta.z == RECT_FIRST_HALF) {
+        return Rect(p0, p1 - p0, p2 - p1);
+    }
+    return Rect(p0, p1 - p2, p2 - p0);
+}
+
+float rect_area(Rect q) {
+    return sqrt(dot(q.ex, q.ex) * dot(q.ey, q.ey));
+}
+
+float sphere_area(float radius) {
+    return 4.0f * PI * radius * radius;
+}
+
+bool sampled_by_solid_angle(float solid_angle) {
+    return solid_angle > MIN_SAMPLED_SOLID_ANGLE && solid_angle < MAX_SAMPLED_SOLID_ANGLE;
+}
+
+// The density over solid angle at o of a point y on an emitter drawn uniformly by
+// area, with its density over area.
+float area_to_solid_angle(float area_density, vec3 o, vec3 y, vec3 normal) {
+    vec3 to_light = y - o;
+    float r2 = dot(to_light, to_light);
+    float cos_emitter = -dot(normal, to_light) / sqrt(r2);
+    return cos_emitter > 0.0f ? min(area_density * r2 / cos_emitter, INFINITY_T) : 0.0f;
+}
+
+// One light sample for a point at o: one slot's number picks the emitter, the next
+// slot's pair places the point.
+LightSample sample_light(vec3 o, INOUT(Rng) rng) {
+    float u_pick = rng_1d(rng);
+    vec2 u = rng_2d(rng);
+    Emitter e = load_emitter(pick_emitter(u_pick));
+    uint kind = e.prim.x >> REF_KIND_SHIFT;
+    uint index = e.prim.x & REF_INDEX_MASK;
+    if (HAS_SPHERES && kind == REF_SPHERE) {
+        Sphere s = load_sphere(index);
+        vec3 center = vec3(s.center_radius);
+        SphereCone cone = sphere_cone(o, center, s.center_radius.w);
+        float omega = sphere_cone_solid_angle(cone);
+        if (sampled_by_solid_angle(omega)) {
+            vec3 y = sphere_cone_point(o, cone, s.center_radius.w, u.x, u.y);
+            vec3 emission = vec3(load_material(s.meta.x).emission_fresnel);
+            float choice = emission_weight(emission) * sphere_area(s.center_radius.w) / emitter_power();
+            return LightSample(y, unit_vector(y - center), emission, choice / omega);
+        }
+    }
+    if (HAS_TRIANGLES && kind == REF_TRIANGLE) {
+        Triangle tri = load_triangle(index);
+        if (tri.meta.z == RECT_FIRST_HALF) {
+            Rect q = rect_of_half(tri);
+            vec3 normal = triangle_face_normal(vec3(tri.p0), vec3(tri.p1), vec3(tri.p2));
+            vec3 emission = vec3(load_material(tri.meta.x).emission_fresnel);
+            if (!(dot(o - q.corner, normal) > 0.0f)) {
+                return LightSample(q.corner, normal, emission, 0.0f);  // behind the emitting face
+            }
+            SphericalRect sr = spherical_rect(o, q.corner, q.ex, q.ey);
+            if (sampled_by_solid_angle(sr.solid_angle)) {
+                float choice = emission_weight(emission) * rect_area(q) / emitter_power();
+                return LightSample(spherical_rect_point(sr, u.x, u.y), normal, emission, choice / sr.solid_angle);
+            }
+            precise vec3 y = q.corner + u.x * q.ex + u.y * q.ey;
+            float density = emission_weight(emission) / emitter_power();
+            return LightSample(y, normal, emission, area_to_solid_angle(density, o, y, normal));
+        }
+    }
+    EmitterPoint y = emitter_point(e, u.x, u.y);
+    float density = emission_weight(y.emission) / emitter_power();
+    return LightSample(y.position, y.normal, y.emission, area_to_solid_angle(density, o, y.position, y.normal));
+}
+
+// The density over solid angle with which sample_light, called at the ray's origin,
+// draws the direction of a ray that hit an emitter's front face (for multiple
+// importance sampling): the same choice of technique, from the same point.
+float light_pdf_of_hit(Ray ray, Hit hit, vec3 emission) {
+    float area_density = emission_weight(emission) / emitter_power();
+    uint kind = hit.prim >> REF_KIND_SHIFT;
+    uint index = hit.prim & REF_INDEX_MASK;
+    if (HAS_SPHERES && kind == REF_SPHERE) {
+        Sphere s = load_sphere(index);
+        float radius = s.center_radius.w;
+        float omega = sphere_cone_solid_angle(sphere_cone(ray.origin, vec3(s.center_radius), radius));
+        if (sampled_by_solid_angle(omega)) {
+            return area_density * sphere_area(radius) / omega;
+        }
+    }
+    if (HAS_TRIANGLES && kind == REF_TRIANGLE) {
+        Triangle tri = load_triangle(index);
+        if (tri.meta.z != 0u) {
+            Rect q = rect_of_half(tri);
+            SphericalRect sr = spherical_rect(ray.origin, q.corner, q.ex, q.ey);
+            if (sampled_by_solid_angle(sr.solid_angle)) {
+                return area_density * rect_area(q) / sr.solid_angle;
+            }
+        }
+    }
+    // geo_normal faces the ray, so this is the emitting face's cosine.
+    float cos_emitter = -dot(hit.geo_normal, ray.dir);
+    return min(area_density * hit.t * hit.t / cos_emitter, INFINITY_T);
 }

@@ -51,21 +51,15 @@ float power_heuristic(float pdf_this, float pdf_other) {
     return 1.0f / (1.0f + r * r);
 }
 
-// The density over solid angle with which next_event's light sampler (uniform over
-// the total emitting area, emitters.glsl) picks a point at squared distance r2 whose
-// emitting face is seen at cosine cos_emitter.
-float light_pdf(float r2, float cos_emitter) {
-    return min(r2 / (cos_emitter * emitter_area()), INFINITY_T);
-}
-
 // Direct light at a path vertex through its smooth lobes: every point light (the
 // only way to reach one: no path can hit a point) and, with next-event estimation
 // (HAS_AREA_LIGHTS in global mode), one point on the area lights, weighted by the
 // power heuristic against the BSDF sampling that could have found it too (whose
 // hits are weighted to match in path_sample). p_smooth is the probability of
-// picking the smooth group, part of the BSDF sampling's density.
-vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smooth, INOUT(Rng) rng,
-                INOUT(SampleResult) s) {
+// picking the smooth group, part of the BSDF sampling's density; `slot` is the
+// bounce's first slot (constants.glsl).
+vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smooth, uint slot,
+                INOUT(Rng) rng, INOUT(SampleResult) s) {
     vec3 sum = vec3(0.0f);
     vec3 shadow_origin = offset_ray_origin(p, hit.geo_normal);
     if (HAS_POINT_LIGHTS) {
@@ -84,16 +78,18 @@ vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smoo
         }
     }
     if (HAS_AREA_LIGHTS) {
-        EmitterPoint y = sample_emitters(rng);
-        vec3 to_light = y.position - p;
-        float r2 = dot(to_light, to_light);
-        vec3 l = to_light / sqrt(r2);
-        float cos_emitter = -dot(y.normal, l);
-        if (light_reaches(hit, shadow_origin, l, y.position, cos_emitter > 0.0f, s.shadow_rays)) {
-            float pdf_light = light_pdf(r2, cos_emitter);
+        // Drawn from the shadow ray's origin, which is also the origin of the bounce
+        // ray whose hit on a light light_pdf_of_hit weighs: the same point, the same
+        // choice of technique.
+        rng_seek(rng, slot + SLOT_LIGHT_CHOICE);
+        LightSample y = sample_light(shadow_origin, rng);
+        vec3 to_light = y.position - shadow_origin;
+        vec3 l = to_light / sqrt(dot(to_light, to_light));
+        bool facing = y.pdf > 0.0f && -dot(y.normal, l) > 0.0f;
+        if (light_reaches(hit, shadow_origin, l, y.position, facing, s.shadow_rays)) {
             float pdf_bsdf = p_smooth * pdf_smooth(lobes, frame, wo, l, hemisphere_rule());
             sum += eval_smooth(lobes, hit.normal, wo, l) * y.emission *
-                   (dot(hit.normal, l) * power_heuristic(pdf_light, pdf_bsdf) / pdf_light);
+                   (dot(hit.normal, l) * power_heuristic(y.pdf, pdf_bsdf) / y.pdf);
         }
     }
     return sum;
@@ -151,8 +147,7 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
         if (HAS_EMISSION && hit.front_face) {
             float w = 1.0f;
             if (HAS_AREA_LIGHTS && pdf_prev > 0.0f) {
-                // geo_normal faces the ray, so this is the emitting face's cosine.
-                w = power_heuristic(pdf_prev, light_pdf(hit.t * hit.t, -dot(hit.geo_normal, ray.dir)));
+                w = power_heuristic(pdf_prev, light_pdf_of_hit(ray, hit, vec3(m.emission_fresnel)));
             }
             s.radiance += beta * vec3(m.emission_fresnel) * w;
         }
@@ -169,15 +164,17 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
         Basis frame = basis_around(hit.normal);
         float w_smooth = lobes.w_diffuse + lobes.w_glossy;
         float p_smooth = w_smooth / total;
+        uint slot = SLOT_CAMERA + 1u + bounce * BOUNCE_SLOTS;
         if ((HAS_POINT_LIGHTS || HAS_AREA_LIGHTS) && w_smooth > 0.0f) {
-            s.radiance += beta * next_event(hit, p, wo, lobes, frame, p_smooth, rng, s);
+            s.radiance += beta * next_event(hit, p, wo, lobes, frame, p_smooth, slot, rng, s);
         }
-        float pick = rng_next(rng) * total;
-        float u1 = rng_next(rng);
-        float u2 = rng_next(rng);
+        rng_seek(rng, slot + SLOT_LOBE);
+        float pick = rng_1d(rng) * total;
+        rng_seek(rng, slot + SLOT_DIRECTION);
+        vec2 u = rng_2d(rng);
         if (pick < w_smooth || !(w_smooth < total)) {
             note_decision(12u);
-            vec3 wi = sample_smooth(lobes, frame, wo, hemisphere, pick / w_smooth, u1, u2);
+            vec3 wi = sample_smooth(lobes, frame, wo, hemisphere, pick / w_smooth, u.x, u.y);
             float cos_theta = dot(wi, hit.normal);
             float pdf = p_smooth * pdf_smooth(lobes, frame, wo, wi, hemisphere);
             // Below the surface the lobes are zero: the sample adds nothing, the path ends.
@@ -188,12 +185,13 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
             pdf_prev = pdf;
             ray = Ray(offset_ray_origin(p, hit.geo_normal), wi);
         } else {
-            ray = scatter_delta(ray, hit, p, lobes, total, pick, u1, beta, media);
+            ray = scatter_delta(ray, hit, p, lobes, total, pick, u.x, beta, media);
             pdf_prev = 0.0f;
         }
         if (bounce + 1u >= ROULETTE_START) {
             float survive = min(max(beta.x, max(beta.y, beta.z)), 0.95f);
-            if (!(rng_next(rng) < survive)) {
+            rng_seek(rng, slot + SLOT_ROULETTE);
+            if (!(rng_1d(rng) < survive)) {
                 note_decision(16u);
                 s.roulette = 1u;
                 return;
@@ -227,10 +225,8 @@ vec3 paper_gl(Ray start, uint bounces, INOUT(Rng) rng, INOUT(SampleResult) s) {
             return attenuation * vec3(m.emission_fresnel);
         }
         attenuation *= vec3(m.diffuse_kd) * m.diffuse_kd.w;
-        // Drawn one statement each: C++ leaves the order of a call's arguments open.
-        float u1 = rng_next(rng);
-        float u2 = rng_next(rng);
-        vec3 d = from_basis(basis_around(hit.normal), sample_hemisphere(hemisphere_rule(), u1, u2));
+        vec2 u = rng_2d(rng);
+        vec3 d = from_basis(basis_around(hit.normal), sample_hemisphere(hemisphere_rule(), u.x, u.y));
         if (!any(greaterThan(attenuation, vec3(0.0f))) || !(dot(d, hit.geo_normal) > 0.0f)) {
             return vec3(0.0f);
         }
@@ -273,12 +269,12 @@ void paper_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
         }
         vec3 p = hit_point(ray, hit.t);
         float w_smooth = lobes.w_diffuse + lobes.w_glossy;
-        float pick = rng_next(rng) * total;
-        float u1 = rng_next(rng);
-        float u2 = rng_next(rng);
+        // Drawn one statement each: C++ leaves the order of a call's arguments open.
+        float pick = rng_1d(rng) * total;
+        vec2 u = rng_2d(rng);
         if (pick < w_smooth || !(w_smooth < total)) {
             note_decision(12u);
-            vec3 d = from_basis(basis_around(hit.normal), sample_hemisphere(hemisphere_rule(), u1, u2));
+            vec3 d = from_basis(basis_around(hit.normal), sample_hemisphere(hemisphere_rule(), u.x, u.y));
             float cos_theta = dot(d, hit.normal);
             vec3 g = vec3(0.0f);
             if (cos_theta > 0.0f && dot(d, hit.geo_normal) > 0.0f) {
@@ -292,7 +288,7 @@ void paper_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
             s.radiance += beta * (total / w_smooth) * local * g;
             return;
         }
-        ray = scatter_delta(ray, hit, p, lobes, total, pick, u1, beta, media);
+        ray = scatter_delta(ray, hit, p, lobes, total, pick, u.x, beta, media);
         s.bounce_rays += 1u;
     }
 }

@@ -27,7 +27,8 @@ vec3 from_basis(Basis f, vec3 local) {
 // The direction at polar angle theta (from the normal) and azimuth phi, as
 // (sin theta cos phi, sin theta sin phi, cos theta) in the basis.
 vec3 spherical_direction(float cos_theta, float sin_theta, float phi) {
-    return vec3(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta);
+    vec2 sc = sin_cos(phi);
+    return vec3(sin_theta * sc.y, sin_theta * sc.x, cos_theta);
 }
 
 // A direction in local coordinates (z along the normal) from two uniform numbers
@@ -42,7 +43,8 @@ vec3 sample_hemisphere(uint kind, float u1, float u2) {
     float phi = 2.0f * PI * u2;
     if (kind == HEMISPHERE_ANGLES) {
         float theta = 0.5f * PI * u1;
-        return spherical_direction(cos(theta), sin(theta), phi);
+        vec2 sc = sin_cos(theta);
+        return spherical_direction(sc.y, sc.x, phi);
     }
     if (kind == HEMISPHERE_UNIFORM) {
         float c = 1.0f - u1;

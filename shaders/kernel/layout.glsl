@@ -16,7 +16,9 @@ struct Sphere {
 
 // A triangle stores its own vertices (no index indirection: one fetch per primitive).
 // Vertex normals are used only when meta.y != 0 (the scene gave normals); the front
-// face is the side of cross(p1 - p0, p2 - p0). meta.x = material index.
+// face is the side of cross(p1 - p0, p2 - p0). meta.x = material index; meta.z =
+// RECT_FIRST_HALF or RECT_SECOND_HALF for the two triangles of a rectangle
+// (kernel/emitters.glsl samples an emissive one by solid angle), else 0.
 struct Triangle {
     vec4 p0;
     vec4 p1;
@@ -77,12 +79,13 @@ struct PointLight {
 
 // One emissive primitive: a primitive whose material has nonzero emission
 // (kernel/emitters.glsl samples them, host/flatten/flat_scene.cpp lists them). Emitters
-// are chosen with probability proportional to their area, through the cumulative
-// fractions in cdf_area.x, the last of which is exactly 1.
+// are chosen with probability proportional to their power, through the cumulative
+// fractions in cdf.x, the last of which is exactly 1. A rectangle (the two triangles
+// of a rectangular quad) is one emitter, which names its first half.
 struct Emitter {
     uvec4 prim;      // x = primitive reference (kind << REF_KIND_SHIFT | index, as the grid's),
                      // y = the part of a cylinder (CYLINDER_SIDE, _BASE_CAP, _TOP_CAP), z/w unused
-    vec4 cdf_area;   // x = area of the emitters up to and including this one / total area, y = area, z/w unused
+    vec4 cdf;        // x = power of the emitters up to and including this one / total power, y = area, z/w unused
 };
 #define Emitter_FROM_TEXELS(b, i) Emitter(fetch_texel(b, 2u * (i)), fetch_vec4(b, 2u * (i) + 1u))
 

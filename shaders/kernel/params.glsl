@@ -39,12 +39,13 @@ PARAM(uint, light_samples, 8, w)     // shadow rays each hit sends toward the em
 PARAM(uint, loop_budget, 9, x)       // loop iterations before the sample is given up
 PARAM(uint, max_depth, 9, y)         // reflection and refraction generations after the eye ray
 PARAM(float, min_ray_weight, 9, z)   // secondary rays of a smaller weight are dropped (0: none)
-PARAM(float, emitter_area, 9, w)     // total area of the emitters
+PARAM(float, emitter_power, 9, w)    // total power of the emitters over pi: sum of area * mean radiance
 
 // Global illumination (kernel/global.glsl).
 PARAM(uint, estimator, 10, x)        // ESTIMATOR_*
 PARAM(uint, hemisphere_rule, 10, y)  // HEMISPHERE_*
 PARAM(uint, max_bounces, 10, z)      // scattering events after the first hit
+PARAM(uint, sampler_kind, 10, w)     // SAMPLER_* (rng.glsl)
 
 // The uniform grid (kernel/grid.glsl, host/accel/grid.cpp): cell (i, j, k) spans
 // grid_min() + (i, j, k) * grid_cell() to grid_min() + (i+1, j+1, k+1) * grid_cell();

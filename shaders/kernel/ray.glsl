@@ -11,6 +11,7 @@ struct Hit {
     vec3 geo_normal;  // geometric normal, unit length, facing the incoming ray
     uint material;
     bool front_face;  // the ray arrived on the side the primitive calls its front
+    uint prim;        // what was hit, as a grid reference (kind << REF_KIND_SHIFT | index); REF_NONE for nothing
 };
 
 // v / |v|, by a correctly rounded sqrt and division. Not normalize(): lavapipe
@@ -30,7 +31,7 @@ bool is_finite_bits(float x) {
 }
 
 Hit no_hit() {
-    return Hit(INFINITY_T, vec3(0.0f), vec3(0.0f), 0u, false);
+    return Hit(INFINITY_T, vec3(0.0f), vec3(0.0f), 0u, false, REF_NONE);
 }
 
 // Moves a point off a surface along its geometric normal by an amount proportional to
