@@ -47,7 +47,13 @@ if (e0 <= 0) {
 }
 guide(t) = e0 * sqrt(t0 / t)
 
+# Each curve its own colour and its own mark, so that none can be mistaken for
+# another in print or for a reader who does not tell colours apart.
+colours = "#1f77b4 #ff7f0e #2ca02c #d62728 #9467bd #8c564b #e377c2 #17becf #bcbd22 #000000 " . \
+          "#7f7f7f #aec7e8 #ffbb78 #98df8a #ff9896 #c5b0d5"
+colour(i) = word(colours, (i - 1) % words(colours) + 1)
+mark(i) = (i - 1) % 15 + 1
 row(i) = strcol(1)."/".strcol(2) eq word(curves, i)
 plot for [i = 1:words(curves)] csv skip 1 using 4:(row(i) ? $5 : NaN) \
-         with linespoints lw 2 pt 7 ps 0.8 title word(curves, i), \
+         with linespoints lw 2 lc rgb colour(i) pt mark(i) ps 1.1 title word(curves, i), \
      guide(x) with lines dt 2 lw 1.5 lc rgb "#888888" title "1/sqrt(t)"

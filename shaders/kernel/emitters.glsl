@@ -152,6 +152,15 @@ bool sampled_by_solid_angle(float solid_angle) {
     return solid_angle > MIN_SAMPLED_SOLID_ANGLE && solid_angle < MAX_SAMPLED_SOLID_ANGLE;
 }
 
+// Whether o is near enough to the rectangle for its spherical rectangle to pay:
+// within RECT_NEAR diagonals of its centre. Farther, distance and cosine vary little
+// over the rectangle, area sampling is almost as good, and it costs a fraction of
+// the spherical rectangle's square roots and arc tangents.
+bool near_rect(vec3 o, Rect q) {
+    vec3 d = q.corner + 0.5f * (q.ex + q.ey) - o;
+    return dot(d, d) < RECT_NEAR * RECT_NEAR * (dot(q.ex, q.ex) + dot(q.ey, q.ey));
+}
+
 // The density over solid angle at o of a point y on an emitter drawn uniformly by
 // area, with its density over area.
 float area_to_solid_angle(float area_density, vec3 o, vec3 y, vec3 normal) {
@@ -190,10 +199,12 @@ LightSample sample_light(vec3 o, INOUT(Rng) rng) {
             if (!(dot(o - q.corner, normal) > 0.0f)) {
                 return LightSample(q.corner, normal, emission, 0.0f);  // behind the emitting face
             }
-            SphericalRect sr = spherical_rect(o, q.corner, q.ex, q.ey);
-            if (sampled_by_solid_angle(sr.solid_angle)) {
-                float choice = emission_weight(emission) * rect_area(q) / emitter_power();
-                return LightSample(spherical_rect_point(sr, u.x, u.y), normal, emission, choice / sr.solid_angle);
+            if (near_rect(o, q)) {
+                SphericalRect sr = spherical_rect(o, q.corner, q.ex, q.ey);
+                if (sampled_by_solid_angle(sr.solid_angle)) {
+                    float choice = emission_weight(emission) * rect_area(q) / emitter_power();
+                    return LightSample(spherical_rect_point(sr, u.x, u.y), normal, emission, choice / sr.solid_angle);
+                }
             }
             precise vec3 y = q.corner + u.x * q.ex + u.y * q.ey;
             float density = emission_weight(emission) / emitter_power();
@@ -224,9 +235,11 @@ float light_pdf_of_hit(Ray ray, Hit hit, vec3 emission) {
         Triangle tri = load_triangle(index);
         if (tri.meta.z != 0u) {
             Rect q = rect_of_half(tri);
-            SphericalRect sr = spherical_rect(ray.origin, q.corner, q.ex, q.ey);
-            if (sampled_by_solid_angle(sr.solid_angle)) {
-                return area_density * rect_area(q) / sr.solid_angle;
+            if (near_rect(ray.origin, q)) {
+                SphericalRect sr = spherical_rect(ray.origin, q.corner, q.ex, q.ey);
+                if (sampled_by_solid_angle(sr.solid_angle)) {
+                    return area_density * rect_area(q) / sr.solid_angle;
+                }
             }
         }
     }

@@ -9,6 +9,10 @@
 const float MIN_SAMPLED_SOLID_ANGLE = 1.0e-3f;
 const float MAX_SAMPLED_SOLID_ANGLE = 6.2f;
 
+// Rectangles are sampled by solid angle from points within this many of their
+// diagonals of their centre (emitters.glsl, near_rect).
+const float RECT_NEAR = 2.0f;
+
 // A rectangle (corner, perpendicular edges ex and ey) seen from o, set up as in
 // Ureña, Fajardo & King, "An Area-Preserving Parametrization for Spherical
 // Rectangles" (EGSR 2013), section 3: a frame x, y along the edges and z away from
