@@ -166,25 +166,30 @@ TEST(SobolSampler, SlotsAndPixelsDoNotCorrelate) {
     EXPECT_LT(std::abs(correlation(a, b)), 0.06);
 }
 
-TEST(SobolSampler, IsAPureFunctionOfPixelSampleSeedAndSlot) {
-    Kernel k = kernel_with(vkrt::kernel::SAMPLER_SOBOL);
-    auto a = k.rng_start(3, 4, 5);
-    auto b = k.rng_start(3, 4, 5);
-    std::vector<float> drawn;
-    for (int i = 0; i < 8; ++i) {
-        const vec2 x = k.rng_2d(a);
-        EXPECT_EQ(x, k.rng_2d(b));
-        drawn.push_back(x.x);
+// Both samplers: the same (pixel, sample, seed, slot) gives the same number, and
+// changing any one of them changes it.
+TEST(Samplers, ArePureFunctionsOfPixelSampleSeedAndSlot) {
+    for (uint sampler : {vkrt::kernel::SAMPLER_SOBOL, vkrt::kernel::SAMPLER_HASH}) {
+        SCOPED_TRACE(sampler == vkrt::kernel::SAMPLER_SOBOL ? "sobol" : "hash");
+        Kernel k = kernel_with(sampler);
+        auto a = k.rng_start(3, 4, 5);
+        auto b = k.rng_start(3, 4, 5);
+        std::vector<float> drawn;
+        for (int i = 0; i < 8; ++i) {
+            const vec2 x = k.rng_2d(a);
+            EXPECT_EQ(x, k.rng_2d(b));
+            drawn.push_back(x.x);
+        }
+        auto c = k.rng_start(3, 4, 5);
+        k.rng_seek(c, 5);
+        EXPECT_EQ(k.rng_1d(c), drawn[5]);  // seeking lands where drawing in order does
+        auto first = [&](uint p, uint s, uint seed) {
+            auto r = k.rng_start(p, s, seed);
+            return k.rng_1d(r);
+        };
+        std::set<float> values{first(3, 4, 5), first(4, 4, 5), first(3, 5, 5), first(3, 4, 6)};
+        EXPECT_EQ(values.size(), 4u);
     }
-    auto c = k.rng_start(3, 4, 5);
-    k.rng_seek(c, 5);
-    EXPECT_EQ(k.rng_1d(c), drawn[5]);  // seeking lands where drawing in order does
-    auto first = [&](uint p, uint s, uint seed) {
-        auto r = k.rng_start(p, s, seed);
-        return k.rng_1d(r);
-    };
-    std::set<float> values{first(3, 4, 5), first(4, 4, 5), first(3, 5, 5), first(3, 4, 6)};
-    EXPECT_EQ(values.size(), 4u);
 }
 
 // The hash sampler is the hash: a slot's one number is rng_next's, its pair the
