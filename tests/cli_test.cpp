@@ -221,4 +221,18 @@ TEST(Cli, ReferenceGivesTheErrorInTheSummary) {
     EXPECT_FALSE(fs::exists(dir / "other.png"));
 }
 
+// --sampler overrides the scene's render.sampler: sobol is the default, hash draws
+// other numbers, so another image of the same scene.
+TEST(Cli, SamplerOptionPicksTheRandomNumbers) {
+    const fs::path dir = test::temp_dir("cli_sampler");
+    const std::string render =
+        "render " + test::shell_quote(scene("area_light").string()) + " --backend cpu --width 40 --height 30 -q -o ";
+    auto out = [&](const char* name) { return test::shell_quote((dir / name).string()); };
+    ASSERT_EQ(test::run_vkrt(render + out("default.exr"), dir).code, 0);
+    ASSERT_EQ(test::run_vkrt(render + out("sobol.exr") + " --sampler sobol", dir).code, 0);
+    ASSERT_EQ(test::run_vkrt(render + out("hash.exr") + " --sampler hash", dir).code, 0);
+    ASSERT_EQ(test::run_vkrt("compare " + out("default.exr") + " " + out("sobol.exr") + " --max-abs 0", dir).code, 0);
+    EXPECT_NE(test::run_vkrt("compare " + out("default.exr") + " " + out("hash.exr") + " --max-abs 0", dir).code, 0);
+}
+
 }  // namespace

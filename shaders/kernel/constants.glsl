@@ -75,8 +75,7 @@ const uint SAMPLER_SOBOL = 1u;  // Owen-scrambled Sobol points, one shuffled 2-D
 // BOUNCE_SLOTS per bounce in this order, so a decision always takes the same slot
 // whichever branches the path took before it.
 const uint SLOT_CAMERA = 0u;
-const uint SLOT_LIGHT_CHOICE = 0u;  // offsets within a bounce's slots
-const uint SLOT_LIGHT_POINT = 1u;
+const uint SLOT_LIGHT_CHOICE = 0u;  // offsets within a bounce's slots; the light point takes the next one
 const uint SLOT_LOBE = 2u;
 const uint SLOT_DIRECTION = 3u;
 const uint SLOT_ROULETTE = 4u;

@@ -161,6 +161,16 @@ bool near_rect(vec3 o, Rect q) {
     return dot(d, d) < RECT_NEAR * RECT_NEAR * (dot(q.ex, q.ex) + dot(q.ey, q.ey));
 }
 
+// Whether the rectangle is sampled by solid angle from o, and then its spherical
+// rectangle: the one rule of sample_light and light_pdf_of_hit.
+bool rect_by_solid_angle(vec3 o, Rect q, INOUT(SphericalRect) sr) {
+    if (!near_rect(o, q)) {
+        return false;
+    }
+    sr = spherical_rect(o, q.corner, q.ex, q.ey);
+    return sampled_by_solid_angle(sr.solid_angle);
+}
+
 // The density over solid angle at o of a point y on an emitter drawn uniformly by
 // area, with its density over area.
 float area_to_solid_angle(float area_density, vec3 o, vec3 y, vec3 normal) {
@@ -199,12 +209,10 @@ LightSample sample_light(vec3 o, INOUT(Rng) rng) {
             if (!(dot(o - q.corner, normal) > 0.0f)) {
                 return LightSample(q.corner, normal, emission, 0.0f);  // behind the emitting face
             }
-            if (near_rect(o, q)) {
-                SphericalRect sr = spherical_rect(o, q.corner, q.ex, q.ey);
-                if (sampled_by_solid_angle(sr.solid_angle)) {
-                    float choice = emission_weight(emission) * rect_area(q) / emitter_power();
-                    return LightSample(spherical_rect_point(sr, u.x, u.y), normal, emission, choice / sr.solid_angle);
-                }
+            SphericalRect sr;
+            if (rect_by_solid_angle(o, q, sr)) {
+                float choice = emission_weight(emission) * rect_area(q) / emitter_power();
+                return LightSample(spherical_rect_point(sr, u.x, u.y), normal, emission, choice / sr.solid_angle);
             }
             precise vec3 y = q.corner + u.x * q.ex + u.y * q.ey;
             float density = emission_weight(emission) / emitter_power();
@@ -235,11 +243,9 @@ float light_pdf_of_hit(Ray ray, Hit hit, vec3 emission) {
         Triangle tri = load_triangle(index);
         if (tri.meta.z != 0u) {
             Rect q = rect_of_half(tri);
-            if (near_rect(ray.origin, q)) {
-                SphericalRect sr = spherical_rect(ray.origin, q.corner, q.ex, q.ey);
-                if (sampled_by_solid_angle(sr.solid_angle)) {
-                    return area_density * rect_area(q) / sr.solid_angle;
-                }
+            SphericalRect sr;
+            if (rect_by_solid_angle(ray.origin, q, sr)) {
+                return area_density * rect_area(q) / sr.solid_angle;
             }
         }
     }
