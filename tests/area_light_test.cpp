@@ -36,7 +36,7 @@ constexpr double kAlbedo = 0.5;  // the floor's diffuse reflectance, kd = 1
 constexpr std::uint32_t kProbeSide = 16;
 
 void add_quad(Scene& s, dvec3 corner, dvec3 e1, dvec3 e2, std::uint32_t material) {
-    for (const Triangle& t : quad_triangles(corner, e1, e2, material)) s.triangles.push_back(t);
+    s.triangles.push_back(quad(corner, e1, e2, material));
 }
 
 // A grey Lambertian floor (material 0, y = 0, facing up) and an emissive material 1
@@ -492,14 +492,13 @@ TEST(EmitterList, OneEntryPerEmitterWithPowerFractions) {
     EXPECT_NEAR(kernel::emitter_power(g.params), total, 1e-6);
     EXPECT_EQ(kernel::emitter_count(g.params), 3u);
     EXPECT_EQ(kernel::light_samples(g.params), 16u);
-    // Spheres first, then triangles (the floor's two are triangles 0 and 1); the
-    // rectangle names its first half, and its halves are tagged.
+    // Spheres first, then triangle records (the floor is record 0); the lamp is one
+    // record, a rectangle.
     EXPECT_EQ(g.emitters[0].prim.x, (kernel::REF_SPHERE << kernel::REF_KIND_SHIFT) | 0u);
-    EXPECT_EQ(g.emitters[1].prim.x, (kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | 2u);
-    EXPECT_EQ(g.emitters[2].prim.x, (kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | 4u);
-    EXPECT_EQ(g.triangles[2].meta.z, kernel::RECT_FIRST_HALF);
-    EXPECT_EQ(g.triangles[3].meta.z, kernel::RECT_SECOND_HALF);
-    EXPECT_EQ(g.triangles[4].meta.z, 0u);
+    EXPECT_EQ(g.emitters[1].prim.x, (kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | 1u);
+    EXPECT_EQ(g.emitters[2].prim.x, (kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | 2u);
+    EXPECT_EQ(g.triangles[1].meta.z, kernel::SHAPE_RECTANGLE);
+    EXPECT_EQ(g.triangles[2].meta.z, kernel::SHAPE_TRIANGLE);
     EXPECT_NEAR(g.emitters[0].cdf.y, kPi, 1e-6);
     EXPECT_NEAR(g.emitters[1].cdf.y, 2.0, 1e-6);
     EXPECT_NEAR(g.emitters[0].cdf.x, kPi / total, 1e-7);

@@ -155,10 +155,10 @@ TEST(Cli, GridOptionChoosesTheAcceleration) {
     EXPECT_EQ(stats()["grid"]["used"], false);
     EXPECT_EQ(stats()["work"]["cells_visited"], 0);
 
-    // The default scene has 7 primitives: below the threshold, auto says so.
+    // The default scene has 5 primitives: below the threshold, auto says so.
     ASSERT_EQ(test::run_vkrt(base, dir).code, 0);
     EXPECT_EQ(stats()["grid"]["used"], false);
-    EXPECT_NE(stats()["grid"]["reason"].get<std::string>().find("7 primitives, below"), std::string::npos);
+    EXPECT_NE(stats()["grid"]["reason"].get<std::string>().find("5 primitives, below"), std::string::npos);
 
     for (const char* bad : {"0x1x1", "4x4", "4x4x4x4", "fast", "70000x1x1", "4x4x"}) {
         const test::ProgramRun run = test::run_vkrt(base + " --grid " + bad, dir);

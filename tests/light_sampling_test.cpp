@@ -161,7 +161,7 @@ TEST(LightPdf, AHitOnALightHasTheDensityItsSampleStated) {
       ]
     })");
     const FlatScene flat = flatten_scene(scene);
-    ASSERT_EQ(flat.emitters.size(), 7u);  // the parallelogram is two triangles
+    ASSERT_EQ(flat.emitters.size(), 6u);
     kernel::Kernel k = make_kernel(flat);
     std::mt19937 rng(17);
     std::uniform_real_distribution<float> spread(-1.5f, 1.5f);
@@ -186,21 +186,21 @@ TEST(LightPdf, AHitOnALightHasTheDensityItsSampleStated) {
     EXPECT_GT(compared, 2000);
 }
 
-// A quad whose edges are not perpendicular is no rectangle: two emitters by area.
-TEST(LightPdf, AParallelogramIsTwoTriangles) {
+// A quad whose edges are not perpendicular is a parallelogram, sampled by area.
+TEST(LightPdf, AParallelogramIsNoRectangle) {
     Scene s;
     Material lamp;
     lamp.name = "lamp";
     lamp.emission = dvec3(1.0);
     s.materials = {lamp};
-    for (const Triangle& t : quad_triangles({0, 0, 0}, {1, 0, 0}, {0.5, 0, 1}, 0)) s.triangles.push_back(t);
-    for (const Triangle& t : quad_triangles({0, 2, 0}, {1, 0, 0}, {0, 0, 1}, 0)) s.triangles.push_back(t);
+    s.triangles.push_back(quad({0, 0, 0}, {1, 0, 0}, {0.5, 0, 1}, 0));
+    s.triangles.push_back(quad({0, 2, 0}, {1, 0, 0}, {0, 0, 1}, 0));
     const FlatScene g = flatten_scene(s);
-    ASSERT_EQ(g.emitters.size(), 3u);
-    EXPECT_EQ(g.triangles[0].meta.z, 0u);
-    EXPECT_EQ(g.triangles[1].meta.z, 0u);
-    EXPECT_EQ(g.triangles[2].meta.z, kernel::RECT_FIRST_HALF);
-    EXPECT_EQ(g.triangles[3].meta.z, kernel::RECT_SECOND_HALF);
+    ASSERT_EQ(g.emitters.size(), 2u);
+    EXPECT_EQ(g.triangles[0].meta.z, kernel::SHAPE_PARALLELOGRAM);
+    EXPECT_EQ(g.triangles[1].meta.z, kernel::SHAPE_RECTANGLE);
+    EXPECT_NEAR(g.emitters[0].cdf.y, 1.0, 1e-6);
+    EXPECT_NEAR(g.emitters[1].cdf.y, 1.0, 1e-6);
 }
 
 }  // namespace

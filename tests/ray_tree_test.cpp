@@ -105,7 +105,7 @@ Material material(dvec3 diffuse, dvec3 reflect = dvec3(0.0), dvec3 transmit = dv
 }
 
 void add_quad(Scene& s, dvec3 corner, dvec3 e1, dvec3 e2, std::uint32_t material) {
-    for (const Triangle& t : quad_triangles(corner, e1, e2, material)) s.triangles.push_back(t);
+    s.triangles.push_back(quad(corner, e1, e2, material));
 }
 
 Scene empty_scene() {

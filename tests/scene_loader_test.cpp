@@ -256,30 +256,23 @@ TEST_F(SceneLoaderTest, LightDefaults) {
     EXPECT_DOUBLE_EQ(s.lights[0].intensity, 1.0);
 }
 
-TEST_F(SceneLoaderTest, QuadBecomesTwoTrianglesFacingCrossOfEdges) {
+TEST_F(SceneLoaderTest, QuadBecomesOneParallelogramFacingCrossOfEdges) {
     const Scene s = load(Parts{.objects = R"([{"type": "quad", "corner": [1, 2, 3], "edge1": [2, 0, 0],
                                            "edge2": [0, 0, -4], "material": "glass"}])"}
                              .text());
-    ASSERT_EQ(s.triangles.size(), 2u);
-    const auto& a = s.triangles[0];
-    const auto& b = s.triangles[1];
-    expect_vec(a.vertices[0], {1, 2, 3});   // corner
-    expect_vec(a.vertices[1], {3, 2, 3});   // corner + e1
-    expect_vec(a.vertices[2], {3, 2, -1});  // corner + e1 + e2
-    expect_vec(b.vertices[0], {1, 2, 3});   // corner
-    expect_vec(b.vertices[1], {3, 2, -1});  // corner + e1 + e2
-    expect_vec(b.vertices[2], {1, 2, -1});  // corner + e2
-    EXPECT_FALSE(a.normals.has_value());
-    EXPECT_FALSE(b.normals.has_value());
-    EXPECT_EQ(a.material, 1u);
-    EXPECT_EQ(b.material, 1u);
-    // cross((2,0,0), (0,0,-4)) = (0,8,0): both halves must face +y.
-    for (const auto& t : s.triangles) {
-        const dvec3 n = glm::cross(t.vertices[1] - t.vertices[0], t.vertices[2] - t.vertices[0]);
-        EXPECT_GT(n.y, 0.0);
-        EXPECT_DOUBLE_EQ(n.x, 0.0);
-        EXPECT_DOUBLE_EQ(n.z, 0.0);
-    }
+    ASSERT_EQ(s.triangles.size(), 1u);
+    const auto& q = s.triangles[0];
+    EXPECT_TRUE(q.parallelogram);
+    expect_vec(q.vertices[0], {1, 2, 3});   // corner
+    expect_vec(q.vertices[1], {3, 2, 3});   // corner + e1
+    expect_vec(q.vertices[2], {3, 2, -1});  // corner + e1 + e2
+    EXPECT_FALSE(q.normals.has_value());
+    EXPECT_EQ(q.material, 1u);
+    // cross((2,0,0), (0,0,-4)) = (0,8,0): the front faces +y.
+    const dvec3 n = glm::cross(q.vertices[1] - q.vertices[0], q.vertices[2] - q.vertices[0]);
+    EXPECT_GT(n.y, 0.0);
+    EXPECT_DOUBLE_EQ(n.x, 0.0);
+    EXPECT_DOUBLE_EQ(n.z, 0.0);
 }
 
 TEST_F(SceneLoaderTest, AcceptsWholeNumbersWrittenAsFloats) {

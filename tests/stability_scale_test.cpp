@@ -76,9 +76,11 @@ double hit_triangle(const Ray64& r, const Triangle& tri, double t_min) {
     const double t = glm::dot(n, tri.vertices[0] - r.origin) / denom;
     if (!(t > t_min)) return kInf;
     const dvec3 p = r.origin + t * r.dir;
-    // Inside when p lies on the inner side of all three edges.
-    for (int k = 0; k < 3; ++k) {
-        const dvec3 a = tri.vertices[k], b = tri.vertices[(k + 1) % 3];
+    // Inside when p lies on the inner side of every edge (three, or a parallelogram's four).
+    std::vector<dvec3> corners(tri.vertices.begin(), tri.vertices.end());
+    if (tri.parallelogram) corners.push_back(tri.vertices[0] + tri.vertices[2] - tri.vertices[1]);
+    for (std::size_t k = 0; k < corners.size(); ++k) {
+        const dvec3 a = corners[k], b = corners[(k + 1) % corners.size()];
         if (glm::dot(glm::cross(b - a, p - a), n) < 0.0) return kInf;
     }
     return t;

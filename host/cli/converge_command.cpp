@@ -28,8 +28,8 @@ Command add_converge_command(CLI::App& program) {
         ->check(CLI::IsMember({"vulkan", "cpu"}))
         ->allow_extra_args(false);
     v->add_option("--estimator", args->estimators,
-                  "Estimator of a curve: paper, path or path+nee, optionally :angles, :uniform or :cosine; repeat for "
-                  "more (default: the scene's own)")
+                  "Estimator of a curve: paper, path or path+nee, optionally :angles, :uniform or :cosine, then "
+                  "optionally @sobol or @hash (e.g. path:uniform@hash); repeat for more (default: the scene's own)")
         ->check(accepted_by([](const std::string& text) { parse_estimator_spec(text); }, "SPEC"))
         ->allow_extra_args(false);
     v->add_option("--until", args->until, "Render each curve for this many seconds of passes")

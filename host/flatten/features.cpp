@@ -74,6 +74,8 @@ FeatureSet analyze_features(const Scene& scene) {
     f.set(Feature::HAS_TRIANGLES, !scene.triangles.empty());
     f.set(Feature::HAS_RINGS, !scene.rings.empty());
     f.set(Feature::HAS_CYLINDERS, !scene.cylinders.empty());
+    f.set(Feature::HAS_QUADS, std::any_of(scene.triangles.begin(), scene.triangles.end(),
+                                          [](const Triangle& t) { return t.parallelogram; }));
     f.set(Feature::HAS_SMOOTH_NORMALS,
           std::any_of(scene.triangles.begin(), scene.triangles.end(),
                       [](const Triangle& t) { return t.normals.has_value(); }));

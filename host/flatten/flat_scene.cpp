@@ -79,6 +79,17 @@ kernel::Material flatten(const Material& m) {
                             to_vec4(m.emission, m.fresnel ? 1.0 : 0.0));
 }
 
+// Which shape a Triangle record holds (kernel::Triangle meta.z): a parallelogram with
+// perpendicular edges is a rectangle, which the kernel samples by solid angle when it
+// emits (kernel/emitters.glsl).
+std::uint32_t shape_of(const Triangle& t) {
+    if (!t.parallelogram) return kernel::SHAPE_TRIANGLE;
+    const dvec3 e1 = t.vertices[1] - t.vertices[0];
+    const dvec3 e2 = t.vertices[2] - t.vertices[1];
+    const bool perpendicular = std::abs(glm::dot(e1, e2)) <= 1e-6 * glm::length(e1) * glm::length(e2);
+    return perpendicular ? kernel::SHAPE_RECTANGLE : kernel::SHAPE_PARALLELOGRAM;
+}
+
 kernel::Triangle flatten(const Triangle& t, const dvec3& origin) {
     kernel::Triangle out{};
     out.p0 = to_vec4(t.vertices[0] - origin);
@@ -89,39 +100,15 @@ kernel::Triangle flatten(const Triangle& t, const dvec3& origin) {
         out.n1 = to_vec4((*t.normals)[1]);
         out.n2 = to_vec4((*t.normals)[2]);
     }
-    out.meta = uvec4(t.material, t.normals ? 1u : 0u, 0u, 0u);
+    out.meta = uvec4(t.material, t.normals ? 1u : 0u, shape_of(t), 0u);
     return out;
-}
-
-// Whether triangle i and i + 1 are the halves of a rectangular quad: made by
-// quad_triangles (in that order) from perpendicular edges. A quad whose edges are not
-// perpendicular stays two triangles, each its own emitter sampled by area.
-bool rectangle_at(const std::vector<Triangle>& triangles, std::size_t i) {
-    if (i + 1 >= triangles.size() || triangles[i].quad_half != 1 || triangles[i + 1].quad_half != 2) return false;
-    const auto& v = triangles[i].vertices;
-    const dvec3 e1 = v[1] - v[0];
-    const dvec3 e2 = v[2] - v[1];
-    return std::abs(glm::dot(e1, e2)) <= 1e-6 * glm::length(e1) * glm::length(e2);
-}
-
-// Tags the halves of each rectangle (kernel::Triangle meta.z), which the kernel
-// samples as one light by solid angle (kernel/emitters.glsl).
-void mark_rectangles(const std::vector<Triangle>& triangles, std::vector<kernel::Triangle>& out) {
-    for (std::size_t i = 0; i + 1 < triangles.size(); ++i) {
-        if (rectangle_at(triangles, i)) {
-            out[i].meta.z = kernel::RECT_FIRST_HALF;
-            out[i + 1].meta.z = kernel::RECT_SECOND_HALF;
-            ++i;
-        }
-    }
 }
 
 double mean(const dvec3& c) { return (c.x + c.y + c.z) / 3.0; }
 
-// The emissive primitives as area lights (kernel/emitters.glsl): one Emitter each (a
-// rectangle one for its two triangles), with the running fraction of the total power
-// (area times mean emitted radiance) that lets the kernel pick one with probability
-// proportional to its power.
+// The emissive primitives as area lights (kernel/emitters.glsl): one Emitter each,
+// with the running fraction of the total power (area times mean emitted radiance)
+// that lets the kernel pick one with probability proportional to its power.
 void add_emitters(const Scene& scene, FlatScene& g) {
     struct Found {
         std::uint32_t ref;
@@ -143,9 +130,7 @@ void add_emitters(const Scene& scene, FlatScene& g) {
     for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
         const Triangle& t = scene.triangles[i];
         const dvec3 c = glm::cross(t.vertices[1] - t.vertices[0], t.vertices[2] - t.vertices[0]);
-        const bool rectangle = rectangle_at(scene.triangles, i);
-        add(kernel::REF_TRIANGLE, i, (rectangle ? 1.0 : 0.5) * glm::length(c), t.material);
-        if (rectangle) ++i;  // the second half is part of the same emitter
+        add(kernel::REF_TRIANGLE, i, (t.parallelogram ? 1.0 : 0.5) * glm::length(c), t.material);
     }
     for (std::size_t i = 0; i < scene.rings.size(); ++i) {
         const Ring& r = scene.rings[i];
@@ -357,7 +342,6 @@ FlatScene flatten_scene(const Scene& scene, const AccelPolicy& policy) {
     }
     if (g.features.has(Feature::HAS_TRIANGLES)) {
         for (const Triangle& t : scene.triangles) g.triangles.push_back(flatten(t, o));
-        mark_rectangles(scene.triangles, g.triangles);
     }
     if (g.features.has(Feature::HAS_RINGS)) {
         for (const Ring& ring : scene.rings) {

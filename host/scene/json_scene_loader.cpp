@@ -304,7 +304,7 @@ Cylinder read_cylinder(const Node& n, const MaterialIndex& materials) {
     return c;
 }
 
-// A quad is two triangles (quad_triangles, scene.hpp).
+// A quad is one parallelogram (quad, scene.hpp).
 void read_quad(const Node& n, const MaterialIndex& materials, std::vector<Triangle>& out) {
     n.allow_only({"corner", "edge1", "edge2", "material", "type"});
     const dvec3 corner = n.required("corner").vec3();
@@ -314,7 +314,7 @@ void read_quad(const Node& n, const MaterialIndex& materials, std::vector<Triang
     if (!is_nonzero(e1)) n.fail_field("edge1", "expected a non-zero vector, got [0, 0, 0]");
     if (!is_nonzero(e2)) edge2.fail("expected a non-zero vector, got [0, 0, 0]");
     if (parallel_or_zero(e1, e2)) edge2.fail("edge1 and edge2 are parallel, so the quad has zero area");
-    for (const Triangle& t : quad_triangles(corner, e1, e2, material_of(n, materials))) out.push_back(t);
+    out.push_back(quad(corner, e1, e2, material_of(n, materials)));
 }
 
 void read_objects(const Node& n, const MaterialIndex& materials, Scene& scene) {

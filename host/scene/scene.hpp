@@ -106,21 +106,20 @@ struct Sphere {
     std::uint32_t material = 0;  // index into Scene::materials
 };
 
-// A quad in the scene file becomes two of these (front face = cross(edge1, edge2)).
+// A triangle v0 v1 v2, or with `parallelogram` the parallelogram v0, v1, v2,
+// v0 + v2 - v1: a scene file's quad, one primitive. The front face is the side of
+// cross(v1 - v0, v2 - v0).
 struct Triangle {
     std::array<dvec3, 3> vertices{};
-    std::optional<std::array<dvec3, 3>> normals;  // interpolated when present
+    std::optional<std::array<dvec3, 3>> normals;  // interpolated when present (triangles only)
     std::uint32_t material = 0;
-    // 1 and 2 for the first and second triangle of quad_triangles, else 0: a
-    // rectangle's halves are one area light, sampled by solid angle (host/flatten).
-    std::uint32_t quad_half = 0;
+    bool parallelogram = false;
 };
 
-// The quad corner, corner + e1, corner + e1 + e2, corner + e2 as two triangles
-// sharing the diagonal, both facing cross(e1, e2): what the scene file's "quad" is.
-inline std::array<Triangle, 2> quad_triangles(dvec3 corner, dvec3 e1, dvec3 e2, std::uint32_t material) {
-    return {Triangle{{corner, corner + e1, corner + e1 + e2}, std::nullopt, material, 1},
-            Triangle{{corner, corner + e1 + e2, corner + e2}, std::nullopt, material, 2}};
+// The quad corner, corner + e1, corner + e1 + e2, corner + e2, facing cross(e1, e2):
+// what the scene file's "quad" is.
+inline Triangle quad(dvec3 corner, dvec3 e1, dvec3 e2, std::uint32_t material) {
+    return Triangle{{corner, corner + e1, corner + e1 + e2}, std::nullopt, material, true};
 }
 
 // An annulus: the points of the plane through `center` perpendicular to `normal`

@@ -44,10 +44,12 @@ const uint CYLINDER_SIDE = 0u;
 const uint CYLINDER_BASE_CAP = 1u;
 const uint CYLINDER_TOP_CAP = 2u;
 
-// The triangles of a rectangle (Triangle.meta.z): corner, corner + ex, corner + ex + ey
-// and corner, corner + ex + ey, corner + ey.
-const uint RECT_FIRST_HALF = 1u;
-const uint RECT_SECOND_HALF = 2u;
+// What a Triangle record holds (Triangle.meta.z): a triangle p0 p1 p2, or the
+// parallelogram p0, p1, p2, p0 + p2 - p1 (a scene file's quad), which is a rectangle
+// when its edges are perpendicular (an emissive one is sampled by solid angle).
+const uint SHAPE_TRIANGLE = 0u;
+const uint SHAPE_PARALLELOGRAM = 1u;
+const uint SHAPE_RECTANGLE = 2u;
 
 // Mesa's lavapipe stops an invocation's loops silently after 65,535 iterations in
 // total (docs/architecture.md). The kernel counts its own iterations the way lavapipe does

@@ -91,15 +91,20 @@ EmitterPoint emitter_point(Emitter e, float u1, float u2) {
     }
     if (HAS_TRIANGLES && kind == REF_TRIANGLE) {
         Triangle tri = load_triangle(index);
+        vec3 p0 = vec3(tri.p0);
+        vec3 p1 = vec3(tri.p1);
+        vec3 p2 = vec3(tri.p2);
+        vec3 emission = vec3(load_material(tri.meta.x).emission_fresnel);
+        if (HAS_QUADS && tri.meta.z != SHAPE_TRIANGLE) {
+            precise vec3 y = p0 + u1 * (p1 - p0) + u2 * (p2 - p1);
+            return EmitterPoint(y, triangle_face_normal(p0, p1, p2), emission);
+        }
         // The square-root parameterization (Osada et al., "Shape Distributions",
         // 2002): barycentrics (1 - sqrt(u1), sqrt(u1) (1 - u2), sqrt(u1) u2) are
         // uniform by area.
         float su = sqrt(u1);
-        vec3 p0 = vec3(tri.p0);
-        vec3 p1 = vec3(tri.p1);
-        vec3 p2 = vec3(tri.p2);
         precise vec3 y = (1.0f - su) * p0 + (su * (1.0f - u2)) * p1 + (su * u2) * p2;
-        return EmitterPoint(y, triangle_face_normal(p0, p1, p2), vec3(load_material(tri.meta.x).emission_fresnel));
+        return EmitterPoint(y, triangle_face_normal(p0, p1, p2), emission);
     }
     // Not reached for a list the host built; a zero normal faces nothing, so the
     // estimator skips the point.
@@ -121,23 +126,16 @@ struct LightSample {
     float pdf;
 };
 
-// The rectangle a triangle is half of (Triangle.meta.z, set by the host for the two
-// triangles of a rectangular "quad"), as a corner and two perpendicular edges.
+// A parallelogram Triangle record (meta.z != SHAPE_TRIANGLE) as a corner and its two
+// edges, perpendicular for SHAPE_RECTANGLE: p0, p0 + ex, p0 + ex + ey, p0 + ey.
 struct Rect {
     vec3 corner;
     vec3 ex;
     vec3 ey;
 };
 
-Rect rect_of_half(Triangle tri) {
-    vec3 p0 = vec3(tri.p0);
-    vec3 p1 = vec3(tri.p1);
-    vec3 p2 = vec3(tri.p2);
-    // First half: corner, corner + ex, corner + ex + ey; second: corner, corner + ex + ey, corner + ey.
-    if (tri.meta.z == RECT_FIRST_HALF) {
-        return Rect(p0, p1 - p0, p2 - p1);
-    }
-    return Rect(p0, p1 - p2, p2 - p0);
+Rect rect_of(Triangle tri) {
+    return Rect(vec3(tri.p0), vec3(tri.p1) - vec3(tri.p0), vec3(tri.p2) - vec3(tri.p1));
 }
 
 float rect_area(Rect q) {
@@ -202,8 +200,8 @@ LightSample sample_light(vec3 o, INOUT(Rng) rng) {
     }
     if (HAS_TRIANGLES && kind == REF_TRIANGLE) {
         Triangle tri = load_triangle(index);
-        if (tri.meta.z == RECT_FIRST_HALF) {
-            Rect q = rect_of_half(tri);
+        if (HAS_QUADS && tri.meta.z == SHAPE_RECTANGLE) {
+            Rect q = rect_of(tri);
             vec3 normal = triangle_face_normal(vec3(tri.p0), vec3(tri.p1), vec3(tri.p2));
             vec3 emission = vec3(load_material(tri.meta.x).emission_fresnel);
             if (!(dot(o - q.corner, normal) > 0.0f)) {
@@ -241,8 +239,8 @@ float light_pdf_of_hit(Ray ray, Hit hit, vec3 emission) {
     }
     if (HAS_TRIANGLES && kind == REF_TRIANGLE) {
         Triangle tri = load_triangle(index);
-        if (tri.meta.z != 0u) {
-            Rect q = rect_of_half(tri);
+        if (HAS_QUADS && tri.meta.z == SHAPE_RECTANGLE) {
+            Rect q = rect_of(tri);
             SphericalRect sr;
             if (rect_by_solid_angle(ray.origin, q, sr)) {
                 return area_density * rect_area(q) / sr.solid_angle;

@@ -39,3 +39,6 @@ FEATURE(23, LOOSE_CYLINDERS)
 // AccelPolicy::deferred_spheres_from spheres (host/accel/accel_policy.hpp), where it
 // pays on lavapipe.
 FEATURE(24, DEFERRED_SPHERES)
+// Triangle records that hold parallelograms (quads): the triangle test becomes the
+// quad test, which takes a triangle as a quad with p3 = p2 (intersect.glsl).
+FEATURE(25, HAS_QUADS)

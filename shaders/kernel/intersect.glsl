@@ -212,6 +212,55 @@ vec3 permute_axes(vec3 v, int kz) {
     return kz == 0 ? vec3(v.y, v.z, v.x) : (kz == 1 ? vec3(v.z, v.x, v.y) : v);
 }
 
+// p's coordinates relative to the ray's origin, permuted so the ray runs along z and
+// sheared so it runs along z exactly: the paper's x - (d.x / d.z) z, scaled by d.z so
+// that no division is needed (the edge functions scale by d.z^2 > 0, which changes no
+// sign and no ratio). `d` is the permuted direction.
+vec2 sheared(vec3 p, Ray ray, vec3 d, int kz) {
+    precise vec3 q = permute_axes(p - ray.origin, kz);
+    precise float x = q.x * d.z - d.x * q.z;
+    precise float y = q.y * d.z - d.y * q.z;
+    return vec2(x, y);
+}
+
+// What the triangle and the quad tests share once the edge functions found the ray
+// inside: the distance t from the plane through p0, p1, p2, and the weights u = ev /
+// det, v = ew / det.
+TriangleHit plane_hit(Ray ray, vec3 p0, vec3 p1, vec3 p2, float det, float ev, float ew, float t_min,
+                      float t_max) {
+    TriangleHit miss = TriangleHit(INFINITY_T, 0.0f, 0.0f);
+    if (det == 0.0f) {
+        return miss;
+    }
+    precise vec3 e1 = p1 - p0;
+    precise vec3 e2 = p2 - p0;
+    precise float nx = e1.y * e2.z - e1.z * e2.y;
+    precise float ny = e1.z * e2.x - e1.x * e2.z;
+    precise float nz = e1.x * e2.y - e1.y * e2.x;
+    if (nx == 0.0f && ny == 0.0f && nz == 0.0f) {
+        return miss;
+    }
+    // The distance from the plane through p0, not from the paper's barycentric sum
+    // eu a.z + ev b.z + ew c.z: that sum cancels terms as large as the vertices'
+    // distances along the dominant axis, and for a large triangle met far from its
+    // corners (a 2e4-wide glass slab, a ray nearly along it) it put the hit point 1e-3
+    // off the plane, beyond the offset that keeps the next ray on the right side. The
+    // plane form errs by rounding of the normal's projection only (exactly nothing
+    // for an axis-aligned plane). The edge functions still decide the hit.
+    precise float n_dot_d = nx * ray.dir.x + ny * ray.dir.y + nz * ray.dir.z;
+    if (n_dot_d == 0.0f) {
+        return miss;
+    }
+    precise vec3 to_p0 = p0 - ray.origin;
+    precise float t = (nx * to_p0.x + ny * to_p0.y + nz * to_p0.z) / n_dot_d;
+    if (!(t > t_min && t < t_max)) {
+        return miss;
+    }
+    precise float u = ev / det;
+    precise float v = ew / det;
+    return TriangleHit(t, u, v);
+}
+
 // Woop, Benthin & Wald, "Watertight Ray/Triangle Intersection" (JCGT 2013). The
 // vertices are moved to the ray's origin and sheared so that the ray runs along +-z
 // (its dominant axis kz); the 2D edge functions U, V, W of the sheared triangle at
@@ -244,54 +293,45 @@ TriangleHit intersect_triangle(Ray ray, vec3 p0, vec3 p1, vec3 p2, float t_min, 
     vec3 ad = abs(ray.dir);
     int kz = ad.x >= ad.y ? (ad.x >= ad.z ? 0 : 2) : (ad.y >= ad.z ? 1 : 2);
     vec3 d = permute_axes(ray.dir, kz);
-    precise vec3 a = permute_axes(p0 - ray.origin, kz);
-    precise vec3 b = permute_axes(p1 - ray.origin, kz);
-    precise vec3 c = permute_axes(p2 - ray.origin, kz);
-    // The paper's shear x - (d.x / d.z) z, scaled by d.z so that no division is needed:
-    // the edge functions scale by d.z^2 > 0, which changes no sign and no ratio.
-    precise float ax = a.x * d.z - d.x * a.z;
-    precise float ay = a.y * d.z - d.y * a.z;
-    precise float bx = b.x * d.z - d.x * b.z;
-    precise float by = b.y * d.z - d.y * b.z;
-    precise float cx = c.x * d.z - d.x * c.z;
-    precise float cy = c.y * d.z - d.y * c.z;
-    precise float eu = cx * by - cy * bx;  // weight of p0
-    precise float ev = ax * cy - ay * cx;  // weight of p1
-    precise float ew = bx * ay - by * ax;  // weight of p2
+    vec2 a = sheared(p0, ray, d, kz);
+    vec2 b = sheared(p1, ray, d, kz);
+    vec2 c = sheared(p2, ray, d, kz);
+    precise float eu = c.x * b.y - c.y * b.x;  // weight of p0
+    precise float ev = a.x * c.y - a.y * c.x;  // weight of p1
+    precise float ew = b.x * a.y - b.y * a.x;  // weight of p2
     if ((eu < 0.0f || ev < 0.0f || ew < 0.0f) && (eu > 0.0f || ev > 0.0f || ew > 0.0f)) {
         return miss;
     }
     precise float det = eu + ev + ew;
-    if (det == 0.0f) {
+    return plane_hit(ray, p0, p1, p2, det, ev, ew, t_min, t_max);
+}
+
+// The same test for the quadrilateral p0, p1, p2, p3 (convex, planar, front face on
+// the side of cross(p1 - p0, p2 - p0)): four edge functions instead of three, one
+// test where the quad's two triangles took two, and no shared diagonal to rule on.
+// The sum of the four is twice the sheared quad's signed area (the shoelace formula),
+// as the triangle's three sum to twice its own. With p3 = p2 the fourth edge function
+// is exactly 0 and the result is intersect_triangle's, bit for bit. For a
+// parallelogram p0, p0 + e1, p0 + e1 + e2, p0 + e2 the edge functions of opposite
+// edges sum to half of det, so u and v are half the hit's coordinates along e1 and e2.
+TriangleHit intersect_quad(Ray ray, vec3 p0, vec3 p1, vec3 p2, vec3 p3, float t_min, float t_max) {
+    TriangleHit miss = TriangleHit(INFINITY_T, 0.0f, 0.0f);
+    vec3 ad = abs(ray.dir);
+    int kz = ad.x >= ad.y ? (ad.x >= ad.z ? 0 : 2) : (ad.y >= ad.z ? 1 : 2);
+    vec3 d = permute_axes(ray.dir, kz);
+    vec2 a = sheared(p0, ray, d, kz);
+    vec2 b = sheared(p1, ray, d, kz);
+    vec2 c = sheared(p2, ray, d, kz);
+    vec2 e = sheared(p3, ray, d, kz);
+    precise float eu = c.x * b.y - c.y * b.x;  // edge p1 p2
+    precise float ev = a.x * e.y - a.y * e.x;  // edge p3 p0
+    precise float ew = b.x * a.y - b.y * a.x;  // edge p0 p1
+    precise float ex = e.x * c.y - e.y * c.x;  // edge p2 p3
+    if ((eu < 0.0f || ev < 0.0f || ew < 0.0f || ex < 0.0f) && (eu > 0.0f || ev > 0.0f || ew > 0.0f || ex > 0.0f)) {
         return miss;
     }
-    precise vec3 e1 = p1 - p0;
-    precise vec3 e2 = p2 - p0;
-    precise float nx = e1.y * e2.z - e1.z * e2.y;
-    precise float ny = e1.z * e2.x - e1.x * e2.z;
-    precise float nz = e1.x * e2.y - e1.y * e2.x;
-    if (nx == 0.0f && ny == 0.0f && nz == 0.0f) {
-        return miss;
-    }
-    // The distance from the plane through p0, not from the paper's barycentric sum
-    // eu a.z + ev b.z + ew c.z: that sum cancels terms as large as the vertices'
-    // distances along the dominant axis, and for a large triangle met far from its
-    // corners (a 2e4-wide glass slab, a ray nearly along it) it put the hit point 1e-3
-    // off the plane, beyond the offset that keeps the next ray on the right side. The
-    // plane form errs by rounding of the normal's projection only (exactly nothing
-    // for an axis-aligned plane). The edge functions above still decide the hit.
-    precise float n_dot_d = nx * ray.dir.x + ny * ray.dir.y + nz * ray.dir.z;
-    if (n_dot_d == 0.0f) {
-        return miss;
-    }
-    precise vec3 to_p0 = p0 - ray.origin;
-    precise float t = (nx * to_p0.x + ny * to_p0.y + nz * to_p0.z) / n_dot_d;
-    if (!(t > t_min && t < t_max)) {
-        return miss;
-    }
-    precise float u = ev / det;
-    precise float v = ew / det;
-    return TriangleHit(t, u, v);
+    precise float det = eu + ev + ew + ex;
+    return plane_hit(ray, p0, p1, p2, det, ev, ew, t_min, t_max);
 }
 
 // Unit geometric normal of a triangle, on its front side (cross(p1 - p0, p2 - p0)).

@@ -17,8 +17,8 @@ struct Sphere {
 // A triangle stores its own vertices (no index indirection: one fetch per primitive).
 // Vertex normals are used only when meta.y != 0 (the scene gave normals); the front
 // face is the side of cross(p1 - p0, p2 - p0). meta.x = material index; meta.z =
-// RECT_FIRST_HALF or RECT_SECOND_HALF for the two triangles of a rectangle
-// (kernel/emitters.glsl samples an emissive one by solid angle), else 0.
+// SHAPE_TRIANGLE, or SHAPE_PARALLELOGRAM / SHAPE_RECTANGLE for the parallelogram p0,
+// p1, p2, p0 + p2 - p1 (constants.glsl), which has no vertex normals.
 struct Triangle {
     vec4 p0;
     vec4 p1;
@@ -80,8 +80,7 @@ struct PointLight {
 // One emissive primitive: a primitive whose material has nonzero emission
 // (kernel/emitters.glsl samples them, host/flatten/flat_scene.cpp lists them). Emitters
 // are chosen with probability proportional to their power, through the cumulative
-// fractions in cdf.x, the last of which is exactly 1. A rectangle (the two triangles
-// of a rectangular quad) is one emitter, which names its first half.
+// fractions in cdf.x, the last of which is exactly 1.
 struct Emitter {
     uvec4 prim;      // x = primitive reference (kind << REF_KIND_SHIFT | index, as the grid's),
                      // y = the part of a cylinder (CYLINDER_SIDE, _BASE_CAP, _TOP_CAP), z/w unused

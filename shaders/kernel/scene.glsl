@@ -58,7 +58,18 @@ void test_sphere_for(Ray ray, uint index, bool any_hit, INOUT(Nearest) nearest) 
 void test_triangle(Ray ray, uint index, INOUT(Nearest) nearest) {
     g_intersection_tests += 1u;
     Triangle tri = load_triangle(index);
-    TriangleHit th = intersect_triangle(ray, vec3(tri.p0), vec3(tri.p1), vec3(tri.p2), 0.0f, nearest.t);
+    vec3 p0 = vec3(tri.p0);
+    vec3 p1 = vec3(tri.p1);
+    vec3 p2 = vec3(tri.p2);
+    TriangleHit th;
+    if (HAS_QUADS) {
+        // One test for both shapes, the fourth vertex picked by a select: SIMD
+        // hardware would run both tests on a branch.
+        precise vec3 p3 = tri.meta.z == SHAPE_TRIANGLE ? p2 : p0 + (p2 - p1);
+        th = intersect_quad(ray, p0, p1, p2, p3, 0.0f, nearest.t);
+    } else {
+        th = intersect_triangle(ray, p0, p1, p2, 0.0f, nearest.t);
+    }
     if (th.t < nearest.t) {
         nearest.t = th.t;
         nearest.ref = (REF_TRIANGLE << REF_KIND_SHIFT) | index;
