@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
+#include <set>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -407,9 +408,9 @@ TEST(EmitterSampling, PickFollowsTheCumulativeFractions) {
     EXPECT_EQ(e.k.pick_emitter(1.0f - 0x1p-24f), 2u);  // the largest number rng_1d returns
 }
 
-// Two slots per light sample, whatever is picked and wherever it is seen from: the
+// One slot per light sample, whatever is picked and wherever it is seen from: the
 // stream stays in step.
-TEST(EmitterSampling, EveryDrawTakesTwoSlots) {
+TEST(EmitterSampling, EveryDrawTakesOneSlot) {
     Scene s = floor_scene(1.0);
     add_lamp(s, 0, 0, 1, 1, 2);
     s.spheres.push_back(Sphere{{0, 1, 0}, 0.3, 1});
@@ -417,7 +418,37 @@ TEST(EmitterSampling, EveryDrawTakesTwoSlots) {
     auto rng = e.k.rng_start(5, 7, 11);
     for (uint32_t i = 1; i <= 100; ++i) {
         e.k.sample_light(kernel::vec3(0.1f * float(i % 7), 0.5f, 0.2f), rng);
-        ASSERT_EQ(rng.dim, 2 * i);
+        ASSERT_EQ(rng.dim, i);
+    }
+}
+
+// The number that picks an emitter also places the point on it, rescaled to the
+// emitter's share: of a pixel's first 256 Sobol samples, each of two equal lamps gets
+// 128, and their points are a net again, one in each of 128 columns and one in each
+// of 128 rows. (Far from the lamps, so that they are sampled by area, where a
+// point's position gives back its two numbers.)
+TEST(EmitterSampling, EachEmittersPointsStayStratified) {
+    Scene s = floor_scene(1.0);
+    add_lamp(s, 0.5, 0.5, 1, 1, 40);  // corner (0, 40, 0)
+    add_lamp(s, 2.5, 0.5, 1, 1, 40);  // corner (2, 40, 0)
+    ASSERT_EQ(s.render.sampler, Sampler::Sobol);
+    EmitterKernel e(s);
+    ASSERT_EQ(e.gpu.emitters.size(), 2u);
+    for (uint32_t pixel : {0u, 17u, 4242u}) {
+        std::array<std::set<int>, 2> columns, rows;
+        for (uint32_t i = 0; i < 256; ++i) {
+            auto rng = e.k.rng_start(pixel, i, 1);
+            const auto y = e.k.sample_light(kernel::vec3(1.5f, 0.0f, 0.5f), rng);
+            const int lamp = y.position.x < 1.5f ? 0 : 1;
+            const float u = y.position.x - 2.0f * float(lamp), v = y.position.z;
+            ASSERT_TRUE(u >= 0.0f && u < 1.0f && v >= 0.0f && v < 1.0f) << u << " " << v;
+            columns[lamp].insert(int(u * 128.0f));
+            rows[lamp].insert(int(v * 128.0f));
+        }
+        for (int lamp = 0; lamp < 2; ++lamp) {
+            EXPECT_EQ(columns[lamp].size(), 128u) << "pixel " << pixel << ", lamp " << lamp;
+            EXPECT_EQ(rows[lamp].size(), 128u) << "pixel " << pixel << ", lamp " << lamp;
+        }
     }
 }
 
@@ -499,11 +530,13 @@ TEST(EmitterList, OneEntryPerEmitterWithPowerFractions) {
     EXPECT_EQ(g.emitters[2].prim.x, (kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | 2u);
     EXPECT_EQ(g.triangles[1].meta.z, kernel::SHAPE_RECTANGLE);
     EXPECT_EQ(g.triangles[2].meta.z, kernel::SHAPE_TRIANGLE);
-    EXPECT_NEAR(g.emitters[0].cdf.y, kPi, 1e-6);
-    EXPECT_NEAR(g.emitters[1].cdf.y, 2.0, 1e-6);
     EXPECT_NEAR(g.emitters[0].cdf.x, kPi / total, 1e-7);
     EXPECT_NEAR(g.emitters[1].cdf.x, (kPi + 2.0) / total, 1e-7);
     EXPECT_EQ(g.emitters[2].cdf.x, 1.0f);
+    // Each entry also holds the fraction before it, exactly the previous entry's.
+    EXPECT_EQ(g.emitters[0].cdf.y, 0.0f);
+    EXPECT_EQ(g.emitters[1].cdf.y, g.emitters[0].cdf.x);
+    EXPECT_EQ(g.emitters[2].cdf.y, g.emitters[1].cdf.x);
     bool listed = false;
     for (const BufferSize& b : g.built_buffers()) listed = listed || b.name == "emitters";
     EXPECT_TRUE(listed);

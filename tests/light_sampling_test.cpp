@@ -199,8 +199,8 @@ TEST(LightPdf, AParallelogramIsNoRectangle) {
     ASSERT_EQ(g.emitters.size(), 2u);
     EXPECT_EQ(g.triangles[0].meta.z, kernel::SHAPE_PARALLELOGRAM);
     EXPECT_EQ(g.triangles[1].meta.z, kernel::SHAPE_RECTANGLE);
-    EXPECT_NEAR(g.emitters[0].cdf.y, 1.0, 1e-6);
-    EXPECT_NEAR(g.emitters[1].cdf.y, 1.0, 1e-6);
+    EXPECT_EQ(g.emitters[0].cdf.x, 0.5f);  // equal areas and radiance: equal power
+    EXPECT_EQ(g.emitters[1].cdf.y, 0.5f);
 }
 
 }  // namespace

@@ -107,12 +107,12 @@ kernel::Triangle flatten(const Triangle& t, const dvec3& origin) {
 double mean(const dvec3& c) { return (c.x + c.y + c.z) / 3.0; }
 
 // The emissive primitives as area lights (kernel/emitters.glsl): one Emitter each,
-// with the running fraction of the total power (area times mean emitted radiance)
-// that lets the kernel pick one with probability proportional to its power.
+// with the running fractions of the total power (area times mean emitted radiance)
+// up to it and before it, by which the kernel picks one with probability
+// proportional to its power and reuses the number that picked it.
 void add_emitters(const Scene& scene, FlatScene& g) {
     struct Found {
         std::uint32_t ref;
-        double area;
         double power;            // area * mean radiance
         std::uint32_t part = 0;  // of a cylinder: kernel::CYLINDER_SIDE, _BASE_CAP, _TOP_CAP
     };
@@ -120,7 +120,7 @@ void add_emitters(const Scene& scene, FlatScene& g) {
     auto emission = [&](std::uint32_t material) { return scene.materials[material].emission; };
     auto add = [&](std::uint32_t kind, std::size_t i, double area, std::uint32_t material, std::uint32_t part = 0) {
         if (!is_nonzero(emission(material))) return;
-        found.push_back({(kind << kernel::REF_KIND_SHIFT) | std::uint32_t(i), area, area * mean(emission(material)), part});
+        found.push_back({(kind << kernel::REF_KIND_SHIFT) | std::uint32_t(i), area * mean(emission(material)), part});
     };
     const double pi = glm::pi<double>();
     for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
@@ -149,16 +149,17 @@ void add_emitters(const Scene& scene, FlatScene& g) {
     double total = 0.0;
     for (const Found& f : found) total += f.power;
     double running = 0.0;
+    float below = 0.0f;  // the previous emitter's fraction, as the kernel compares with it
     for (std::size_t i = 0; i < found.size(); ++i) {
         running += found[i].power;
         // Powers too small for double (all below ~1e-300) fall back to equal chances.
         const double cdf = total > 0.0 ? running / total : double(i + 1) / double(found.size());
-        g.emitters.push_back(kernel::Emitter(uvec4(found[i].ref, found[i].part, 0u, 0u),
-                                             vec4(static_cast<float>(cdf), static_cast<float>(found[i].area), 0.0f, 0.0f)));
+        // The last exactly 1, whatever the rounding of the sum: the kernel's search for
+        // the first fraction above a number in [0, 1) must always end on an emitter.
+        const float upto = i + 1 == found.size() ? 1.0f : static_cast<float>(cdf);
+        g.emitters.push_back(kernel::Emitter(uvec4(found[i].ref, found[i].part, 0u, 0u), vec4(upto, below, 0.0f, 0.0f)));
+        below = upto;
     }
-    // Exactly 1, whatever the rounding of the sum: the kernel's search for the first
-    // fraction above a number in [0, 1) must always end on an emitter.
-    if (!g.emitters.empty()) g.emitters.back().cdf.x = 1.0f;
     kernel::set_emitter_count(g.params, static_cast<std::uint32_t>(g.emitters.size()));
     kernel::set_light_samples(g.params, scene.render.light_samples);
     kernel::set_emitter_power(g.params, static_cast<float>(total));

@@ -77,11 +77,11 @@ const uint SAMPLER_SOBOL = 1u;  // Owen-scrambled Sobol points, one shuffled 2-D
 // BOUNCE_SLOTS per bounce in this order, so a decision always takes the same slot
 // whichever branches the path took before it.
 const uint SLOT_CAMERA = 0u;
-const uint SLOT_LIGHT_CHOICE = 0u;  // offsets within a bounce's slots; the light point takes the next one
-const uint SLOT_LOBE = 2u;
-const uint SLOT_DIRECTION = 3u;
-const uint SLOT_ROULETTE = 4u;
-const uint BOUNCE_SLOTS = 5u;
+const uint SLOT_LIGHT = 0u;  // offsets within a bounce's slots: the light's choice and its point
+const uint SLOT_LOBE = 1u;
+const uint SLOT_DIRECTION = 2u;
+const uint SLOT_ROULETTE = 3u;
+const uint BOUNCE_SLOTS = 4u;
 
 const float INFINITY_T = 3.0e38f;   // "no hit yet"; finite so comparisons stay ordered
 

@@ -7,9 +7,9 @@
 // a point of an emitter of mean radiance w has density w / emitter_power() over
 // the emitting area, whichever emitter it lies on.
 //
-// Every draw takes exactly two slots (rng.glsl), in one fixed order, whatever it
-// picks: both backends then consume identical streams, and the numbers a sample draws
-// after a light sample do not depend on which emitter that sample chose.
+// Every draw takes exactly one slot (rng.glsl), whatever it picks: both backends then
+// consume identical streams, and the numbers a sample draws after a light sample do
+// not depend on which emitter that sample chose.
 
 struct EmitterPoint {
     vec3 position;
@@ -178,12 +178,18 @@ float area_to_solid_angle(float area_density, vec3 o, vec3 y, vec3 normal) {
     return cos_emitter > 0.0f ? min(area_density * r2 / cos_emitter, INFINITY_T) : 0.0f;
 }
 
-// One light sample for a point at o: one slot's number picks the emitter, the next
-// slot's pair places the point.
+// One light sample for a point at o, from one slot: its first number picks the
+// emitter and, rescaled to that emitter's share of [0, 1), places the point with the
+// second. The samples of a pixel that pick one emitter are then those of the slot's
+// Sobol points whose first number falls in that share, and such a subset of a net,
+// rescaled, is a net again: each emitter's points stay stratified. (With the choice
+// in a slot of its own, each emitter got a random subset of the points, spread no
+// better than independent ones.)
 LightSample sample_light(vec3 o, INOUT(Rng) rng) {
-    float u_pick = rng_1d(rng);
     vec2 u = rng_2d(rng);
-    Emitter e = load_emitter(pick_emitter(u_pick));
+    Emitter e = load_emitter(pick_emitter(u.x));
+    // The largest float below 1 bounds it: rounding may bring the quotient up to 1.
+    u.x = min((u.x - e.cdf.y) / (e.cdf.x - e.cdf.y), 0.99999994f);
     uint kind = e.prim.x >> REF_KIND_SHIFT;
     uint index = e.prim.x & REF_INDEX_MASK;
     if (HAS_SPHERES && kind == REF_SPHERE) {

@@ -81,7 +81,7 @@ vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smoo
         // Drawn from the shadow ray's origin, which is also the origin of the bounce
         // ray whose hit on a light light_pdf_of_hit weighs: the same point, the same
         // choice of technique.
-        rng_seek(rng, slot + SLOT_LIGHT_CHOICE);
+        rng_seek(rng, slot + SLOT_LIGHT);
         LightSample y = sample_light(shadow_origin, rng);
         vec3 to_light = y.position - shadow_origin;
         vec3 l = to_light / sqrt(dot(to_light, to_light));

@@ -84,7 +84,8 @@ struct PointLight {
 struct Emitter {
     uvec4 prim;      // x = primitive reference (kind << REF_KIND_SHIFT | index, as the grid's),
                      // y = the part of a cylinder (CYLINDER_SIDE, _BASE_CAP, _TOP_CAP), z/w unused
-    vec4 cdf;        // x = power of the emitters up to and including this one / total power, y = area, z/w unused
+    vec4 cdf;        // x = power of the emitters up to and including this one / total power,
+                     // y = that of the emitters before it (the previous x, 0 for the first), z/w unused
 };
 #define Emitter_FROM_TEXELS(b, i) Emitter(fetch_texel(b, 2u * (i)), fetch_vec4(b, 2u * (i) + 1u))
 
