@@ -6,6 +6,7 @@
 #include "loads.glsl"
 #include "rng.glsl"
 #include "trig.glsl"
+#include "power.glsl"
 #include "sampler.glsl"
 #include "ray.glsl"
 #include "intersect.glsl"

@@ -77,7 +77,7 @@ vec3 eval_smooth(Lobes l, vec3 n, vec3 wo, vec3 wi) {
     if (HAS_SPECULAR && l.w_glossy > 0.0f) {
         float c = phong_cos_alpha(n, wo, wi);
         if (c > 0.0f) {
-            f += l.glossy * ((l.shininess + 2.0f) / (2.0f * PI) * pow(c, l.shininess));
+            f += l.glossy * ((l.shininess + 2.0f) / (2.0f * PI) * power(c, l.shininess));
         }
     }
     return f;
@@ -96,7 +96,7 @@ float pdf_smooth(Lobes l, Basis frame, vec3 wo, vec3 wi, uint hemisphere) {
     if (HAS_SPECULAR && l.w_glossy > 0.0f) {
         float c = phong_cos_alpha(frame.n, wo, wi);
         if (c > 0.0f) {
-            pdf += l.w_glossy * ((l.shininess + 1.0f) / (2.0f * PI) * pow(c, l.shininess));
+            pdf += l.w_glossy * ((l.shininess + 1.0f) / (2.0f * PI) * power(c, l.shininess));
         }
     }
     return pdf / w;
@@ -110,7 +110,7 @@ vec3 sample_smooth(Lobes l, Basis frame, vec3 wo, uint hemisphere, float u0, flo
     float w = l.w_diffuse + l.w_glossy;
     if (HAS_SPECULAR && l.w_glossy > 0.0f && u0 * w >= l.w_diffuse) {
         vec3 mirrored = (2.0f * dot(frame.n, wo)) * frame.n - wo;
-        float c = pow(u1, 1.0f / (l.shininess + 1.0f));
+        float c = power(u1, 1.0f / (l.shininess + 1.0f));
         float s = sqrt(max(0.0f, 1.0f - c * c));
         return from_basis(basis_around(unit_vector(mirrored)), spherical_direction(c, s, 2.0f * PI * u2));
     }
