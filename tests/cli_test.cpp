@@ -235,4 +235,30 @@ TEST(Cli, SamplerOptionPicksTheRandomNumbers) {
     EXPECT_NE(test::run_vkrt("compare " + out("default.exr") + " " + out("hash.exr") + " --max-abs 0", dir).code, 0);
 }
 
+// --exposure and --tonemap change an 8-bit output and leave a float one alone; merge
+// takes them too; a bad value is refused with what was expected.
+TEST(Cli, DisplayOptionsShapeEightBitOutputsOnly) {
+    const fs::path dir = test::temp_dir("cli_display");
+    const std::string render =
+        "render " + test::shell_quote(scene("area_light").string()) + " --backend cpu --width 40 --height 30 -q -o ";
+    auto out = [&](const char* name) { return test::shell_quote((dir / name).string()); };
+    ASSERT_EQ(test::run_vkrt(render + out("plain.png"), dir).code, 0);
+    ASSERT_EQ(test::run_vkrt(render + out("shown.png") + " --exposure 1 --tonemap filmic", dir).code, 0);
+    EXPECT_NE(test::run_vkrt("compare " + out("plain.png") + " " + out("shown.png") + " --max-abs 0", dir).code, 0);
+    ASSERT_EQ(test::run_vkrt(render + out("plain.exr"), dir).code, 0);
+    ASSERT_EQ(test::run_vkrt(render + out("shown.exr") + " --exposure 1 --tonemap filmic", dir).code, 0);
+    EXPECT_EQ(test::run_vkrt("compare " + out("plain.exr") + " " + out("shown.exr") + " --max-abs 0", dir).code, 0);
+
+    ASSERT_EQ(test::run_vkrt(render + out("part.exr") + " --samples 0:4", dir).code, 0);
+    EXPECT_EQ(test::run_vkrt("merge " + out("part.exr") + " -q --tonemap filmic -o " + out("merged.png"), dir).code, 0);
+
+    const test::ProgramRun bad = test::run_vkrt(render + out("x.png") + " --exposure 65", dir);
+    EXPECT_EQ(bad.code, 1);
+    EXPECT_NE(bad.stderr_text.find("expected a number of stops from -64 to 64, got '65'"), std::string::npos)
+        << bad.stderr_text;
+    const test::ProgramRun curve = test::run_vkrt(render + out("x.png") + " --tonemap aces", dir);
+    EXPECT_EQ(curve.code, 1);
+    EXPECT_NE(curve.stderr_text.find("--tonemap"), std::string::npos) << curve.stderr_text;
+}
+
 }  // namespace

@@ -563,18 +563,45 @@ TEST_F(SceneLoaderTest, UnknownTypes) {
                  {": lights[0].type: unknown light type 'spot'"});
 }
 
+// Exporters write triangles of zero area and zero vertex normals: one warning each,
+// counting them, naming the first.
+TEST_F(SceneLoaderTest, ZeroAreaTrianglesAreDroppedWithOneWarning) {
+    const Scene s = load(Parts{.objects = R"([
+        {"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "material": "chalk"},
+        {"type": "triangle", "vertices": [[0, 0, 0], [1, 1, 1], [2, 2, 2]], "material": "chalk"},
+        {"type": "triangle", "vertices": [[0.1, 0.2, 0.3], [0.2, 0.4, 0.6], [0.3, 0.6, 0.9]], "material": "chalk"},
+        {"type": "triangle", "vertices": [[1, 1, 1], [1, 1, 1], [0, 1, 0]], "material": "chalk"}])"}
+                             .text());
+    ASSERT_EQ(s.triangles.size(), 1u);
+    expect_vec(s.triangles[0].vertices[1], {1, 0, 0});
+    ASSERT_EQ(s.warnings.size(), 1u);
+    EXPECT_NE(s.warnings[0].find("skipped 3 triangles of zero area"), std::string::npos) << s.warnings[0];
+    EXPECT_NE(s.warnings[0].find("the first at objects[1].vertices"), std::string::npos) << s.warnings[0];
+}
+
+TEST_F(SceneLoaderTest, ZeroVertexNormalsFallBackToTheFaceNormalWithOneWarning) {
+    const Scene s = load(Parts{.objects = R"([
+        {"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "normals": [[0, 0, 2], [0, 0, 0], [0, 1, 1]],
+         "material": "chalk"},
+        {"type": "triangle", "vertices": [[0, 0, 0], [0, 1, 0], [1, 0, 0]], "normals": [[0, 0, 0], [0, 0, 0], [0, 0, 0]],
+         "material": "chalk"}])"}
+                             .text());
+    ASSERT_EQ(s.triangles.size(), 2u);
+    ASSERT_TRUE(s.triangles[0].normals.has_value());
+    expect_vec((*s.triangles[0].normals)[0], {0, 0, 1});
+    expect_vec((*s.triangles[0].normals)[1], {0, 0, 1});  // the face's
+    EXPECT_NEAR((*s.triangles[0].normals)[2].y, std::sqrt(0.5), 1e-12);
+    for (const dvec3& n : *s.triangles[1].normals) expect_vec(n, {0, 0, -1});  // wound the other way
+    ASSERT_EQ(s.warnings.size(), 1u);
+    EXPECT_NE(s.warnings[0].find("2 triangles with a zero vertex normal"), std::string::npos) << s.warnings[0];
+    EXPECT_NE(s.warnings[0].find("the first at objects[0].normals[1]"), std::string::npos) << s.warnings[0];
+}
+
 TEST_F(SceneLoaderTest, DegenerateGeometry) {
-    expect_error(Parts{.objects = R"([{"type": "triangle", "vertices": [[0, 0, 0], [1, 1, 1], [2, 2, 2]], "material": "chalk"}])"},
-                 {": objects[0].vertices: ", "zero area"});
-    expect_error(Parts{.objects = R"([{"type": "triangle", "vertices": [[0.1, 0.2, 0.3], [0.2, 0.4, 0.6], [0.3, 0.6, 0.9]], "material": "chalk"}])"},
-                 {": objects[0].vertices: ", "zero area"});
     expect_error(Parts{.objects = R"([{"type": "quad", "corner": [0, 0, 0], "edge1": [1, 0, 0], "edge2": [-2, 0, 0], "material": "chalk"}])"},
                  {": objects[0].edge2: ", "parallel"});
     expect_error(Parts{.objects = R"([{"type": "quad", "corner": [0, 0, 0], "edge1": [0, 0, 0], "edge2": [0, 1, 0], "material": "chalk"}])"},
                  {": objects[0].edge1: expected a non-zero vector"});
-    expect_error(Parts{.objects = R"([{"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]],
-                                   "normals": [[0, 0, 1], [0, 0, 0], [0, 0, 1]], "material": "chalk"}])"},
-                 {": objects[0].normals[1]: expected a non-zero vector"});
 }
 
 // ---- rings and cylinders ------------------------------------------------------------

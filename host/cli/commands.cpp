@@ -50,6 +50,7 @@ void apply_overrides(const RenderArgs& args, Scene& scene) {
     }
     if (args.seed) scene.render.seed = *args.seed;
     if (!args.sampler.empty()) scene.render.sampler = parse_sampler(args.sampler).value();  // checked by the parser
+    scene.render.display = display_with(scene.render.display, args.display);
     if (!args.grid.empty()) {
         const GridSettings grid = parse_grid_option(args.grid).value();  // checked by the parser
         if (args.grid == "on") {
@@ -100,7 +101,7 @@ void write_output(const std::string& output, const RenderArgs& args, const Scene
                                       fingerprint, backend, corners},
                           file);
         } else {
-            write_image(resolve_image(sums, corners), file);
+            write_image(resolve_image(sums, corners), file, scene.render.display);
         }
     });
 }
@@ -197,6 +198,7 @@ int run_render(const RenderArgs& args) {
     auto backend = make_backend(args);
     const double backend_seconds = seconds_since(backend_start);
     feed.set_renderer(backend->name(), backend->device_name());
+    feed.set_display(scene.render.display);
     RenderPlan plan;
     plan.seconds = args.time;
     // A time budget alone renders as many samples as fit, up to the most a pixel takes.

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/options.hpp"
 #include "scene/scene.hpp"
 
 namespace vkrt::cli {
@@ -22,6 +23,7 @@ struct RenderArgs {
     std::string samples;         // "A:B": render samples [A, B) only, to a partial file
     std::optional<std::uint32_t> seed;
     std::string sampler;  // empty: the scene's; else sobol or hash
+    DisplayOptions display;
     std::string grid;    // empty: the scene's choice; else auto, on or off
     unsigned threads = 0;
     std::string stats_file;
@@ -51,6 +53,7 @@ struct MergeArgs {
     bool allow_gaps = false;  // merge even with samples missing
     bool missing = false;     // list the ranges still to render instead of merging
     std::uint32_t tasks = 0;  // with missing: cut them into about this many ranges
+    DisplayOptions display;   // for an 8-bit output
     bool quiet = false;
 };
 

@@ -147,7 +147,7 @@ int run_merge(const MergeArgs& args) {
     if (app::is_exr(args.output)) {
         write_partial(merged, args.output);
     } else {
-        write_image(resolve_image(merged.sums, merged.corners), args.output);
+        write_image(resolve_image(merged.sums, merged.corners), args.output, display_with({}, args.display));
     }
 
     if (!args.quiet) {

@@ -30,6 +30,7 @@ Command add_merge_command(CLI::App& program) {
         ->check(CLI::Range(1u, 65536u))
         ->needs(missing);
     missing->excludes(output);
+    add_display(m, args->display, " (default: none and 0)");
     add_quiet(m, args->quiet);
     return {m, [args] { return run_merge(*args); }};
 }

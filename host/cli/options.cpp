@@ -77,6 +77,26 @@ void add_image_size(CLI::App* command, std::optional<std::uint32_t>& width, std:
         ->check(whole_number(1, limits::kMaxImageSide));
 }
 
+void add_display(CLI::App* command, DisplayOptions& display, const char* overrides) {
+    const double most = limits::kMaxExposureStops;
+    command
+        ->add_option("--exposure", display.exposure,
+                     fmt::format("8-bit outputs: scale the radiance by 2^STOPS before the tone map{}", overrides))
+        ->check(number<double>(
+            &parse_real, [most](double value) { return std::abs(value) <= most; },
+            fmt::format("a number of stops from -{0} to {0}", most), "STOPS"));
+    command
+        ->add_option("--tonemap", display.tonemap,
+                     fmt::format("8-bit outputs: none (clamp to 1) or filmic (ACES-like shoulder){}", overrides))
+        ->check(CLI::IsMember({"none", "filmic"}));
+}
+
+Display display_with(Display base, const DisplayOptions& options) {
+    if (options.exposure) base.exposure = *options.exposure;
+    if (!options.tonemap.empty()) base.tonemap = parse_tonemap(options.tonemap).value();  // checked by the parser
+    return base;
+}
+
 void add_seed(CLI::App* command, std::optional<std::uint32_t>& seed) {
     command->add_option("--seed", seed, "Random seed, overrides the scene")->check(whole_number(0, 0xffffffffu));
 }

@@ -9,6 +9,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "image/display.hpp"
+
 namespace vkrt::cli {
 
 // A whole number in [lo, hi].
@@ -31,6 +33,14 @@ void add_device(CLI::App* command, std::string& device);
 void add_threads(CLI::App* command, unsigned& threads);
 // --validate: the Vulkan validation layer, any message an error.
 void add_validate(CLI::App* command, bool& validate);
+// --exposure and --tonemap: how 8-bit outputs show the linear image (image/display.hpp).
+struct DisplayOptions {
+    std::optional<double> exposure;
+    std::string tonemap;  // empty: unchanged; else none or filmic
+};
+void add_display(CLI::App* command, DisplayOptions& display, const char* overrides);
+// `base` with the options given applied.
+Display display_with(Display base, const DisplayOptions& options);
 // -q, --quiet.
 void add_quiet(CLI::App* command, bool& quiet, const char* description = "Print nothing but warnings and errors");
 

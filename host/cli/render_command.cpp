@@ -39,6 +39,7 @@ Command add_render_command(CLI::App& program) {
     r->add_option("--sampler", args->sampler,
                   "Random numbers: sobol (Owen-scrambled Sobol points) or hash (independent); overrides the scene")
         ->check(CLI::IsMember({"sobol", "hash"}));
+    add_display(r, args->display, "; overrides the scene");
     r->add_option("--grid", args->grid,
                   "Uniform grid: auto (when the scene has enough primitives for it to pay), on, off, or a "
                   "resolution NXxNYxNZ in cells (e.g. 46x46x3); overrides the scene")

@@ -41,19 +41,19 @@ float linear_to_srgb(float linear) {
     return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
-std::vector<std::uint8_t> to_srgb8(const Image& image) {
+std::vector<std::uint8_t> to_srgb8(const Image& image, const Display& display) {
     std::vector<std::uint8_t> bytes(image.rgb.size());
     for (std::size_t i = 0; i < bytes.size(); ++i) {
-        bytes[i] = static_cast<std::uint8_t>(std::lround(linear_to_srgb(image.rgb[i]) * 255.0f));
+        bytes[i] = static_cast<std::uint8_t>(std::lround(linear_to_srgb(display_value(image.rgb[i], display)) * 255.0f));
     }
     return bytes;
 }
 
-void write_image(const Image& image, const std::filesystem::path& file) {
+void write_image(const Image& image, const std::filesystem::path& file, const Display& display) {
     const std::string name = file.string();
     if (lower_extension(file) == ".png") {
         // The most common output needs no image library (image/image_files.hpp).
-        const std::vector<std::uint8_t> png = encode_png(image);
+        const std::vector<std::uint8_t> png = encode_png(image, display);
         std::ofstream out(file, std::ios::binary);
         out.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
         if (!out) throw ImageError(fmt::format("{}: writing failed", name));
@@ -79,7 +79,7 @@ void write_image(const Image& image, const std::filesystem::path& file) {
     } else {
         // Encode here rather than trusting a format's colour-space handling: the
         // stored bytes are then the same for every 8-bit format.
-        ok = image_files().write(name, spec, to_srgb8(image).data(), error);
+        ok = image_files().write(name, spec, to_srgb8(image, display).data(), error);
     }
     if (!ok) throw ImageError(fmt::format("{}: {}", name, error));
 }

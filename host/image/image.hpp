@@ -2,11 +2,14 @@
 // Linear float RGB images and their files. The extension picks the format: .png is
 // written here, every other format through OpenImageIO (image/image_files.hpp).
 // .exr and .hdr are written as linear float; every other format (.png, .ppm, .jpg,
-// ...) is clamped to [0, 1], sRGB-encoded and stored in 8 bits.
+// ...) goes through the display transform (display.hpp: exposure, tone curve, clamp
+// to [0, 1]), is sRGB-encoded and stored in 8 bits.
 #include <cstdint>
 #include <filesystem>
 #include <stdexcept>
 #include <vector>
+
+#include "image/display.hpp"
 
 namespace vkrt {
 
@@ -37,10 +40,12 @@ bool can_write_image_format(const std::filesystem::path& file);
 // The sRGB transfer function (IEC 61966-2-1) for a linear value clamped to [0, 1].
 float linear_to_srgb(float linear);
 
-// The bytes an 8-bit file stores: each channel clamped, sRGB-encoded and rounded.
-std::vector<std::uint8_t> to_srgb8(const Image& image);
+// The bytes an 8-bit file stores: each channel through the display transform,
+// sRGB-encoded and rounded.
+std::vector<std::uint8_t> to_srgb8(const Image& image, const Display& display = {});
 
-void write_image(const Image& image, const std::filesystem::path& file);
+// `display` applies to the 8-bit formats only.
+void write_image(const Image& image, const std::filesystem::path& file, const Display& display = {});
 
 // Reads the first three channels (one channel is repeated as grey) as stored: 8-bit
 // files give their encoded values scaled to [0, 1], float files their linear values.

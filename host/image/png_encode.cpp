@@ -24,8 +24,8 @@ void put_chunk(std::vector<std::uint8_t>& out, std::string_view type, const std:
 
 }  // namespace
 
-std::vector<std::uint8_t> encode_png(const Image& image) {
-    const std::vector<std::uint8_t> rgb = to_srgb8(image);
+std::vector<std::uint8_t> encode_png(const Image& image, const Display& display) {
+    const std::vector<std::uint8_t> rgb = to_srgb8(image, display);
     const std::size_t row = std::size_t(image.width) * 3;
     // Each scanline starts with its filter type; 0 (none) keeps encoding cheap.
     std::vector<std::uint8_t> scanlines;

@@ -10,6 +10,6 @@ namespace vkrt {
 
 // An 8-bit RGB PNG (ISO/IEC 15948) of the image, encoded as to_srgb8 does. Fast
 // rather than small: a preview is encoded after every pass.
-std::vector<std::uint8_t> encode_png(const Image& image);
+std::vector<std::uint8_t> encode_png(const Image& image, const Display& display = {});
 
 }  // namespace vkrt

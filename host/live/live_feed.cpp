@@ -14,6 +14,11 @@ void LiveFeed::set_renderer(std::string backend, std::string device) {
     device_ = std::move(device);
 }
 
+void LiveFeed::set_display(const Display& display) {
+    const std::lock_guard lock(mutex_);
+    display_ = display;
+}
+
 void LiveFeed::publish(const LiveStatus& status, std::shared_ptr<const Image> image) {
     const std::lock_guard lock(mutex_);
     status_ = status;
@@ -108,9 +113,10 @@ std::shared_ptr<const std::vector<std::uint8_t>> LiveFeed::png(std::uint64_t& ve
     }
     const std::shared_ptr<const Image> image = image_;
     const std::uint64_t wanted = image_version_;
+    const Display display = display_;
     lock.unlock();
     // Encoded outside the lock: the render thread publishes meanwhile without waiting.
-    auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode_png(*image));
+    auto encoded = std::make_shared<const std::vector<std::uint8_t>>(encode_png(*image, display));
     lock.lock();
     if (wanted > png_version_) {
         png_ = encoded;

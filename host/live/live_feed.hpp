@@ -33,6 +33,8 @@ public:
     static constexpr double kWatchSeconds = 3.0;
 
     void set_renderer(std::string backend, std::string device);
+    // How the preview shows the linear image, as the render's 8-bit output would.
+    void set_display(const Display& display);
     // The newest figures, and with them a new image unless `image` is null.
     void publish(const LiveStatus& status, std::shared_ptr<const Image> image);
     // The samples per pixel of the newest image (0 before the first).
@@ -70,6 +72,7 @@ private:
     mutable std::mutex mutex_;
     std::condition_variable seen_;
     std::string backend_, device_;
+    Display display_;
     LiveStatus status_;
     std::shared_ptr<const Image> image_;
     std::uint64_t image_version_ = 0;

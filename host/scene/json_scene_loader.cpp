@@ -3,12 +3,16 @@
 // refused here with a message naming the file and the JSON path.
 #include "scene/json_scene_loader.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
@@ -127,7 +131,7 @@ void read_global(const Node& n, RenderSettings& r) {
 RenderSettings read_render(const Node& n) {
     n.allow_only({"mode", "aa", "jitter", "shadows", "max_depth", "min_weight", "corners", "ambient", "background",
                   "seed", "spp", "loop_budget", "grid", "light_samples", "estimator", "hemisphere", "nee",
-                  "max_bounces", "sampler"});
+                  "max_bounces", "sampler", "exposure", "tonemap"});
     RenderSettings r;
     if (auto mode = n.find("mode")) {
         const std::string m = mode->string();
@@ -142,6 +146,18 @@ RenderSettings read_render(const Node& n) {
         const std::optional<Sampler> s = parse_sampler(v->string());
         if (!s) v->fail(fmt::format("unknown sampler {} (expected \"sobol\" or \"hash\")", json::quote_user(v->string())));
         r.sampler = *s;
+    }
+    if (auto v = n.find("exposure")) {
+        r.display.exposure = v->number();
+        if (!(std::abs(r.display.exposure) <= limits::kMaxExposureStops)) {
+            v->fail(fmt::format("expected a number of stops from -{0} to {0}, got {1}", limits::kMaxExposureStops,
+                                r.display.exposure));
+        }
+    }
+    if (auto v = n.find("tonemap")) {
+        const std::optional<Tonemap> t = parse_tonemap(v->string());
+        if (!t) v->fail(fmt::format("unknown tone map {} (expected \"none\" or \"filmic\")", json::quote_user(v->string())));
+        r.display.tonemap = *t;
     }
     if (auto shadows = n.find("shadows")) r.shadows = shadows->boolean();
     if (auto depth = n.find("max_depth")) r.max_depth = whole32(*depth, 0, limits::kMaxDepth);
@@ -239,29 +255,61 @@ Sphere read_sphere(const Node& n, const MaterialIndex& materials) {
     return s;
 }
 
-Triangle read_triangle(const Node& n, const MaterialIndex& materials) {
+// What exporters write and the loader puts up with, counted for one warning each:
+// triangles of zero area, which are dropped, and zero vertex normals, for which the
+// face normal stands in (as in meshes, indexed_mesh.cpp).
+struct Tolerated {
+    std::size_t zero_area = 0;
+    std::string first_zero_area;    // the JSON path of the first
+    std::size_t zero_normals = 0;   // triangles with one or more
+    std::string first_zero_normal;
+};
+
+std::optional<Triangle> read_triangle(const Node& n, const MaterialIndex& materials, Tolerated& tolerated) {
     n.allow_only({"vertices", "normals", "material", "type"});
     Triangle t;
     const Node vertices = n.required("vertices");
     const auto v = vertices.elements(3, "an array of 3 points");
     for (int i = 0; i < 3; ++i) t.vertices[i] = v[i].vec3();
-    if (parallel_or_zero(t.vertices[1] - t.vertices[0], t.vertices[2] - t.vertices[0])) {
-        vertices.fail("the triangle has zero area (its vertices coincide or lie on one line)");
-    }
-    if (auto normals = n.find("normals")) {
-        const auto e = normals->elements(3, "an array of 3 vectors");
-        std::array<dvec3, 3> ns{};
-        for (int i = 0; i < 3; ++i) {
-            ns[i] = e[i].vec3();
-            if (!is_nonzero(ns[i])) e[i].fail("expected a non-zero vector, got [0, 0, 0]");
-            // Normalized here so the kernel can interpolate without renormalizing
-            // inputs; the file may give any length.
-            ns[i] = robust_normalize(ns[i]);
+    std::optional<std::array<dvec3, 3>> normals;
+    if (auto given = n.find("normals")) {
+        const auto e = given->elements(3, "an array of 3 vectors");
+        normals.emplace();
+        for (int i = 0; i < 3; ++i) (*normals)[i] = e[i].vec3();
+        const auto zero = std::find_if(normals->begin(), normals->end(), [](const dvec3& x) { return !is_nonzero(x); });
+        if (zero != normals->end() && tolerated.zero_normals++ == 0) {
+            tolerated.first_zero_normal = e[std::size_t(zero - normals->begin())].path();
         }
-        t.normals = ns;
     }
     t.material = material_of(n, materials);
+    if (parallel_or_zero(t.vertices[1] - t.vertices[0], t.vertices[2] - t.vertices[0])) {
+        if (tolerated.zero_area++ == 0) tolerated.first_zero_area = vertices.path();
+        return std::nullopt;
+    }
+    if (normals) {
+        const dvec3 face = robust_normalize(glm::cross(t.vertices[1] - t.vertices[0], t.vertices[2] - t.vertices[0]));
+        // Normalized here so the kernel can interpolate without renormalizing
+        // inputs; the file may give any length.
+        for (dvec3& x : *normals) x = is_nonzero(x) ? robust_normalize(x) : face;
+        t.normals = normals;
+    }
     return t;
+}
+
+// One warning per kind of tolerated flaw, with how many and where the first is.
+void warn_tolerated(const Tolerated& tolerated, const std::string& file, std::vector<std::string>& warnings) {
+    if (tolerated.zero_area > 0) {
+        warnings.push_back(fmt::format("{}: skipped {} triangle{} of zero area (coinciding vertices or all on one "
+                                       "line), the first at {}",
+                                       file, tolerated.zero_area, tolerated.zero_area == 1 ? "" : "s",
+                                       tolerated.first_zero_area));
+    }
+    if (tolerated.zero_normals > 0) {
+        warnings.push_back(fmt::format("{}: {} triangle{} with a zero vertex normal, shaded with the face normal "
+                                       "there, the first at {}",
+                                       file, tolerated.zero_normals, tolerated.zero_normals == 1 ? "" : "s",
+                                       tolerated.first_zero_normal));
+    }
 }
 
 Ring read_ring(const Node& n, const MaterialIndex& materials) {
@@ -319,13 +367,14 @@ void read_quad(const Node& n, const MaterialIndex& materials, std::vector<Triang
 
 void read_objects(const Node& n, const MaterialIndex& materials, Scene& scene) {
     const MaterialLookup lookup = [&materials](const Node& name) { return material_named(name, materials); };
+    Tolerated tolerated;
     for (const Node& object : n.elements()) {
         const Node type = object.required("type");
         const std::string t = type.string();
         if (t == "sphere") {
             scene.spheres.push_back(read_sphere(object, materials));
         } else if (t == "triangle") {
-            scene.triangles.push_back(read_triangle(object, materials));
+            if (auto triangle = read_triangle(object, materials, tolerated)) scene.triangles.push_back(*triangle);
         } else if (t == "ring") {
             scene.rings.push_back(read_ring(object, materials));
         } else if (t == "cylinder") {
@@ -346,6 +395,7 @@ void read_objects(const Node& n, const MaterialIndex& materials, Scene& scene) {
                                   json::quote_user(t)));
         }
     }
+    warn_tolerated(tolerated, n.file(), scene.warnings);
 }
 
 }  // namespace

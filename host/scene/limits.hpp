@@ -33,6 +33,9 @@ inline constexpr std::uint32_t kMaxDepth = 64;
 // Global mode's bounces; each is one loop iteration of a budget of 65,000 shared with
 // the grid walk, so more than this could never finish (issue 6 tries 1000).
 inline constexpr std::uint32_t kMaxBounces = 1000;
+// render.exposure and --exposure, in stops: 2^64 either way is far past any
+// radiance a float image holds.
+inline constexpr double kMaxExposureStops = 64.0;
 inline constexpr std::uint32_t kMaxLoopBudget = 65000;  // below lavapipe's 65,535 cap
 // Area-light shadow rays per hit. Each costs at least three loop iterations of the
 // invocation's budget (the sample loop, the walk, a test), so more than this would

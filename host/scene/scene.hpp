@@ -12,6 +12,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "image/display.hpp"
+
 namespace vkrt {
 
 using glm::dvec3;
@@ -72,6 +74,7 @@ struct RenderSettings {
     Hemisphere hemisphere = Hemisphere::Cosine;  // the paper estimator's default is Angles
     bool nee = true;                  // path: next-event estimation toward area lights, with MIS
     std::uint32_t max_bounces = 8;    // scattering events after the first hit
+    Display display;                  // exposure and tone curve of 8-bit outputs
 
     // Global mode takes 16 samples when neither spp nor aa says otherwise.
     std::uint32_t samples_per_pixel() const {
