@@ -272,20 +272,21 @@ std::optional<Triangle> read_triangle(const Node& n, const MaterialIndex& materi
     const auto v = vertices.elements(3, "an array of 3 points");
     for (int i = 0; i < 3; ++i) t.vertices[i] = v[i].vec3();
     std::optional<std::array<dvec3, 3>> normals;
+    std::optional<Node> first_zero;  // the first zero normal's place
     if (auto given = n.find("normals")) {
         const auto e = given->elements(3, "an array of 3 vectors");
         normals.emplace();
-        for (int i = 0; i < 3; ++i) (*normals)[i] = e[i].vec3();
-        const auto zero = std::find_if(normals->begin(), normals->end(), [](const dvec3& x) { return !is_nonzero(x); });
-        if (zero != normals->end() && tolerated.zero_normals++ == 0) {
-            tolerated.first_zero_normal = e[std::size_t(zero - normals->begin())].path();
+        for (int i = 0; i < 3; ++i) {
+            (*normals)[i] = e[i].vec3();
+            if (!first_zero && !is_nonzero((*normals)[i])) first_zero = e[i];
         }
     }
     t.material = material_of(n, materials);
     if (parallel_or_zero(t.vertices[1] - t.vertices[0], t.vertices[2] - t.vertices[0])) {
         if (tolerated.zero_area++ == 0) tolerated.first_zero_area = vertices.path();
-        return std::nullopt;
+        return std::nullopt;  // its normals do not count: it is not rendered
     }
+    if (first_zero && tolerated.zero_normals++ == 0) tolerated.first_zero_normal = first_zero->path();
     if (normals) {
         const dvec3 face = robust_normalize(glm::cross(t.vertices[1] - t.vertices[0], t.vertices[2] - t.vertices[0]));
         // Normalized here so the kernel can interpolate without renormalizing

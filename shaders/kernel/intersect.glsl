@@ -212,6 +212,12 @@ vec3 permute_axes(vec3 v, int kz) {
     return kz == 0 ? vec3(v.y, v.z, v.x) : (kz == 1 ? vec3(v.z, v.x, v.y) : v);
 }
 
+// The axis along which `dir` is largest in magnitude: the sheared frame's z.
+int dominant_axis(vec3 dir) {
+    vec3 ad = abs(dir);
+    return ad.x >= ad.y ? (ad.x >= ad.z ? 0 : 2) : (ad.y >= ad.z ? 1 : 2);
+}
+
 // p's coordinates relative to the ray's origin, permuted so the ray runs along z and
 // sheared so it runs along z exactly: the paper's x - (d.x / d.z) z, scaled by d.z so
 // that no division is needed (the edge functions scale by d.z^2 > 0, which changes no
@@ -290,8 +296,7 @@ TriangleHit plane_hit(Ray ray, vec3 p0, vec3 p1, vec3 p2, float det, float ev, f
 // test, which this one replaced, did.
 TriangleHit intersect_triangle(Ray ray, vec3 p0, vec3 p1, vec3 p2, float t_min, float t_max) {
     TriangleHit miss = TriangleHit(INFINITY_T, 0.0f, 0.0f);
-    vec3 ad = abs(ray.dir);
-    int kz = ad.x >= ad.y ? (ad.x >= ad.z ? 0 : 2) : (ad.y >= ad.z ? 1 : 2);
+    int kz = dominant_axis(ray.dir);
     vec3 d = permute_axes(ray.dir, kz);
     vec2 a = sheared(p0, ray, d, kz);
     vec2 b = sheared(p1, ray, d, kz);
@@ -316,8 +321,7 @@ TriangleHit intersect_triangle(Ray ray, vec3 p0, vec3 p1, vec3 p2, float t_min, 
 // edges sum to half of det, so u and v are half the hit's coordinates along e1 and e2.
 TriangleHit intersect_quad(Ray ray, vec3 p0, vec3 p1, vec3 p2, vec3 p3, float t_min, float t_max) {
     TriangleHit miss = TriangleHit(INFINITY_T, 0.0f, 0.0f);
-    vec3 ad = abs(ray.dir);
-    int kz = ad.x >= ad.y ? (ad.x >= ad.z ? 0 : 2) : (ad.y >= ad.z ? 1 : 2);
+    int kz = dominant_axis(ray.dir);
     vec3 d = permute_axes(ray.dir, kz);
     vec2 a = sheared(p0, ray, d, kz);
     vec2 b = sheared(p1, ray, d, kz);
