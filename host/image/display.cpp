@@ -20,8 +20,8 @@ float filmic(float x) {
 }  // namespace
 
 float display_value(float linear, const Display& display) {
-    // exp2 of the exposure in double: exact for whole stops.
-    const float scaled = display.exposure == 0.0 ? linear : float(double(linear) * std::exp2(display.exposure));
+    // exp2 of the exposure in double: exact for whole stops (and 0 changes nothing).
+    const float scaled = float(double(linear) * std::exp2(display.exposure));
     // A NaN fails the comparison and shows black; from 1e4 on every curve gives 1
     // (and the filmic fit's products stay finite).
     const float x = scaled > 0.0f ? std::min(scaled, 1.0e4f) : 0.0f;

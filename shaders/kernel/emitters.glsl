@@ -47,6 +47,18 @@ vec3 uniform_sphere_direction(float u1, float u2) {
     return vec3(s * sc.y, s * sc.x, z);
 }
 
+// A parallelogram Triangle record (meta.z != SHAPE_TRIANGLE) as a corner and its two
+// edges, perpendicular for SHAPE_RECTANGLE: p0, p0 + ex, p0 + ex + ey, p0 + ey.
+struct Rect {
+    vec3 corner;
+    vec3 ex;
+    vec3 ey;
+};
+
+Rect rect_of(Triangle tri) {
+    return Rect(vec3(tri.p0), vec3(tri.p1) - vec3(tri.p0), vec3(tri.p2) - vec3(tri.p1));
+}
+
 // A point uniform by area on the emitter, from two uniform numbers.
 EmitterPoint emitter_point(Emitter e, float u1, float u2) {
     uint kind = e.prim.x >> REF_KIND_SHIFT;
@@ -96,7 +108,8 @@ EmitterPoint emitter_point(Emitter e, float u1, float u2) {
         vec3 p2 = vec3(tri.p2);
         vec3 emission = vec3(load_material(tri.meta.x).emission_fresnel);
         if (HAS_QUADS && tri.meta.z != SHAPE_TRIANGLE) {
-            precise vec3 y = p0 + u1 * (p1 - p0) + u2 * (p2 - p1);
+            Rect q = rect_of(tri);
+            precise vec3 y = q.corner + u1 * q.ex + u2 * q.ey;
             return EmitterPoint(y, triangle_face_normal(p0, p1, p2), emission);
         }
         // The square-root parameterization (Osada et al., "Shape Distributions",
@@ -125,18 +138,6 @@ struct LightSample {
     vec3 emission;   // radiance leaving the front face
     float pdf;
 };
-
-// A parallelogram Triangle record (meta.z != SHAPE_TRIANGLE) as a corner and its two
-// edges, perpendicular for SHAPE_RECTANGLE: p0, p0 + ex, p0 + ex + ey, p0 + ey.
-struct Rect {
-    vec3 corner;
-    vec3 ex;
-    vec3 ey;
-};
-
-Rect rect_of(Triangle tri) {
-    return Rect(vec3(tri.p0), vec3(tri.p1) - vec3(tri.p0), vec3(tri.p2) - vec3(tri.p1));
-}
 
 float rect_area(Rect q) {
     return sqrt(dot(q.ex, q.ex) * dot(q.ey, q.ey));
@@ -209,18 +210,13 @@ LightSample sample_light(vec3 o, INOUT(Rng) rng) {
         if (HAS_QUADS && tri.meta.z == SHAPE_RECTANGLE) {
             Rect q = rect_of(tri);
             vec3 normal = triangle_face_normal(vec3(tri.p0), vec3(tri.p1), vec3(tri.p2));
-            vec3 emission = vec3(load_material(tri.meta.x).emission_fresnel);
-            if (!(dot(o - q.corner, normal) > 0.0f)) {
-                return LightSample(q.corner, normal, emission, 0.0f);  // behind the emitting face
-            }
             SphericalRect sr;
-            if (rect_by_solid_angle(o, q, sr)) {
+            // From behind the emitting face, or far, by area below (density 0 behind).
+            if (dot(o - q.corner, normal) > 0.0f && rect_by_solid_angle(o, q, sr)) {
+                vec3 emission = vec3(load_material(tri.meta.x).emission_fresnel);
                 float choice = emission_weight(emission) * rect_area(q) / emitter_power();
                 return LightSample(spherical_rect_point(sr, u.x, u.y), normal, emission, choice / sr.solid_angle);
             }
-            precise vec3 y = q.corner + u.x * q.ex + u.y * q.ey;
-            float density = emission_weight(emission) / emitter_power();
-            return LightSample(y, normal, emission, area_to_solid_angle(density, o, y, normal));
         }
     }
     EmitterPoint y = emitter_point(e, u.x, u.y);
