@@ -15,6 +15,7 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Sc
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 #define INOUT(T) inout T
+#define HOT   // the reference backend forces these inline (host/kernel/kernel.hpp)
 #define FEATURE(id, name) layout(constant_id = id) const bool name = true;
 #include "kernel/features.glsl"
 #include "kernel/constants.glsl"

@@ -163,7 +163,7 @@ TEST(Cli, GridOptionChoosesTheAcceleration) {
     for (const char* bad : {"0x1x1", "4x4", "4x4x4x4", "fast", "70000x1x1", "4x4x"}) {
         const test::ProgramRun run = test::run_vkrt(base + " --grid " + bad, dir);
         EXPECT_EQ(run.code, 1) << bad;
-        EXPECT_NE(run.stderr_text.find("--grid: expected auto, on, off or NXxNYxNZ"), std::string::npos)
+        EXPECT_NE(run.stderr_text.find("--grid: expected auto, on, off, uniform or NXxNYxNZ"), std::string::npos)
             << run.stderr_text;
     }
 }

@@ -28,7 +28,7 @@ FlatScene scene_with_arrays() {
     scene.spheres.resize(3);                     // 2 each
     scene.spheres[1].center_radius = glm::vec4(1.0f, 2.0f, 3.0f, 4.0f);
     scene.triangles.resize(1);                   // 7
-    scene.grid_cell_starts = {0, 2, 5};
+    scene.grid_nodes = {0, 2, 5};
     scene.grid_refs = {7, 8, 9, 10, 11};
     return scene;
 }
@@ -45,7 +45,7 @@ TEST(ScenePack, ArraysFollowOneAnotherAndTheBasesSayWhere) {
     // The uint arrays from the next multiple of 16 texels, counted in words.
     EXPECT_EQ(pack.words_start, 32u);
     EXPECT_EQ(pack.bases[gpu::kSceneArrays], 32u);
-    EXPECT_EQ(pack.bases[7], 0u);        // grid_cell_starts, in words
+    EXPECT_EQ(pack.bases[7], 0u);        // grid_nodes, in words
     EXPECT_EQ(pack.bases[8], 3u);        // grid_refs
     EXPECT_EQ(pack.word_count, 8u);
     EXPECT_EQ(pack.texels.size(), 34u);
@@ -57,7 +57,7 @@ TEST(ScenePack, ArraysFollowOneAnotherAndTheBasesSayWhere) {
 
 TEST(ScenePack, WithoutUintArraysNothingIsPadded) {
     FlatScene scene = scene_with_arrays();
-    scene.grid_cell_starts.clear();
+    scene.grid_nodes.clear();
     scene.grid_refs.clear();
     const gpu::ScenePack pack = gpu::pack_scene(scene, 16);
     EXPECT_EQ(pack.words_start, 23u);

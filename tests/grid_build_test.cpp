@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <random>
@@ -105,15 +106,23 @@ TEST(GridResolution, OnePrimitiveAndEmptyAndCapped) {
     EXPECT_GE(cells(capped), 500u);
 }
 
+// The references of node k, a leaf: from its offset to the next node's.
+std::vector<std::uint32_t> leaf_refs(const Grid& g, std::uint64_t k) {
+    EXPECT_EQ(g.nodes[k] & kernel::GRID_INNER, 0u) << "node " << k << " is split";
+    if ((g.nodes[k] & kernel::GRID_INNER) != 0) return {};
+    return {g.refs.begin() + g.nodes[k], g.refs.begin() + (g.nodes[k + 1] & ~kernel::GRID_INNER)};
+}
+
 // Rebuilds, by brute force over cells, the set of references each cell should hold,
 // and compares it with the flattened arrays.
 void expect_exact_binning(const Grid& g, const RandomScene& s) {
     const std::uint64_t n = g.cell_count();
-    ASSERT_EQ(g.cell_starts.size(), n + 1);
-    EXPECT_EQ(g.cell_starts.front(), g.loose) << "the loose references come before cell 0's";
+    ASSERT_EQ(g.levels, 0u) << "a grid without splits";
+    ASSERT_EQ(g.nodes.size(), n + 1);
+    EXPECT_EQ(g.nodes.front(), g.loose) << "the loose references come before cell 0's";
     const std::vector<std::uint32_t> loose(g.refs.begin(), g.refs.begin() + g.loose);
-    EXPECT_EQ(g.cell_starts.back(), g.refs.size());
-    EXPECT_TRUE(std::is_sorted(g.cell_starts.begin(), g.cell_starts.end())) << "not a prefix sum";
+    EXPECT_EQ(g.nodes.back(), g.refs.size());
+    EXPECT_TRUE(std::is_sorted(g.nodes.begin(), g.nodes.end())) << "not a prefix sum";
 
     std::vector<std::vector<std::uint32_t>> want(n);
     auto bin = [&](const Aabb& box, std::uint32_t ref) {
@@ -142,8 +151,7 @@ void expect_exact_binning(const Grid& g, const RandomScene& s) {
         bin(bounds(s.cylinders[i]), (kernel::REF_CYLINDER << kernel::REF_KIND_SHIFT) | i);
     }
     for (std::uint64_t c = 0; c < n; ++c) {
-        const std::vector<std::uint32_t> got(g.refs.begin() + g.cell_starts[c], g.refs.begin() + g.cell_starts[c + 1]);
-        ASSERT_EQ(got, want[c]) << "cell " << c;
+        ASSERT_EQ(leaf_refs(g, c), want[c]) << "cell " << c;
     }
 }
 
@@ -334,9 +342,8 @@ TEST(GridBuild, CellsListedAreThoseTheBoxTouchesByGeometry) {
         refs.push_back((kernel::REF_CYLINDER << kernel::REF_KIND_SHIFT) | i);
     }
     auto listed = [&](std::uint64_t cell, std::uint32_t i) {
-        const std::uint32_t ref = refs[i];
-        return std::find(g.refs.begin() + g.cell_starts[cell], g.refs.begin() + g.cell_starts[cell + 1], ref) !=
-               g.refs.begin() + g.cell_starts[cell + 1];
+        const std::vector<std::uint32_t> in = leaf_refs(g, cell);
+        return std::find(in.begin(), in.end(), refs[i]) != in.end();
     };
     for (std::uint32_t z = 0; z < g.resolution[2]; ++z) {
         for (std::uint32_t y = 0; y < g.resolution[1]; ++y) {
@@ -384,13 +391,13 @@ TEST(GridBuild, EachCellListsItsPrimitivesGroupedByKindInTheKernelsOrder) {
     std::string note;
     const Grid g = build_grid(s.primitives(), GridRequest{}, note);
     std::array<bool, 4> seen{};
-    for (std::uint64_t c = 0; c < g.cell_count(); ++c) {
-        for (std::uint32_t i = g.cell_starts[c]; i + 1 < g.cell_starts[c + 1]; ++i) {
+    for (std::size_t c = 0; c + 1 < g.nodes.size(); ++c) {   // every leaf, split or not
+        if ((g.nodes[c] & kernel::GRID_INNER) != 0) continue;
+        const std::uint32_t first = g.nodes[c], end = g.nodes[c + 1] & ~kernel::GRID_INNER;
+        for (std::uint32_t i = first; i + 1 < end; ++i) {
             ASSERT_LE(g.refs[i], g.refs[i + 1]) << "cell " << c;  // kind, then index, ascending
         }
-        for (std::uint32_t i = g.cell_starts[c]; i < g.cell_starts[c + 1]; ++i) {
-            seen[g.refs[i] >> kernel::REF_KIND_SHIFT] = true;
-        }
+        for (std::uint32_t i = first; i < end; ++i) seen[g.refs[i] >> kernel::REF_KIND_SHIFT] = true;
     }
     EXPECT_EQ(seen, (std::array<bool, 4>{true, true, true, true}));
     for (std::uint32_t ref : g.refs) EXPECT_NE(ref, kernel::REF_NONE);
@@ -500,8 +507,92 @@ TEST(GridBuild, NoPrimitivesGivesAnEmptyGrid) {
     std::string note;
     const Grid g = build_grid({}, GridRequest{}, note);
     EXPECT_EQ(g.cell_count(), 1u);
-    EXPECT_EQ(g.cell_starts, (std::vector<std::uint32_t>{0, 0}));
+    EXPECT_EQ(g.nodes, (std::vector<std::uint32_t>{0, 0}));
     EXPECT_TRUE(g.refs.empty());
+}
+
+// A dense cluster in a wide scene, the teapot in a stadium: the builder splits the
+// cluster's root cells, and every leaf, at any depth, lists every primitive whose box
+// touches its box, and none farther than twice the padding; within a leaf, by kind.
+TEST(GridSplit, EveryLeafListsThePrimitivesItsBoxOverlaps) {
+    std::mt19937 rng(61);
+    std::uniform_real_distribution<float> pos(-0.5f, 0.5f);
+    std::uniform_real_distribution<float> radius(0.002f, 0.02f);
+    RandomScene s;
+    for (int i = 0; i < 1500; ++i) s.spheres.push_back(sphere({pos(rng), pos(rng), pos(rng)}, radius(rng)));
+    for (int i = 0; i < 40; ++i) {   // a floor 1,000 wide, in strips
+        const float x0 = -500.0f + 25.0f * float(i), x1 = x0 + 25.0f;
+        s.triangles.push_back(triangle({x0, -1, -500}, {x1, -1, 500}, {x1, -1, -500}));
+        s.triangles.push_back(triangle({x0, -1, -500}, {x0, -1, 500}, {x1, -1, 500}));
+    }
+    std::string note;
+    const Grid g = build_grid(s.primitives(), GridRequest{}, note);
+    ASSERT_GE(g.levels, 2u) << "the cluster's cells are not split";
+    std::vector<Aabb> boxes;
+    std::vector<std::uint32_t> refs;
+    for (std::uint32_t i = 0; i < s.spheres.size(); ++i) {
+        boxes.push_back(bounds(s.spheres[i]));
+        refs.push_back((kernel::REF_SPHERE << kernel::REF_KIND_SHIFT) | i);
+    }
+    for (std::uint32_t i = 0; i < s.triangles.size(); ++i) {
+        boxes.push_back(bounds(s.triangles[i]));
+        refs.push_back((kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | i);
+    }
+    const dvec3 fine = g.cell / double(kernel::GRID_FINE);
+    std::uint64_t leaves = 0;
+    std::size_t most = 0;
+    // Visits node `node`, whose box starts at fine coordinates `lo` and spans `size` of them.
+    std::function<void(std::uint32_t, glm::u64vec3, std::uint64_t)> visit = [&](std::uint32_t node,
+                                                                                glm::u64vec3 lo, std::uint64_t size) {
+        if ((g.nodes[node] & kernel::GRID_INNER) != 0) {
+            ASSERT_GT(size, 1u) << "split below the finest cell";
+            ASSERT_EQ(g.nodes[node + 1] & ~kernel::GRID_INNER, (g.nodes[node] & ~kernel::GRID_INNER) + 1)
+                << "an inner cell's one reference";
+            const std::uint32_t first = g.refs[g.nodes[node] & ~kernel::GRID_INNER];
+            const std::uint64_t child = size / 4;
+            for (std::uint32_t k = 0; k < kernel::GRID_CHILDREN; ++k) {
+                visit(first + k, lo + child * glm::u64vec3(k % 4, k / 4 % 4, k / 16), child);
+            }
+            return;
+        }
+        ++leaves;
+        const std::vector<std::uint32_t> in = leaf_refs(g, node);
+        most = std::max(most, in.size());
+        const dvec3 box_lo = g.lo + dvec3(lo) * fine;
+        const dvec3 box_hi = box_lo + double(size) * fine;
+        ASSERT_TRUE(std::is_sorted(in.begin(), in.end())) << "node " << node;
+        for (std::size_t i = 0; i < boxes.size(); ++i) {
+            const Aabb& b = boxes[i];
+            const bool listed = std::find(in.begin(), in.end(), refs[i]) != in.end();
+            const bool touches = glm::all(glm::lessThanEqual(b.lo, box_hi)) && glm::all(glm::lessThanEqual(box_lo, b.hi));
+            const bool near = glm::all(glm::lessThanEqual(b.lo - 2.0 * g.pad, box_hi)) &&
+                              glm::all(glm::lessThanEqual(box_lo, b.hi + 2.0 * g.pad));
+            ASSERT_TRUE(!touches || listed) << "primitive " << i << " missing from node " << node;
+            ASSERT_TRUE(near || !listed) << "primitive " << i << " listed in far node " << node;
+        }
+    };
+    const GridResolution& r = g.resolution;
+    for (std::uint64_t c = 0; c < g.cell_count(); ++c) {
+        const glm::u64vec3 root(c % r[0], c / r[0] % r[1], c / (std::uint64_t(r[0]) * r[1]));
+        visit(std::uint32_t(c), root * std::uint64_t(kernel::GRID_FINE), std::uint64_t(kernel::GRID_FINE));
+    }
+    EXPECT_EQ(leaves, g.leaves);
+    EXPECT_LT(most, 100u) << "the cluster's 1,500 spheres still crowd one cell";
+}
+
+// A grid whose resolution is given is the uniform grid asked for: never split.
+TEST(GridSplit, AGivenResolutionIsNeverSplit) {
+    std::mt19937 rng(62);
+    std::uniform_real_distribution<float> pos(-0.5f, 0.5f);
+    RandomScene s;
+    for (int i = 0; i < 1500; ++i) s.spheres.push_back(sphere({pos(rng), pos(rng), pos(rng)}, 0.01f));
+    s.spheres.push_back(sphere({900, 0, 0}, 1.0f));
+    GridRequest request;
+    request.resolution = {8, 8, 8};
+    std::string note;
+    const Grid g = build_grid(s.primitives(), request, note);
+    EXPECT_EQ(g.levels, 0u);
+    EXPECT_EQ(g.nodes.size(), 8u * 8 * 8 + 1);
 }
 
 }  // namespace

@@ -177,7 +177,7 @@ TEST(GridKinds, FewOfAKindAreTestedOutsideTheGrid) {
     EXPECT_EQ(gpu.grid.outside, (std::vector<std::string>{"triangles: 2", "rings: 1", "cylinders: 1"}));
     EXPECT_NE(gpu.grid.reason.find("tested per ray, outside the grid"), std::string::npos) << gpu.grid.reason;
     // The loose references first, grouped by kind; the cells list spheres only.
-    ASSERT_EQ(gpu.grid_cell_starts.front(), 4u);
+    ASSERT_EQ(gpu.grid_nodes[0], 4u);
     EXPECT_EQ(std::vector<std::uint32_t>(gpu.grid_refs.begin(), gpu.grid_refs.begin() + 4),
               (std::vector<std::uint32_t>{kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT,
                                           (kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | 1u,
@@ -210,7 +210,7 @@ TEST(GridLoose, AFloorUnderAClusterIsTestedPerRay) {
     EXPECT_TRUE(gpu.features.has(Feature::LOOSE_TRIANGLES));
     EXPECT_FALSE(gpu.features.has(Feature::LOOSE_SPHERES));
     EXPECT_EQ(gpu.grid.outside, (std::vector<std::string>{"triangles: 2 of 50"}));
-    ASSERT_EQ(gpu.grid_cell_starts.front(), 2u);
+    ASSERT_EQ(gpu.grid_nodes[0], 2u);
     EXPECT_EQ(gpu.grid_refs[0], (kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | 48u);
     EXPECT_EQ(gpu.grid_refs[1], (kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | 49u);
     // The box holds the cluster (x from -1.8 to 2.1), not the floor (x from -100 to 100).
@@ -224,7 +224,7 @@ TEST(GridLoose, AFloorUnderAClusterIsTestedPerRay) {
     given.render.grid.resolution = {8, 8, 8};
     const FlatScene everything = flatten_scene(given, AccelPolicy{32, 0xFFFFFFFFu});
     EXPECT_FALSE(everything.features.has(Feature::LOOSE_TRIANGLES));
-    EXPECT_EQ(everything.grid_cell_starts.front(), 0u);
+    EXPECT_EQ(everything.grid_nodes[0], 0u);
     expect_brute_forces_image(scene);
 }
 
@@ -238,7 +238,7 @@ TEST(GridSpheres, ALooseSphereListedAwayFromItsIndexRenders) {
     ASSERT_TRUE(gpu.grid.used);
     ASSERT_TRUE(gpu.features.has(Feature::GRID_SPHERES));
     bool loose_sphere_elsewhere = false;
-    for (std::uint32_t i = 0; i < gpu.grid_cell_starts.front(); ++i) {
+    for (std::uint32_t i = 0; i < gpu.grid_nodes[0]; ++i) {
         const std::uint32_t ref = gpu.grid_refs[i];
         loose_sphere_elsewhere = loose_sphere_elsewhere ||
                                  ((ref >> kernel::REF_KIND_SHIFT) == kernel::REF_SPHERE &&

@@ -1,7 +1,7 @@
 // The kernel's grid walk (shaders/kernel/grid.glsl, through the reference backend's
 // view of it) against brute force: the same closest hit and the same shadow answers
-// for random rays through random scenes, and the robustness cases a 3D-DDA must
-// survive: +0/-0 and tiny direction components, origins inside, outside and exactly
+// for random rays through random scenes, uniform and split (a dense cluster in a wide
+// scene), and the robustness cases a grid walk must survive: +0/-0 and tiny direction components, origins inside, outside and exactly
 // on the grid's faces, edges and corners, rays that miss, NaN and infinite rays.
 #include <gtest/gtest.h>
 
@@ -45,7 +45,8 @@ struct GridScene {
         k.triangles = triangles;
         k.rings = rings;
         k.cylinders = cylinders;
-        k.grid_cell_starts = grid.cell_starts;
+        k.GRID_SPLIT = grid.levels > 0;
+        k.grid_nodes = grid.nodes;
         k.grid_refs = grid.refs;
         kernel::set_sphere_count(k.params, std::uint32_t(spheres.size()));
         kernel::set_triangle_count(k.params, std::uint32_t(triangles.size()));
@@ -58,6 +59,7 @@ struct GridScene {
         kernel::set_grid_cell(k.params, vec3(grid.cell));
         kernel::set_grid_inv_cell(k.params, vec3(1.0 / grid.cell));
         kernel::set_grid_resolution(k.params, glm::uvec3(grid.resolution[0], grid.resolution[1], grid.resolution[2]));
+        kernel::set_grid_nudge(k.params, float(grid.nudge));
         k.work_reset();
         return k;
     }
@@ -462,6 +464,148 @@ TEST(GridTraversal, WalkEndsWithinTheCellsOfTheGrid) {
         const vec3 d = glm::normalize(vec3(gauss(rng), gauss(rng), gauss(rng)));
         k.closest_hit(make_ray(vec3(5, 5, 5), d), kernel::INFINITY_T);
         EXPECT_LE(k.g_cells_visited, 50u + 60u + 70u);
+    }
+}
+
+// A dense cluster in a wide scene, the teapot in a stadium: `count` small spheres,
+// triangles, rings and cylinders in a cube of side `size` around `centre`, and a floor
+// and walls of large triangles 1,000 times wider. The builder splits the cluster's
+// root cells.
+GridScene cluster_scene(std::uint32_t seed, int count, float size, vec3 centre) {
+    GridScene s = random_scene(seed, count, count);
+    const float k = size / 20.0f;   // random_scene fills [-10, 10]^3
+    for (kernel::Sphere& sp : s.spheres) {
+        sp.center_radius = vec4(vec3(sp.center_radius) * k + centre, std::min(sp.center_radius.w, 0.5f) * k);
+    }
+    for (kernel::Triangle& t : s.triangles) {
+        const vec3 a = vec3(t.p0) * k + centre;
+        // Not smaller: a triangle a few float steps wide, seen from afar, can pass the
+        // watertight test's edge signs by rounding, whatever the grid does.
+        t.p1 = vec4(vec3(t.p1) * k + centre, 0.0f);
+        t.p2 = vec4(vec3(t.p2) * k + centre, 0.0f);
+        t.p0 = vec4(a, 0.0f);
+    }
+    for (kernel::Ring& r : s.rings) {
+        r.center_inner = vec4(vec3(r.center_inner) * k + centre, 0.0f);
+        r.normal_outer.w = std::min(r.normal_outer.w, 0.5f) * k;
+    }
+    for (kernel::Cylinder& c : s.cylinders) {
+        const vec3 base = vec3(c.base_radius) * k + centre;
+        c.top_capped = vec4(base + glm::normalize(vec3(c.top_capped) - vec3(c.base_radius)) * 0.5f * k, c.top_capped.w);
+        c.base_radius = vec4(base, std::min(c.base_radius.w, 0.3f) * k);
+    }
+    const float w = 1000.0f * size;
+    std::uint32_t id = std::uint32_t(s.materials.size());
+    const vec3 f = centre - vec3(0.0f, size, 0.0f);
+    for (int i = 0; i < 40; ++i) {   // a floor of 40 strips, and two walls
+        const float x0 = f.x - w + 2.0f * w * float(i) / 40.0f, x1 = x0 + 2.0f * w / 40.0f;
+        s.triangles.push_back(triangle(vec3(x0, f.y, f.z - w), vec3(x1, f.y, f.z + w), vec3(x1, f.y, f.z - w), id++));
+        s.triangles.push_back(triangle(vec3(x0, f.y, f.z - w), vec3(x0, f.y, f.z + w), vec3(x1, f.y, f.z + w), id++));
+    }
+    s.triangles.push_back(triangle(vec3(f.x - w, f.y, f.z - w), vec3(f.x + w, f.y + w, f.z - w),
+                                   vec3(f.x + w, f.y, f.z - w), id++));
+    s.triangles.push_back(triangle(vec3(f.x - w, f.y, f.z + w), vec3(f.x - w, f.y + w, f.z - w),
+                                   vec3(f.x - w, f.y, f.z - w), id++));
+    s.materials.resize(id);
+    return s;
+}
+
+// The cluster's cells are split, several levels deep, and every answer equals brute
+// force: rays from inside the cluster in every direction, axis-aligned with +0 and -0,
+// with tiny components, starting on the faces of the split cells, and from far away.
+TEST(GridSplit, AClusterInAWideSceneMatchesBruteForce) {
+    GridScene s = cluster_scene(31, 600, 1.0f, vec3(0.0f));
+    s.build();
+    ASSERT_GE(s.grid.levels, 3u) << "the cluster's cells are not split";
+    Kernel grid = s.kernel(true);
+    Kernel brute = s.kernel(false);
+    std::mt19937 rng(32);
+    std::uniform_real_distribution<float> in(-0.6f, 0.6f);
+    std::uniform_real_distribution<float> far(-800.0f, 800.0f);
+    std::normal_distribution<float> gauss;
+    std::uniform_int_distribution<int> axis(0, 2);
+    std::uniform_int_distribution<std::uint32_t> fine(0, std::uint32_t(kernel::GRID_FINE) - 1u);
+    int failures = 0;
+    for (int i = 0; i < 60000 && failures < 10; ++i) {
+        vec3 origin(in(rng), in(rng), in(rng));
+        vec3 dir(gauss(rng), gauss(rng), gauss(rng));
+        switch (i % 6) {
+        case 0: {  // axis-aligned, the other components +0 or -0
+            const int a = axis(rng);
+            dir = vec3(gauss(rng) < 0.0f ? -0.0f : 0.0f, gauss(rng) < 0.0f ? -0.0f : 0.0f,
+                       gauss(rng) < 0.0f ? -0.0f : 0.0f);
+            dir[a] = gauss(rng) < 0.0f ? -1.0f : 1.0f;
+            break;
+        }
+        case 1:  // one tiny component
+            dir[axis(rng)] = 1e-30f * gauss(rng);
+            break;
+        case 2: {  // starting on a face of a finest cell, in the cluster's root cell
+            const int a = axis(rng);
+            const glm::dvec3 root = glm::floor((glm::dvec3(origin) - s.grid.lo) / s.grid.cell);
+            const double step = s.grid.cell[a] / double(1u << (kernel::GRID_SPLIT_BITS * s.grid.levels));
+            const double within = double(fine(rng) >> (kernel::GRID_FRACTION_BITS - kernel::GRID_SPLIT_BITS *
+                                                                                          s.grid.levels));
+            origin[a] = float(s.grid.lo[a] + root[a] * s.grid.cell[a] + within * step);
+            break;
+        }
+        case 3:  // from far away, toward the cluster
+            origin = vec3(far(rng), std::abs(far(rng)), far(rng));
+            dir = vec3(in(rng), in(rng), in(rng)) - origin;
+            break;
+        default: break;
+        }
+        failures += compare_ray(grid, brute, origin, dir, i) ? 0 : 1;
+    }
+}
+
+// The same at odd scales and far from the origin, rays from a distant eye and from
+// within.
+TEST(GridSplit, AClusterAtOddScalesAndOffsetsMatchesBruteForce) {
+    for (const auto& [scale, offset] : std::vector<std::pair<float, vec3>>{
+             {1e-3f, vec3(0.0f)}, {1.0f, vec3(2e3f, -1e3f, 5e2f)}, {1e2f, vec3(-3e5f, 1e5f, 2e5f)}}) {
+        GridScene s = cluster_scene(41, 400, scale, offset);
+        const vec3 eye = offset + scale * vec3(30.0f, 12.0f, -20.0f);
+        GridRequest request;
+        request.eye = glm::dvec3(eye);
+        s.build(request);
+        SCOPED_TRACE(testing::Message() << "scale " << scale << " offset " << offset.x << ", " << s.grid.levels
+                                        << " levels");
+        EXPECT_GE(s.grid.levels, 1u) << "the cluster's cells are not split";
+        expect_random_rays_match(s, eye, 0.05f * scale, 6000, 42);
+    }
+}
+
+// Every walk ends: the sum over axes of step times fine coordinate grows each step,
+// so a walk through a split grid visits at most as many cells as the fine grid has
+// along the ray, whatever the ray.
+TEST(GridSplit, WalksEndWithinTheFineCellsTheyCross) {
+    GridScene s = cluster_scene(51, 400, 1.0f, vec3(0.0f));
+    s.build();
+    ASSERT_GE(s.grid.levels, 1u);
+    Kernel k = s.kernel(true);
+    std::mt19937 rng(52);
+    std::normal_distribution<float> gauss;
+    for (int i = 0; i < 2000; ++i) {
+        const Kernel::Ray ray = make_ray(vec3(0.3f * gauss(rng), 0.3f * gauss(rng), 0.3f * gauss(rng)),
+                                         glm::normalize(vec3(gauss(rng), gauss(rng), gauss(rng))));
+        Kernel::GridWalk w = k.grid_walk_start(ray, kernel::INFINITY_T);
+        std::uint64_t steps = 0;
+        kernel::uvec3 last = w.at;
+        while (k.grid_walk_step(ray, w)) {
+            ++steps;
+            // Never behind the last lookup on any axis the ray moves along.
+            for (int a = 0; a < 3; ++a) {
+                if (w.step[a] > 0) {
+                    ASSERT_GE(w.at[a], last[a]);
+                }
+                if (w.step[a] < 0) {
+                    ASSERT_LE(w.at[a], last[a]);
+                }
+            }
+            last = w.at;
+            ASSERT_LT(steps, 3u * 4096u) << describe(ray);
+        }
     }
 }
 

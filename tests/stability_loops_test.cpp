@@ -77,7 +77,7 @@ struct Tally {
 // unit_vector(cam_corner), whatever the pixel.
 Tally trace_everything(const Scene& scene) {
     const FlatScene gpu = flatten_scene(scene);
-    EXPECT_FALSE(gpu.grid_cell_starts.empty()) << "the grid must be on";
+    EXPECT_FALSE(gpu.grid_nodes.empty()) << "the grid must be on";
     kernel::Kernel k = make_kernel(gpu);
     const float nan = std::numeric_limits<float>::quiet_NaN();
     // In the kernel's coordinates, whatever the host made them.

@@ -1,4 +1,5 @@
 #include "accel/grid.hpp"
+#include "accel/grid_split.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,9 +16,10 @@ namespace {
 
 using glm::dvec3;
 
-// Largest cells per axis: far beyond any useful grid, small enough that cell
-// coordinates stay exact in float and int.
-constexpr double kMaxAxisCells = 1 << 20;
+// Largest root cells per axis: far beyond any useful grid, small enough that fine
+// coordinates (kernel GRID_FRACTION_BITS) fit a uint and root indices stay exact in
+// float.
+constexpr double kMaxAxisCells = double(1u << (32u - kernel::GRID_FRACTION_BITS));
 
 // At most 2^25 cells (128 MiB of cell starts) whatever the device allows: the
 // heuristic never asks for more below 4 million primitives.
@@ -27,10 +29,9 @@ constexpr std::uint64_t kMaxGridCells = std::uint64_t(1) << 25;
 // array in memory, and the reference backend reads it from there.
 constexpr std::uint64_t kMaxGridRefs = std::uint64_t(1) << 28;
 
-// Relative padding of each primitive box: a thousandth of a cell, plus the float
+// Padding of each primitive box: a thousandth of a cell (kCellPad), plus the float
 // rounding of positions at the scene's magnitude and the rays' reach (2^-20 is
 // eight float ULPs). Over-inclusion costs a test; under-inclusion loses a hit.
-constexpr double kCellPad = 1e-3;
 constexpr double kMagnitudePad = 0x1p-20;
 
 // The float at or below x, and at or above it.
@@ -287,7 +288,7 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
 
     Grid g;
     if (boxes.empty()) {
-        g.cell_starts = {0, 0};
+        g.nodes = {0, 0};   // one empty root cell
         return g;
     }
     // The loose primitives' references go first, in kind order like a cell's; the
@@ -328,13 +329,13 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
     // of everything.
     const Aabb everything = grid_box(all_boxes);
     if (boxes.empty()) {   // everything is loose: one cell, empty
-        g.cell_starts = {g.loose, g.loose};
+        g.nodes = {g.loose, g.loose};
         g.refs = std::move(loose_refs);
         return g;
     }
     const Aabb box = grid_box(boxes);
     const std::uint64_t max_refs = std::min(request.max_entries, kMaxGridRefs);
-    // The cell starts hold one entry more than there are cells.
+    // The nodes hold one entry more than there are root cells.
     const std::uint64_t max_cells = std::min(std::max<std::uint64_t>(request.max_entries, 2) - 1, kMaxGridCells);
     const std::string cell_limit = max_cells == kMaxGridCells
                                        ? fmt::format("vkrt's limit of {} cells", kMaxGridCells)
@@ -391,37 +392,43 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
             throw std::runtime_error(fmt::format("the scene's {} primitives do not fit one grid: {} references, over {}",
                                                  boxes.size() + g.loose, total, ref_limit));
         }
-        // Two passes: count each cell's references, then place them after the prefix sum.
+        // Two passes: count each root cell's primitives, then place them after the
+        // prefix sum.
         const std::uint64_t cells = g.cell_count();
-        std::vector<std::uint32_t> counts(cells + 1, 0);
+        RootCells roots;
+        roots.starts.assign(cells + 1, 0);
         for (const Aabb& b : boxes) {
             const auto [first, last] = g.cells_overlapping(b);
             for (std::uint32_t z = first[2]; z <= last[2]; ++z) {
                 for (std::uint32_t y = first[1]; y <= last[1]; ++y) {
                     const std::uint64_t row = (std::uint64_t(z) * res[1] + y) * res[0];
-                    for (std::uint32_t x = first[0]; x <= last[0]; ++x) ++counts[row + x];
+                    for (std::uint32_t x = first[0]; x <= last[0]; ++x) ++roots.starts[row + x];
                 }
             }
         }
-        std::uint32_t sum = g.loose;
+        std::uint32_t sum = 0;
         for (std::uint64_t c = 0; c <= cells; ++c) {
-            const std::uint32_t n = counts[c];
-            counts[c] = sum;
+            const std::uint32_t n = roots.starts[c];
+            roots.starts[c] = sum;
             sum += n;
         }
-        std::vector<std::uint32_t> cursor(counts.begin(), counts.end() - 1);
-        g.cell_starts = std::move(counts);
-        g.refs.assign(total, 0);
-        std::copy(loose_refs.begin(), loose_refs.end(), g.refs.begin());
+        std::vector<std::uint32_t> cursor(roots.starts.begin(), roots.starts.end() - 1);
+        roots.items.assign(sum, 0);
         for (std::size_t i = 0; i < boxes.size(); ++i) {
             const auto [first, last] = g.cells_overlapping(boxes[i]);
             for (std::uint32_t z = first[2]; z <= last[2]; ++z) {
                 for (std::uint32_t y = first[1]; y <= last[1]; ++y) {
                     const std::uint64_t row = (std::uint64_t(z) * res[1] + y) * res[0];
-                    for (std::uint32_t x = first[0]; x <= last[0]; ++x) g.refs[cursor[row + x]++] = ids[i];
+                    for (std::uint32_t x = first[0]; x <= last[0]; ++x) roots.items[cursor[row + x]++] = std::uint32_t(i);
                 }
             }
         }
+        const double magnitude_pad = (magnitude + reach) * kMagnitudePad;
+        // Half the padding: more than a position's rounding, less than any box's padding.
+        g.nudge = magnitude_pad / 2;
+        g.refs = std::move(loose_refs);
+        const bool split = request.split && product(request.resolution) == 0;
+        place_cells(g, roots, boxes, ids, magnitude_pad, split, max_refs, request.max_entries);
         return g;
     }
 }

@@ -1,7 +1,8 @@
 #pragma once
-// The uniform grid of the paper's Fig. 7, built on the host and flattened into the two
-// arrays the kernel walks (shaders/kernel/grid.glsl): per-cell start offsets into one
-// concatenated list of primitive references. docs/grid.md describes the heuristic.
+// The grid the kernel walks (shaders/kernel/grid.glsl), built on the host and flattened
+// into two arrays: the cells' nodes and one concatenated list of primitive
+// references. A uniform grid of root cells, the paper's Fig. 7, whose crowded cells
+// are split into 4 x 4 x 4 children, recursively. docs/grid.md describes the heuristics.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -26,8 +27,9 @@ struct GridStats {
     // What the builder reduced and the limit that forced it (build_grid's note), empty
     // when it built what was asked: also in `reason`, and printed as a warning.
     std::string warning;
-    std::array<std::uint32_t, 3> resolution{0, 0, 0};
-    std::uint64_t cells = 0;
+    std::array<std::uint32_t, 3> resolution{0, 0, 0};  // root cells per axis
+    std::uint64_t cells = 0;                         // leaf cells: those a walk visits
+    std::uint32_t levels = 0;                        // how deep the deepest split goes
     std::uint64_t references = 0;                    // primitive references: the loose ones and all cells'
     std::size_t bytes = 0;                           // both grid buffers
     double build_seconds = 0.0;
@@ -45,20 +47,29 @@ struct Grid {
     glm::dvec3 lo{0.0};
     glm::dvec3 hi{0.0};
     glm::dvec3 cell{1.0};
-    GridResolution resolution{1, 1, 1};
-    std::vector<std::uint32_t> cell_starts;  // cells + 1 entries: a prefix sum of the cell sizes
+    GridResolution resolution{1, 1, 1};      // root cells per axis
+    // One word per node, the offset of its references (kernel::GRID_INNER,
+    // constants.glsl), and one more where the last node's end: nodes 0 to cells - 1
+    // are the root cells (x fastest), then the children of split cells, 64 at a time.
+    // References [0, nodes[0]) are the loose primitives. Without splits, the
+    // uniform grid's prefix sum of cell sizes.
+    std::vector<std::uint32_t> nodes;
     // kind << REF_KIND_SHIFT | index: first the loose primitives, refs [0, loose),
-    // listed in no cell and tested once per ray, then the cells' lists, cell by cell
-    // (cell_starts[0] == loose).
+    // listed in no cell and tested once per ray, then each node's, in node order (an
+    // inner cell's is the node of its first child).
     std::vector<std::uint32_t> refs;
     std::uint32_t loose = 0;
+    std::uint64_t leaves = 0;                // leaf cells
+    std::uint32_t levels = 0;                // 0: no cell split, a uniform grid
+    // How far ahead the walk looks up the next cell (kernel grid_nudge()).
+    double nudge = 0.0;
     // How many times larger the box would be with the ones left out for their boxes.
     double loose_shrink = 1.0;
 
-    std::uint64_t cell_count() const {
+    std::uint64_t cell_count() const {   // root cells
         return std::uint64_t(resolution[0]) * resolution[1] * resolution[2];
     }
-    std::size_t bytes() const { return (cell_starts.size() + refs.size()) * sizeof(std::uint32_t); }
+    std::size_t bytes() const { return (nodes.size() + refs.size()) * sizeof(std::uint32_t); }
     glm::dvec3 pad{0.0};                     // added to every primitive's box on each side
 
     // The cell index range [first, last] (inclusive, per axis) a box overlaps once
@@ -96,6 +107,9 @@ struct GridRequest {
     // floor polygon under a tree; build_grid says when).
     std::array<bool, 4> loose_kinds{};
     std::size_t max_loose = 0;
+    // Split crowded cells where it pays (docs/grid.md). A resolution given above
+    // asks for one particular uniform grid, which is never split.
+    bool split = true;
 };
 
 // What the grid is built over: one span per primitive kind, the kinds the kernel's
@@ -108,7 +122,7 @@ struct GridPrimitives {
 };
 
 // Builds the grid over every primitive but the loose ones (GridRequest::max_loose).
-// Within each cell, and among the loose ones, the references are grouped by kind, in
+// Within each leaf cell, and among the loose ones, the references are grouped by kind, in
 // the order spheres, triangles, rings, cylinders, each kind in index order: the
 // kernel walks a cell in one loop per kind (shaders/kernel/scene.glsl). A
 // resolution that would not fit the device is reduced until it does; `note` then

@@ -53,8 +53,8 @@ void apply_overrides(const RenderArgs& args, Scene& scene) {
     scene.render.display = display_with(scene.render.display, args.display);
     if (!args.grid.empty()) {
         const GridSettings grid = parse_grid_option(args.grid).value();  // checked by the parser
-        if (args.grid == "on") {
-            scene.render.grid.mode = GridMode::On;  // keeps a resolution the scene gives
+        if (args.grid == "on" || args.grid == "uniform") {
+            scene.render.grid.mode = grid.mode;  // keeps a resolution the scene gives
         } else {
             scene.render.grid = grid;
         }
@@ -132,9 +132,10 @@ void print_summary(const RenderStats& s, const std::string& output, bool partial
                    s.dropped_low_weight, s.dropped_stack_full);
     }
     if (s.grid.used) {
-        fmt::print("grid      {}x{}x{} cells, {} references, {:.1f} MiB, built in {:.3f} s ({})\n",
-                   s.grid.resolution[0], s.grid.resolution[1], s.grid.resolution[2], s.grid.references,
-                   double(s.grid.bytes) / (1 << 20), s.grid.build_seconds, s.grid.reason);
+        fmt::print("grid      {}x{}x{} root cells, {} levels of splits, {} leaf cells, {} references, {:.1f} MiB, "
+                   "built in {:.3f} s ({})\n",
+                   s.grid.resolution[0], s.grid.resolution[1], s.grid.resolution[2], s.grid.levels, s.grid.cells,
+                   s.grid.references, double(s.grid.bytes) / (1 << 20), s.grid.build_seconds, s.grid.reason);
     } else {
         fmt::print("grid      not used ({})\n", s.grid.reason);
     }
@@ -151,6 +152,7 @@ std::optional<GridSettings> parse_grid_option(const std::string& text) {
     if (text == "auto") return GridSettings{GridMode::Auto, {0, 0, 0}};
     if (text == "on") return GridSettings{GridMode::On, {0, 0, 0}};
     if (text == "off") return GridSettings{GridMode::Off, {0, 0, 0}};
+    if (text == "uniform") return GridSettings{GridMode::Uniform, {0, 0, 0}};
     GridSettings g{GridMode::On, {0, 0, 0}};
     std::size_t pos = 0;
     for (int a = 0; a < 3; ++a) {

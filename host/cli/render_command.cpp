@@ -41,16 +41,17 @@ Command add_render_command(CLI::App& program) {
         ->check(CLI::IsMember({"sobol", "hash"}));
     add_display(r, args->display, "; overrides the scene");
     r->add_option("--grid", args->grid,
-                  "Uniform grid: auto (when the scene has enough primitives for it to pay), on, off, or a "
-                  "resolution NXxNYxNZ in cells (e.g. 46x46x3); overrides the scene")
+                  "Grid: auto (when the scene has enough primitives for it to pay), on, off, uniform (on, no "
+                  "cell split), or a resolution NXxNYxNZ in root cells (e.g. 46x46x3), uniform; overrides the "
+                  "scene")
         ->check(CLI::Validator(
             [](const std::string& text) {
                 return parse_grid_option(text)
                            ? std::string()
-                           : fmt::format("expected auto, on, off or NXxNYxNZ (each 1 to {}), got '{}'",
+                           : fmt::format("expected auto, on, off, uniform or NXxNYxNZ (each 1 to {}), got '{}'",
                                          limits::kMaxGridAxisCells, text);
             },
-            "auto|on|off|NXxNYxNZ"));
+            "auto|on|off|uniform|NXxNYxNZ"));
     add_threads(r, args->threads);
     r->add_option("--stats", args->stats_file, "Write render statistics as JSON to this file");
     r->add_option("--serve", args->serve,

@@ -182,6 +182,9 @@ bool want_grid(const Scene& scene, std::size_t primitives, const AccelPolicy& po
     case GridMode::On:
         reason = "on: requested (render.grid or --grid)";
         return true;
+    case GridMode::Uniform:
+        reason = "uniform: requested (render.grid or --grid)";
+        return true;
     case GridMode::Auto: break;
     }
     if (primitives < policy.brute_force_below) {
@@ -270,6 +273,7 @@ void add_grid(const Scene& scene, const AccelPolicy& policy, FlatScene& g) {
     request.max_loose = resolution_given ? 0 : kMaxStretching;
     request.max_entries = policy.max_buffer_entries;
     request.eye = scene.camera.eye - g.origin;
+    request.split = scene.render.grid.mode != GridMode::Uniform;
     std::string note;
     Grid grid = build_grid(GridPrimitives{g.spheres, g.triangles, g.rings, g.cylinders}, request, note);
     note_kinds(grid, policy, request.loose_kinds, g);
@@ -279,14 +283,17 @@ void add_grid(const Scene& scene, const AccelPolicy& policy, FlatScene& g) {
     kernel::set_grid_cell(p, vec3(grid.cell));
     kernel::set_grid_inv_cell(p, vec3(1.0 / grid.cell));
     kernel::set_grid_resolution(p, uvec3(grid.resolution[0], grid.resolution[1], grid.resolution[2]));
+    kernel::set_grid_nudge(p, float(grid.nudge));
     g.grid.used = true;
     g.grid.resolution = grid.resolution;
-    g.grid.cells = grid.cell_count();
+    g.grid.cells = grid.leaves;
+    g.grid.levels = grid.levels;
+    g.features.set(Feature::GRID_SPLIT, grid.levels > 0);
     g.grid.references = grid.refs.size();
     g.grid.bytes = grid.bytes();
     if (!note.empty()) g.grid.reason += "; " + note;
     g.grid.warning = note;
-    g.grid_cell_starts = std::move(grid.cell_starts);
+    g.grid_nodes = std::move(grid.nodes);
     g.grid_refs = std::move(grid.refs);
     g.grid.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

@@ -67,8 +67,8 @@ void check_counts(const FlatScene& scene) {
     if (f.has(Feature::HAS_GRID)) {
         const glm::uvec3 res = kernel::grid_resolution(p);
         const std::uint64_t cells = std::uint64_t(res.x) * res.y * res.z;
-        if (scene.grid_cell_starts.size() != cells + 1 || scene.grid_cell_starts.back() != scene.grid_refs.size()) {
-            throw GpuError("scene: the grid's cell starts do not match its resolution and references");
+        if (scene.grid_nodes.size() < cells + 1 || scene.grid_nodes.back() != scene.grid_refs.size()) {
+            throw GpuError("scene: the grid's nodes do not match its resolution and references");
         }
     }
 }

@@ -14,6 +14,9 @@ namespace vkrt::kernel {
 
 #define INOUT(T) T&
 #define precise
+// The grid walk's small functions, which GCC otherwise leaves as calls that keep
+// the walk's state in memory.
+#define HOT [[gnu::always_inline]] inline
 
 struct Kernel {
 #define FEATURE(id, name) bool name = true;
@@ -31,6 +34,7 @@ struct Kernel {
 #undef LOAD_ELEMENT
 };
 
+#undef HOT
 #undef precise
 #undef INOUT
 

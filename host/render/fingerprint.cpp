@@ -12,6 +12,7 @@ bool is_acceleration_feature(std::uint32_t id) {
     switch (Feature(id)) {
     case Feature::DEFERRED_SPHERES:
     case Feature::HAS_GRID:
+    case Feature::GRID_SPLIT:
     case Feature::GRID_SPHERES:
     case Feature::GRID_TRIANGLES:
     case Feature::GRID_RINGS:
@@ -28,11 +29,12 @@ bool is_acceleration_feature(std::uint32_t id) {
 
 std::uint64_t scene_fingerprint(const FlatScene& scene) {
     kernel::Params params = scene.params;
-    // The grid's box, cells and resolution (see the header for why).
+    // The grid's box, cells, resolution and lookahead (see the header for why).
     for (auto* set : {kernel::set_grid_min, kernel::set_grid_max, kernel::set_grid_cell, kernel::set_grid_inv_cell}) {
         set(params, kernel::vec3(0.0f));
     }
     kernel::set_grid_resolution(params, kernel::uvec3(0u));
+    kernel::set_grid_nudge(params, 0.0f);
     Fnv1a h;
     h.add(&params, sizeof params);  // texels only: no padding bytes
     for (std::uint32_t id = 0; id < kFeatureCount; ++id) {

@@ -44,7 +44,7 @@ private:
     std::uint64_t hash_ = 0xcbf29ce484222325ull;
 };
 
-// 64-bit FNV-1a over those bytes. The uniform grid is left out: it decides how
+// 64-bit FNV-1a over those bytes. The grid is left out: it decides how
 // rays find what they hit, not what they hit (tests/grid_image_test.cpp renders
 // identical images with and without it), so partials rendered with --grid on, off,
 // or on backends that choose differently still merge. So is DEFERRED_SPHERES, the

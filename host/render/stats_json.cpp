@@ -24,7 +24,7 @@ nlohmann::json stats_to_json(const RenderStats& s) {
                   {"cells_per_ray", s.per_ray(s.cells_visited)},
                   {"tests_per_ray", s.per_ray(s.intersection_tests)}}},
         {"grid", {{"used", s.grid.used}, {"reason", s.grid.reason}, {"outside", s.grid.outside},
-                  {"resolution", s.grid.resolution},
+                  {"resolution", s.grid.resolution}, {"levels", s.grid.levels},
                   {"cells", s.grid.cells}, {"references", s.grid.references}, {"bytes", s.grid.bytes},
                   {"build_seconds", s.grid.build_seconds}}},
         {"samples", {{"truncated", s.truncated_samples}, {"nonfinite", s.nonfinite_samples},

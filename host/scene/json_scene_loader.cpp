@@ -72,7 +72,7 @@ Camera read_camera(const Node& n) {
     return c;
 }
 
-// "grid": "auto" | "on" | "off" | {"resolution": [x, y, z]} (docs/grid.md).
+// "grid": "auto" | "on" | "off" | "uniform" | {"resolution": [x, y, z]} (docs/grid.md).
 GridSettings read_grid(const Node& n) {
     GridSettings g;
     if (n.raw().is_string()) {
@@ -80,11 +80,14 @@ GridSettings read_grid(const Node& n) {
         if (mode == "auto") g.mode = GridMode::Auto;
         else if (mode == "on") g.mode = GridMode::On;
         else if (mode == "off") g.mode = GridMode::Off;
-        else n.fail(fmt::format("unknown grid mode {} (expected \"auto\", \"on\", \"off\" or an object with "
-                                "\"resolution\")", json::quote_user(mode)));
+        else if (mode == "uniform") g.mode = GridMode::Uniform;
+        else n.fail(fmt::format("unknown grid mode {} (expected \"auto\", \"on\", \"off\", \"uniform\" or an "
+                                "object with \"resolution\")", json::quote_user(mode)));
         return g;
     }
-    if (!n.raw().is_object()) n.fail_expected("\"auto\", \"on\", \"off\" or an object with \"resolution\"");
+    if (!n.raw().is_object()) {
+        n.fail_expected("\"auto\", \"on\", \"off\", \"uniform\" or an object with \"resolution\"");
+    }
     n.allow_only({"resolution"});
     g.mode = GridMode::On;
     const auto cells = n.required("resolution").elements(3, "an array of 3 whole numbers (cells per axis)");

@@ -41,9 +41,10 @@ enum class Hemisphere { Angles, Uniform, Cosine };
 // points, or an independent hash per number.
 enum class Sampler { Sobol, Hash };
 
-// The uniform grid (host/accel/grid.hpp). Auto builds it unless the scene is small
-// enough that brute force is faster on the chosen backend (a measured threshold).
-enum class GridMode { Auto, On, Off };
+// The grid (host/accel/grid.hpp). Auto builds it unless the scene is small enough
+// that brute force is faster on the chosen backend (a measured threshold); Uniform
+// builds it and splits no cell, the paper's uniform grid.
+enum class GridMode { Auto, On, Off, Uniform };
 
 struct GridSettings {
     GridMode mode = GridMode::Auto;

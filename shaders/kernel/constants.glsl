@@ -39,6 +39,22 @@ const uint REF_RING = 2u;
 const uint REF_CYLINDER = 3u;
 const uint REF_NONE = 0xFFFFFFFFu;  // "no primitive": kind 7, which no primitive has
 
+// The adaptive grid (kernel/grid.glsl, host/accel/grid.cpp). A root cell spans
+// GRID_FINE fine units per axis; a point's fine coordinate is its root cell's index
+// times GRID_FINE plus its place within it, so root resolutions up to
+// 2^(32 - GRID_FRACTION_BITS) per axis fit a uint. An inner cell splits into
+// 4 x 4 x 4 children, each a quarter of it per axis, at most GRID_MAX_LEVELS deep.
+const uint GRID_FRACTION_BITS = 14u;
+const float GRID_FINE = 16384.0f;                  // 2^GRID_FRACTION_BITS
+const uint GRID_SPLIT_BITS = 2u;                   // children per axis: 2^GRID_SPLIT_BITS
+const uint GRID_MAX_LEVELS = GRID_FRACTION_BITS / GRID_SPLIT_BITS;
+const uint GRID_CHILDREN = 64u;
+// A node is one word, the offset of its references in grid_refs, and they end where
+// the next node's begin: the uniform grid's prefix sum of cell sizes. With GRID_INNER
+// set, an inner cell, which has one reference: the node of its first child (children
+// x fastest, then y, then z).
+const uint GRID_INNER = 0x80000000u;
+
 // The part of a cylinder a ray hit (CylinderHit in intersect.glsl).
 const uint CYLINDER_SIDE = 0u;
 const uint CYLINDER_BASE_CAP = 1u;

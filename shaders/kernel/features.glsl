@@ -42,3 +42,6 @@ FEATURE(24, DEFERRED_SPHERES)
 // Triangle records that hold parallelograms (quads): the triangle test becomes the
 // quad test, which takes a triangle as a quad with p3 = p2 (intersect.glsl).
 FEATURE(25, HAS_QUADS)
+// With HAS_GRID, whether any cell is split into children (host/accel/grid_split.cpp):
+// without it every cell is a root cell, found in one step, as in a uniform grid.
+FEATURE(26, GRID_SPLIT)

@@ -91,7 +91,7 @@ struct Emitter {
 
 // Per-render constants: PARAM_TEXELS texels, each value named in kernel/params.glsl
 // and read through its accessor (camera_eye(), max_depth(), ...), never by lane.
-const uint PARAM_TEXELS = 16u;
+const uint PARAM_TEXELS = 17u;
 struct Params {
     uvec4 texels[PARAM_TEXELS];
 };

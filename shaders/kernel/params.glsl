@@ -47,14 +47,17 @@ PARAM(uint, hemisphere_rule, 10, y)  // HEMISPHERE_*
 PARAM(uint, max_bounces, 10, z)      // scattering events after the first hit
 PARAM(uint, sampler_kind, 10, w)     // SAMPLER_* (rng.glsl)
 
-// The uniform grid (kernel/grid.glsl, host/accel/grid.cpp): cell (i, j, k) spans
+// The grid (kernel/grid.glsl, host/accel/grid.cpp): root cell (i, j, k) spans
 // grid_min() + (i, j, k) * grid_cell() to grid_min() + (i+1, j+1, k+1) * grid_cell();
 // grid_max() bounds the box rays are clipped to.
 PARAM3(vec3, grid_min, 11)
 PARAM3(vec3, grid_max, 12)
 PARAM3(vec3, grid_cell, 13)
 PARAM3(vec3, grid_inv_cell, 14)      // 1 / grid_cell(), per axis
-PARAM3(uvec3, grid_resolution, 15)   // cells per axis
+PARAM3(uvec3, grid_resolution, 15)   // root cells per axis
+// How far ahead along each axis the walk looks up the next cell: more than the float
+// rounding of a position, less than the padding of the primitives' boxes.
+PARAM(float, grid_nudge, 16, x)
 
 #undef PARAM3
 #undef PARAM

@@ -184,14 +184,14 @@ bool test_cell(Ray ray, uint i, uint end, bool any_hit, bool with_spheres, bool 
 }
 
 // True once the nearest hit so far lies within the current cell: the walk can stop.
-bool grid_cell_done(GridWalk w, Nearest nearest) {
-    return nearest.t <= min(w.t_next.x, min(w.t_next.y, w.t_next.z));
+HOT bool grid_cell_done(vec3 t_next, Nearest nearest) {
+    return nearest.t <= min(t_next.x, min(t_next.y, t_next.z));
 }
 
 // Moves the walk past the current cell: false when it must stop instead (budget,
 // a hit within the cell, or the ray leaves the grid).
-bool grid_advance(Ray ray, INOUT(GridWalk) w, Nearest nearest) {
-    return loop_tick() && !grid_cell_done(w, nearest) && grid_walk_step(ray, w);
+HOT bool grid_advance(Ray ray, INOUT(GridWalk) w, Nearest nearest) {
+    return loop_tick() && !grid_cell_done(w.t_next, nearest) && grid_walk_step(ray, w);
 }
 
 // Walks the grid along the ray. closest_hit (any_hit false) stops once the nearest
@@ -219,23 +219,15 @@ void grid_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
     bool walking = true;
     loop_enter();
     do {
-        uint cell = grid_cell_index(w.cell);
-        uint start = load_cell_start(cell);
-        uint end = load_cell_start(cell + 1u);
         loop_enter();
-        while (walking && start == end) {
+        while (walking && w.start == w.end) {
             g_cells_visited += 1u;
             walking = grid_advance(ray, w, nearest);
-            if (walking) {   // a walk that stopped may have left the grid
-                cell = grid_cell_index(w.cell);
-                start = load_cell_start(cell);
-                end = load_cell_start(cell + 1u);
-            }
         }
         if (walking) {
             g_cells_visited += 1u;
-            walking = test_cell(ray, start, end, any_hit, GRID_SPHERES, GRID_TRIANGLES, GRID_RINGS, GRID_CYLINDERS,
-                                nearest) &&
+            walking = test_cell(ray, w.start, w.end, any_hit, GRID_SPHERES, GRID_TRIANGLES, GRID_RINGS,
+                                GRID_CYLINDERS, nearest) &&
                       grid_advance(ray, w, nearest);
         }
     } while (walking);
@@ -295,7 +287,7 @@ void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
 Nearest trace(Ray ray, float t_max, bool any_hit) {
     Nearest nearest = Nearest(t_max, REF_NONE, TriangleHit(INFINITY_T, 0.0f, 0.0f), CYLINDER_SIDE);
     if (HAS_GRID) {
-        uint loose = (LOOSE_SPHERES || LOOSE_TRIANGLES || LOOSE_RINGS || LOOSE_CYLINDERS) ? load_cell_start(0u) : 0u;
+        uint loose = (LOOSE_SPHERES || LOOSE_TRIANGLES || LOOSE_RINGS || LOOSE_CYLINDERS) ? load_grid_node(0u) : 0u;
         if (loose != 0u) {   // test_cell needs a reference to test (the reference's tests turn every feature on)
             test_cell(ray, 0u, loose, any_hit, LOOSE_SPHERES, LOOSE_TRIANGLES, LOOSE_RINGS, LOOSE_CYLINDERS, nearest);
         }
