@@ -174,7 +174,8 @@ TEST(Bench, DefaultScenesComeFromTheRepo) {
     }
     EXPECT_EQ(scenes, (std::set<std::string>{"scenes/gallery/h_random_spheres.json", "scenes/spd/balls.nff.gz",
                                              "scenes/spd/tetra.nff.gz", "scenes/gallery/j_torus_knot.json",
-                                             "scenes/bench/ten_spheres.json"}));
+                                             "scenes/bench/ten_spheres.json", "scenes/bench/bunny_on_terrain.json",
+                                             "scenes/bench/teapot_in_stadium.json"}));
 }
 
 // ---- --spd -----------------------------------------------------------------------

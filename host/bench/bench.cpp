@@ -33,8 +33,10 @@ namespace fs = std::filesystem;
 
 // In the source tree; docs/bench.md says where each comes from.
 const std::vector<std::string> kDefaultScenes = {
-    "scenes/gallery/h_random_spheres.json", "scenes/spd/balls.nff.gz", "scenes/spd/tetra.nff.gz",
-    "scenes/gallery/j_torus_knot.json",     "scenes/bench/ten_spheres.json",
+    "scenes/gallery/h_random_spheres.json",   "scenes/spd/balls.nff.gz",
+    "scenes/spd/tetra.nff.gz",                "scenes/gallery/j_torus_knot.json",
+    "scenes/bench/ten_spheres.json",          "scenes/bench/bunny_on_terrain.json",
+    "scenes/bench/teapot_in_stadium.json",
 };
 const std::vector<std::uint64_t> kSweepCounts = {1000, 10000, 100000, 1000000};
 const std::vector<std::uint64_t> kThresholdCounts = {1, 2, 4, 8, 16, 32, 64, 128, 256};
