@@ -11,6 +11,7 @@
 #include <limits>
 #include <stdexcept>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -111,6 +112,23 @@ std::vector<std::uint32_t> leaf_refs(const Grid& g, std::uint64_t k) {
     EXPECT_EQ(g.nodes[k] & kernel::GRID_INNER, 0u) << "node " << k << " is split";
     if ((g.nodes[k] & kernel::GRID_INNER) != 0) return {};
     return {g.refs.begin() + g.nodes[k], g.refs.begin() + (g.nodes[k + 1] & ~kernel::GRID_INNER)};
+}
+
+// Every primitive's box and its reference, kind by kind in the kernel's order.
+std::pair<std::vector<Aabb>, std::vector<std::uint32_t>> boxes_and_refs(const RandomScene& s) {
+    std::vector<Aabb> boxes;
+    std::vector<std::uint32_t> refs;
+    auto add = [&](const auto& items, std::uint32_t kind) {
+        for (std::uint32_t i = 0; i < items.size(); ++i) {
+            boxes.push_back(bounds(items[i]));
+            refs.push_back((kind << kernel::REF_KIND_SHIFT) | i);
+        }
+    };
+    add(s.spheres, kernel::REF_SPHERE);
+    add(s.triangles, kernel::REF_TRIANGLE);
+    add(s.rings, kernel::REF_RING);
+    add(s.cylinders, kernel::REF_CYLINDER);
+    return {boxes, refs};
 }
 
 // Rebuilds, by brute force over cells, the set of references each cell should hold,
@@ -323,24 +341,7 @@ TEST(GridBuild, CellsListedAreThoseTheBoxTouchesByGeometry) {
     const RandomScene s = random_scene(13, 120, 80);
     std::string note;
     const Grid g = build_grid(s.primitives(), GridRequest{}, note);
-    std::vector<Aabb> boxes;
-    std::vector<std::uint32_t> refs;
-    for (std::uint32_t i = 0; i < s.spheres.size(); ++i) {
-        boxes.push_back(bounds(s.spheres[i]));
-        refs.push_back((kernel::REF_SPHERE << kernel::REF_KIND_SHIFT) | i);
-    }
-    for (std::uint32_t i = 0; i < s.triangles.size(); ++i) {
-        boxes.push_back(bounds(s.triangles[i]));
-        refs.push_back((kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | i);
-    }
-    for (std::uint32_t i = 0; i < s.rings.size(); ++i) {
-        boxes.push_back(bounds(s.rings[i]));
-        refs.push_back((kernel::REF_RING << kernel::REF_KIND_SHIFT) | i);
-    }
-    for (std::uint32_t i = 0; i < s.cylinders.size(); ++i) {
-        boxes.push_back(bounds(s.cylinders[i]));
-        refs.push_back((kernel::REF_CYLINDER << kernel::REF_KIND_SHIFT) | i);
-    }
+    const auto [boxes, refs] = boxes_and_refs(s);
     auto listed = [&](std::uint64_t cell, std::uint32_t i) {
         const std::vector<std::uint32_t> in = leaf_refs(g, cell);
         return std::find(in.begin(), in.end(), refs[i]) != in.end();
@@ -528,16 +529,7 @@ TEST(GridSplit, EveryLeafListsThePrimitivesItsBoxOverlaps) {
     std::string note;
     const Grid g = build_grid(s.primitives(), GridRequest{}, note);
     ASSERT_GE(g.levels, 2u) << "the cluster's cells are not split";
-    std::vector<Aabb> boxes;
-    std::vector<std::uint32_t> refs;
-    for (std::uint32_t i = 0; i < s.spheres.size(); ++i) {
-        boxes.push_back(bounds(s.spheres[i]));
-        refs.push_back((kernel::REF_SPHERE << kernel::REF_KIND_SHIFT) | i);
-    }
-    for (std::uint32_t i = 0; i < s.triangles.size(); ++i) {
-        boxes.push_back(bounds(s.triangles[i]));
-        refs.push_back((kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | i);
-    }
+    const auto [boxes, refs] = boxes_and_refs(s);
     const dvec3 fine = g.cell / double(kernel::GRID_FINE);
     std::uint64_t leaves = 0;
     std::size_t most = 0;

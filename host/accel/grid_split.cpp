@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <deque>
+#include <span>
 #include <utility>
 
 namespace vkrt {
@@ -17,11 +18,13 @@ constexpr std::uint32_t kPerAxis = 1u << kernel::GRID_SPLIT_BITS;
 // ray through a cell crosses on average 1 + 3 * 4 * 1/3 = 5 of its 4 x 4 x 4
 // children (a cube's mean chord is 2/3 of its side, and a random direction projects
 // a third of it on each axis), and meets a child's primitives with the probability
-// that it meets the child, whose surface is 1/16 of the cell's. A visit to a cell
-// costs about one primitive test. A leaf costs its n tests; a split pays when
-// 5 visits + (sum of the children's counts) / 16 costs less.
+// that it meets the child, whose surface is 1/16 of the cell's. A step into a split
+// cell costs about two primitive tests (a node per level, and the lookup of the
+// point where the ray leaves; docs/decisions/0023-split-grid-cells.md). A leaf
+// costs its n tests; a split pays when 5 * 2 + (sum of the children's counts) / 16
+// costs less.
 constexpr double kChildrenCrossed = 5.0;
-constexpr double kVisitCost = 1.0;
+constexpr double kVisitCost = 2.0;
 constexpr double kChildShare = 1.0 / 16.0;
 
 // Whether to keep the splits at all: a walk that may meet split cells costs more per
@@ -38,7 +41,7 @@ constexpr double kSplitGain = 0.5;
 
 // Cells no smaller than this many times the rounding padding: below it the padding
 // lists every primitive in most of the children.
-constexpr double kFinestInPads = 1.0;
+constexpr double kFinestInPads = 2.0;
 
 // A cell waiting to be placed: its node, its primitives, its depth (0: root) and
 // its lowest fine coordinates.
@@ -69,45 +72,49 @@ struct Splitter {
     // cell's reference to its first child, whose children then wait in the queue.
     // Cells placed in node order lay out their references in node order, so that
     // each leaf's end is the next node's start.
-    void place(const Pending& cell) {
-        std::array<std::vector<std::uint32_t>, kernel::GRID_CHILDREN> children;
-        if (split && worth_splitting(cell, children)) {
-            const std::uint32_t first = std::uint32_t(g.nodes.size());
-            g.nodes[cell.node] = kernel::GRID_INNER | std::uint32_t(g.refs.size());
-            g.refs.push_back(first);
-            g.nodes.resize(g.nodes.size() + kernel::GRID_CHILDREN, 0);
-            g.levels = std::max(g.levels, cell.level + 1);
-            if (cell.level == 0) unsplit_cost += kUniformVisitCost + double(cell.items.size());
-            const std::uint32_t size =
-                1u << (kernel::GRID_FRACTION_BITS - (cell.level + 1) * kernel::GRID_SPLIT_BITS);
-            for (std::uint32_t k = 0; k < kernel::GRID_CHILDREN; ++k) {
-                const std::array<std::uint32_t, 3> c{k % kPerAxis, (k / kPerAxis) % kPerAxis, k / (kPerAxis * kPerAxis)};
-                queue.push_back({first + k, std::move(children[k]), cell.level + 1,
-                                 {cell.fine_lo[0] + c[0] * size, cell.fine_lo[1] + c[1] * size,
-                                  cell.fine_lo[2] + c[2] * size}});
+    void place(std::uint32_t node, std::span<const std::uint32_t> items, std::uint32_t level,
+               const std::array<std::uint32_t, 3>& fine_lo) {
+        if (split && double(items.size()) > kChildrenCrossed * kVisitCost) {
+            std::array<std::vector<std::uint32_t>, kernel::GRID_CHILDREN> children;
+            if (worth_splitting(items, level, fine_lo, children)) {
+                const std::uint32_t first = std::uint32_t(g.nodes.size());
+                g.nodes[node] = kernel::GRID_INNER | std::uint32_t(g.refs.size());
+                g.refs.push_back(first);
+                g.nodes.resize(g.nodes.size() + kernel::GRID_CHILDREN, 0);
+                g.levels = std::max(g.levels, level + 1);
+                if (level == 0) unsplit_cost += kUniformVisitCost + double(items.size());
+                const std::uint32_t size = 1u << (kernel::GRID_FRACTION_BITS - (level + 1) * kernel::GRID_SPLIT_BITS);
+                for (std::uint32_t k = 0; k < kernel::GRID_CHILDREN; ++k) {
+                    const std::array<std::uint32_t, 3> c{k % kPerAxis, (k / kPerAxis) % kPerAxis,
+                                                         k / (kPerAxis * kPerAxis)};
+                    queue.push_back({first + k, std::move(children[k]), level + 1,
+                                     {fine_lo[0] + c[0] * size, fine_lo[1] + c[1] * size, fine_lo[2] + c[2] * size}});
+                }
+                return;
             }
-            return;
         }
-        g.nodes[cell.node] = std::uint32_t(g.refs.size());
-        for (std::uint32_t i : cell.items) g.refs.push_back(ids[i]);
+        g.nodes[node] = std::uint32_t(g.refs.size());
+        for (std::uint32_t i : items) g.refs.push_back(ids[i]);
         ++g.leaves;
-        if (cell.level > 0 && !cell.items.empty()) {
-            split_cost += std::pow(kChildShare, double(cell.level)) * (kVisitCost + double(cell.items.size()));
+        if (level > 0 && !items.empty()) {
+            split_cost += std::pow(kChildShare, double(level)) * (kVisitCost + double(items.size()));
         }
     }
 
     // Bins the cell's primitives into its 64 children and says whether the split pays.
-    bool worth_splitting(const Pending& cell, std::array<std::vector<std::uint32_t>, kernel::GRID_CHILDREN>& children) {
-        const double n = double(cell.items.size());
-        if (cell.level >= kernel::GRID_MAX_LEVELS || !(n > kChildrenCrossed * kVisitCost)) return false;
+    bool worth_splitting(std::span<const std::uint32_t> items, std::uint32_t level,
+                         const std::array<std::uint32_t, 3>& fine_lo,
+                         std::array<std::vector<std::uint32_t>, kernel::GRID_CHILDREN>& children) {
+        const double n = double(items.size());
+        if (level >= kernel::GRID_MAX_LEVELS) return false;
         if (g.nodes.size() + kernel::GRID_CHILDREN + 1 > max_words) return false;
-        const dvec3 child = g.cell / std::pow(double(kPerAxis), double(cell.level + 1));
+        const dvec3 child = g.cell / std::pow(double(kPerAxis), double(level + 1));
         if (std::max({child.x, child.y, child.z}) < kFinestInPads * magnitude_pad) return false;
         const dvec3 fine = g.cell / double(kernel::GRID_FINE);
-        const dvec3 lo = g.lo + dvec3(cell.fine_lo[0], cell.fine_lo[1], cell.fine_lo[2]) * fine;
+        const dvec3 lo = g.lo + dvec3(fine_lo[0], fine_lo[1], fine_lo[2]) * fine;
         const dvec3 pad = kCellPad * child + magnitude_pad;
         std::uint64_t sum = 0;
-        for (std::uint32_t i : cell.items) {
+        for (std::uint32_t i : items) {
             std::array<std::uint32_t, 3> first{}, last{};
             for (int a = 0; a < 3; ++a) {
                 const double f = std::floor((boxes[i].lo[a] - pad[a] - lo[a]) / child[a]);
@@ -125,7 +132,7 @@ struct Splitter {
             }
         }
         // One more reference: the inner cell's pointer to its children.
-        const std::uint64_t added = sum + 1 - cell.items.size();
+        const std::uint64_t added = sum + 1 - items.size();
         const bool pays = kChildrenCrossed * kVisitCost + double(sum) * kChildShare < n;
         if (!pays || planned_refs + added > max_refs) {
             for (auto& c : children) c.clear();
@@ -151,18 +158,17 @@ void place_cells(Grid& g, const RootCells& roots, const std::vector<Aabb>& boxes
         Splitter s{g, boxes, ids, magnitude_pad, split_cells, max_refs, max_words, loose + roots.items.size(), 0.0, 0.0, {}};
         const GridResolution& res = g.resolution;
         for (std::uint64_t c = 0; c < cells; ++c) {
-            Pending root{std::uint32_t(c),
-                         {roots.items.begin() + roots.starts[c], roots.items.begin() + roots.starts[c + 1]},
-                         0,
-                         {std::uint32_t(c % res[0]) << kernel::GRID_FRACTION_BITS,
-                          std::uint32_t(c / res[0] % res[1]) << kernel::GRID_FRACTION_BITS,
-                          std::uint32_t(c / (std::uint64_t(res[0]) * res[1])) << kernel::GRID_FRACTION_BITS}};
-            s.place(root);
+            const std::span<const std::uint32_t> items(roots.items.data() + roots.starts[c],
+                                                       roots.starts[c + 1] - roots.starts[c]);
+            s.place(std::uint32_t(c), items, 0,
+                    {std::uint32_t(c % res[0]) << kernel::GRID_FRACTION_BITS,
+                     std::uint32_t(c / res[0] % res[1]) << kernel::GRID_FRACTION_BITS,
+                     std::uint32_t(c / (std::uint64_t(res[0]) * res[1])) << kernel::GRID_FRACTION_BITS});
         }
         while (!s.queue.empty()) {
             const Pending cell = std::move(s.queue.front());
             s.queue.pop_front();
-            s.place(cell);
+            s.place(cell.node, cell.items, cell.level, cell.fine_lo);
         }
         g.nodes.push_back(std::uint32_t(g.refs.size()));   // where the last node's references end
         return s.split_cost < kSplitGain * s.unsplit_cost;

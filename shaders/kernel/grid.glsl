@@ -1,12 +1,12 @@
-// Adaptive grid traversal. The host (host/accel/grid.cpp) builds a uniform grid of
-// root cells by Woo's rule and splits each crowded cell into 4 x 4 x 4 children,
-// again and again where primitives gather (docs/grid.md); a grid whose cells are
-// never split is the uniform grid of the paper's Fig. 7. The walk is the irregular
-// grid's (Pérard-Gayot, Kalojanov & Slusallek, "GPU Ray Tracing using Irregular
-// Grids", 2017): find the leaf cell that holds a point, test its primitives, leave
-// its box through the face the ray meets first, and find the cell beyond. No stack:
-// locating a cell descends from its root cell by the bits of the point's fine
-// coordinates (constants.glsl), one node per level.
+// Grid traversal. The host (host/accel/grid.cpp, grid_split.cpp) builds a uniform
+// grid of root cells by Woo's rule and splits each crowded cell into 4 x 4 x 4
+// children, again and again where primitives gather (docs/grid.md); a grid whose
+// cells are never split is the uniform grid of the paper's Fig. 7. The walk is the
+// irregular grid's (Perard-Gayot, Kalojanov & Slusallek, "GPU Ray Tracing using
+// Irregular Grids", 2017): find the leaf cell that holds a point, test its
+// primitives, leave its box through the face the ray meets first, and find the cell
+// beyond. No stack: locating a cell descends from its root cell by the bits of the
+// point's fine coordinates (constants.glsl), one node per level.
 //
 // Robustness, as the walk is written:
 // - A direction component below GRID_PARALLEL in magnitude is treated as zero: the
@@ -57,10 +57,10 @@ struct GridWalk {
 // Clamped first, then truncated: for values at or above 0 that is the floor, and the
 // reference backend's floor() is a library call on a baseline x86-64.
 HOT uint grid_fine_axis(float p, float lo, float cell, float inv_cell, uint res) {
-    precise uint root = uint(min(max((p - lo) * inv_cell, 0.0f), float(res - 1u)));
+    precise int root = int(min(max((p - lo) * inv_cell, 0.0f), float(int(res) - 1)));
     precise float root_lo = lo + float(root) * cell;
-    precise uint f = uint(min(max((p - root_lo) * (inv_cell * GRID_FINE), 0.0f), GRID_FINE - 1.0f));
-    return (root << GRID_FRACTION_BITS) | f;
+    precise int f = int(min(max((p - root_lo) * (inv_cell * GRID_FINE), 0.0f), GRID_FINE - 1.0f));
+    return (uint(root) << GRID_FRACTION_BITS) | uint(f);
 }
 
 HOT uvec3 grid_fine(vec3 p) {
@@ -74,12 +74,14 @@ HOT uvec3 grid_fine(vec3 p) {
 
 // Where fine coordinates v lie in space: the root cell's corner plus the fraction.
 // In a grid without splits every face is a root cell's, with no fraction to add.
+// Converted through int, which every coordinate fits: a CPU converts signed
+// integers to float in one vector instruction, unsigned ones one at a time.
 HOT vec3 grid_position(uvec3 v) {
-    precise vec3 root_lo = grid_min() + vec3(v >> GRID_FRACTION_BITS) * grid_cell();
+    precise vec3 root_lo = grid_min() + vec3(ivec3(v >> GRID_FRACTION_BITS)) * grid_cell();
     if (!GRID_SPLIT) {
         return root_lo;
     }
-    precise vec3 x = root_lo + vec3(v & uvec3(uint(GRID_FINE) - 1u)) * (grid_cell() * (1.0f / GRID_FINE));
+    precise vec3 x = root_lo + vec3(ivec3(v & uvec3(uint(GRID_FINE) - 1u))) * (grid_cell() * (1.0f / GRID_FINE));
     return x;
 }
 
