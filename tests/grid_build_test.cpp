@@ -1,6 +1,7 @@
-// Grid construction on the host (host/accel/grid.cpp): the resolution heuristic, and
-// the flattened arrays: every primitive listed in exactly the cells its padded box
-// overlaps, the cell starts a prefix sum of the cell sizes.
+// Grid construction on the host (host/accel/grid.cpp, grid_split.cpp): the resolution
+// heuristic, and the flattened arrays: every primitive listed in exactly the cells its
+// padded box overlaps, the nodes a prefix sum of the cell sizes, split cells' children
+// at every depth.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -21,7 +21,7 @@ using glm::dvec3;
 // float.
 constexpr double kMaxAxisCells = double(1u << (32u - kernel::GRID_FRACTION_BITS));
 
-// At most 2^25 cells (128 MiB of cell starts) whatever the device allows: the
+// At most 2^25 cells (128 MiB of root nodes) whatever the device allows: the
 // heuristic never asks for more below 4 million primitives.
 constexpr std::uint64_t kMaxGridCells = std::uint64_t(1) << 25;
 
