@@ -155,6 +155,12 @@ TEST(Cli, GridOptionChoosesTheAcceleration) {
     EXPECT_EQ(stats()["grid"]["used"], false);
     EXPECT_EQ(stats()["work"]["cells_visited"], 0);
 
+    // uniform: on whatever the count, no cell split.
+    ASSERT_EQ(test::run_vkrt(base + " --grid uniform", dir).code, 0);
+    EXPECT_EQ(stats()["grid"]["used"], true);
+    EXPECT_EQ(stats()["grid"]["levels"], 0);
+    EXPECT_NE(stats()["grid"]["reason"].get<std::string>().find("uniform: requested"), std::string::npos);
+
     // The default scene has 5 primitives: below the threshold, auto says so.
     ASSERT_EQ(test::run_vkrt(base, dir).code, 0);
     EXPECT_EQ(stats()["grid"]["used"], false);

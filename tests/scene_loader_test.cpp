@@ -236,11 +236,12 @@ TEST_F(SceneLoaderTest, GridSettings) {
     EXPECT_EQ(load(Parts{.render = R"({"grid": "off"})"}.text()).render.grid.mode, vkrt::GridMode::Off);
     EXPECT_EQ(load(Parts{.render = R"({"grid": "on"})"}.text()).render.grid.mode, vkrt::GridMode::On);
     EXPECT_EQ(load(Parts{.render = R"({"grid": "auto"})"}.text()).render.grid.mode, vkrt::GridMode::Auto);
+    EXPECT_EQ(load(Parts{.render = R"({"grid": "uniform"})"}.text()).render.grid.mode, vkrt::GridMode::Uniform);
     const Scene s = load(Parts{.render = R"({"grid": {"resolution": [3, 4, 5]}})"}.text());
     EXPECT_EQ(s.render.grid.mode, vkrt::GridMode::On);
     EXPECT_EQ(s.render.grid.resolution, (std::array<std::uint32_t, 3>{3, 4, 5}));
 
-    expect_error(Parts{.render = R"({"grid": "fast"})"}, {"render.grid", "unknown grid mode 'fast'"});
+    expect_error(Parts{.render = R"({"grid": "fast"})"}, {"render.grid", "unknown grid mode 'fast'", "\"uniform\""});
     expect_error(Parts{.render = R"({"grid": 3})"}, {"render.grid", "expected \"auto\""});
     expect_error(Parts{.render = R"({"grid": {"resolution": [3, 4]}})"}, {"render.grid.resolution", "3 whole numbers"});
     expect_error(Parts{.render = R"({"grid": {"resolution": [0, 4, 4]}})"}, {"render.grid.resolution[0]"});

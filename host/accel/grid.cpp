@@ -250,16 +250,21 @@ GridResolution grid_resolution(const Aabb& box, std::size_t primitives, double d
     return fit(res, max_cells);
 }
 
-std::array<GridResolution, 2> Grid::cells_overlapping(const Aabb& box) const {
+std::array<GridResolution, 2> cells_overlapping(const Aabb& box, const dvec3& lo, const dvec3& cell, const dvec3& pad,
+                                                const GridResolution& res) {
     std::array<GridResolution, 2> range{};
     for (int a = 0; a < 3; ++a) {
-        const double last = resolution[a] - 1;
+        const double last = res[a] - 1;
         const double first_cell = std::floor((box.lo[a] - pad[a] - lo[a]) / cell[a]);
         const double last_cell = std::floor((box.hi[a] + pad[a] - lo[a]) / cell[a]);
         range[0][a] = static_cast<std::uint32_t>(std::clamp(first_cell, 0.0, last));
         range[1][a] = static_cast<std::uint32_t>(std::clamp(last_cell, 0.0, last));
     }
     return range;
+}
+
+std::array<GridResolution, 2> Grid::cells_overlapping(const Aabb& box) const {
+    return vkrt::cells_overlapping(box, lo, cell, pad, resolution);
 }
 
 Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, std::string& note) {

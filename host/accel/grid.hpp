@@ -77,6 +77,13 @@ struct Grid {
     std::array<GridResolution, 2> cells_overlapping(const Aabb& box) const;
 };
 
+// The cells [first, last] (inclusive, per axis) of a grid of `res` cells of size
+// `cell` from corner `lo` that a box overlaps once grown by `pad` on every side,
+// clamped into the grid: how the builder bins a box, into root cells and into a
+// split cell's children alike.
+std::array<GridResolution, 2> cells_overlapping(const Aabb& box, const glm::dvec3& lo, const glm::dvec3& cell,
+                                                const glm::dvec3& pad, const GridResolution& res);
+
 // Cells per total primitive: Woo's rule, total cells = density * primitives, with the
 // cells per axis proportional to the box's extent on that axis.
 inline constexpr double kGridDensity = 4.0;

@@ -115,13 +115,7 @@ struct Splitter {
         const dvec3 pad = kCellPad * child + magnitude_pad;
         std::uint64_t sum = 0;
         for (std::uint32_t i : items) {
-            std::array<std::uint32_t, 3> first{}, last{};
-            for (int a = 0; a < 3; ++a) {
-                const double f = std::floor((boxes[i].lo[a] - pad[a] - lo[a]) / child[a]);
-                const double l = std::floor((boxes[i].hi[a] + pad[a] - lo[a]) / child[a]);
-                first[a] = std::uint32_t(std::clamp(f, 0.0, double(kPerAxis - 1)));
-                last[a] = std::uint32_t(std::clamp(l, 0.0, double(kPerAxis - 1)));
-            }
+            const auto [first, last] = cells_overlapping(boxes[i], lo, child, pad, {kPerAxis, kPerAxis, kPerAxis});
             for (std::uint32_t z = first[2]; z <= last[2]; ++z) {
                 for (std::uint32_t y = first[1]; y <= last[1]; ++y) {
                     for (std::uint32_t x = first[0]; x <= last[0]; ++x) {

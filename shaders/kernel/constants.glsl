@@ -39,7 +39,7 @@ const uint REF_RING = 2u;
 const uint REF_CYLINDER = 3u;
 const uint REF_NONE = 0xFFFFFFFFu;  // "no primitive": kind 7, which no primitive has
 
-// The adaptive grid (kernel/grid.glsl, host/accel/grid.cpp). A root cell spans
+// The grid (kernel/grid.glsl, host/accel/grid.cpp and grid_split.cpp). A root cell spans
 // GRID_FINE fine units per axis; a point's fine coordinate is its root cell's index
 // times GRID_FINE plus its place within it, so root resolutions up to
 // 2^(32 - GRID_FRACTION_BITS) per axis fit a uint. An inner cell splits into
@@ -48,7 +48,7 @@ const uint GRID_FRACTION_BITS = 14u;
 const float GRID_FINE = 16384.0f;                  // 2^GRID_FRACTION_BITS
 const uint GRID_SPLIT_BITS = 2u;                   // children per axis: 2^GRID_SPLIT_BITS
 const uint GRID_MAX_LEVELS = GRID_FRACTION_BITS / GRID_SPLIT_BITS;
-const uint GRID_CHILDREN = 64u;
+const uint GRID_CHILDREN = 1u << (3u * GRID_SPLIT_BITS);
 // A node is one word, the offset of its references in grid_refs, and they end where
 // the next node's begin: the uniform grid's prefix sum of cell sizes. With GRID_INNER
 // set, an inner cell, which has one reference: the node of its first child (children
