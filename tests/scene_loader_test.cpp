@@ -369,6 +369,34 @@ TEST_F(SceneLoaderTest, DuplicateKeyDeepInAnArrayNamesItsPath) {
                  {": objects[1]: ", "'radius'", "more than once"});
 }
 
+// Past a few members an object's keys are looked up in a set: the last key of
+// many, repeating the first, must still be caught, and a repeat of one added
+// after the set was made.
+TEST_F(SceneLoaderTest, DuplicateKeyInALargeObject) {
+    auto many = [](int n, const std::string& last) {
+        std::string m = R"({"chalk": {"diffuse": [0.8, 0.8, 0.8]})";
+        for (int i = 0; i < n; ++i) m += fmt::format(R"(, "m{}": {{}})", i);
+        return m + fmt::format(R"(, "{}": {{}}}})", last);
+    };
+    expect_error(Parts{.materials = many(40, "chalk")}, {": materials: ", "'chalk'", "more than once"});
+    expect_error(Parts{.materials = many(40, "m30")}, {": materials: ", "'m30'", "more than once"});
+    EXPECT_NO_THROW(load(Parts{.materials = many(40, "m40")}.text()));
+}
+
+// Paths come from the document's parents: values after a closed container, and
+// keys that need quoting, are named as an editor would find them.
+TEST_F(SceneLoaderTest, PathsAfterNestedContainers) {
+    expect_error(Parts{.objects = R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "chalk"},
+                                      {"type": "sphere", "center": [0, [1], 0], "radius": 1, "material": "chalk"}])"},
+                 {": objects[1].center[1]: expected a number, got an array of 1 element"});
+    expect_error(Parts{.materials = R"({"my glass": {"diffuse": [1, 1, 1]}, "x": {"diffuse": [1, -1, 1]}})"},
+                 {": materials.x.diffuse[1]: expected a number >= 0, got -1"});
+    expect_error(Parts{.materials = R"({"my glass": {"diffuse": [1, 1, true]}})"},
+                 {": materials[\"my glass\"].diffuse[2]: expected a number, got a boolean (true)"});
+    expect_error(Parts{.objects = R"([{"type": "sphere", "center": [0, 0, 1e999]}])"},
+                 {": objects[0].center[2]: expected a finite number, got 1e999 (too large for a double)"});
+}
+
 TEST_F(SceneLoaderTest, AbsurdNesting) {
     expect_error(Parts{.objects = std::string(200, '[') + std::string(200, ']')}, {"objects[0]", "nesting"});
 }

@@ -1,7 +1,7 @@
 #pragma once
 // A typed, path-aware view of a parsed JSON document, used by the scene loader.
 //
-// Every value handed out carries its JSON path ("objects[3].radius"), so that any
+// Every value handed out knows its JSON path ("objects[3].radius"), so that any
 // complaint about it can name the file, the path, what was expected and what was
 // found (docs/architecture.md, principle 5) without the loader repeating that bookkeeping at
 // each field. The definitions live in json_reader.cpp; only one-liners stay here.
@@ -16,70 +16,52 @@
 
 #include <fmt/format.h>
 #include <glm/vec3.hpp>
-#include <nlohmann/json.hpp>
 
+#include "scene/json_document.hpp"
 #include "scene/scene_error.hpp"
 
 namespace vkrt::json {
-
-// Ordered, so that materials keep the order of the file: their position is the
-// material index that objects refer to, and a stable order makes that predictable.
-using Json = nlohmann::ordered_json;
 
 // Beyond this magnitude a coordinate, size or intensity is certainly a typo, and
 // it would overflow once squared in the kernel's single-precision arithmetic
 // (float tops out near 3.4e38), giving NaN pixels instead of an error.
 inline constexpr double kMaxMagnitude = 1e12;
 
-// No scene needs deep nesting; the cap keeps a hostile file from costing much.
-inline constexpr int kMaxNesting = 64;
-
-// A user-supplied string made safe for a one-line message: control characters
-// escaped, long strings shortened, wrapped in single quotes.
-std::string quote_user(std::string_view s);
-
-// "materials.red" for plain keys; "materials[\"my glass\"]" when the key would
-// make the path ambiguous to read.
-std::string path_join(std::string_view parent, std::string_view key);
-
-inline std::string path_index(std::string_view parent, std::size_t index) {
-    return fmt::format("{}[{}]", parent, index);
-}
-
-std::string format_number(const Json& j);
-
-// What a value is, for "expected X, got <this>".
-std::string describe(const Json& j);
-
 inline std::string format_vec3(const glm::dvec3& v) {
     return fmt::format("[{}, {}, {}]", v.x, v.y, v.z);
 }
-
-[[noreturn]] void fail_at(const std::string& file, std::string_view path, std::string_view message);
 
 // One value of the document and where it sits. Cheap to copy: it refers to the
 // document and the file name, which outlive it (both belong to the loader call).
 class Node {
 public:
-    Node(const std::string& file, const Json& value, std::string path)
-        : file_(&file), value_(&value), path_(std::move(path)) {}
+    Node(const std::string& file, const Document& doc, Document::Index index = 0)
+        : file_(&file), doc_(&doc), index_(index) {}
 
-    const std::string& path() const { return path_; }
+    // Built on demand: a path per value would cost more than the parse.
+    std::string path() const { return doc_->path(index_); }
     const std::string& file() const { return *file_; }
-    const Json& raw() const { return *value_; }
 
-    [[noreturn]] void fail(std::string_view message) const { fail_at(*file_, path_, message); }
+    Kind kind() const { return value().kind; }
+    bool is_number() const { return kind() == Kind::Integer || kind() == Kind::Unsigned || kind() == Kind::Float; }
+    bool is_string() const { return kind() == Kind::String; }
+    bool is_object() const { return kind() == Kind::Object; }
+
+    [[noreturn]] void fail(std::string_view message) const { fail_at(*file_, path(), message); }
     // For a field that may be absent (a default that turned out to be unusable).
     [[noreturn]] void fail_field(std::string_view key, std::string_view message) const {
-        fail_at(*file_, path_join(path_, key), message);
+        fail_at(*file_, path_join(path(), key), message);
     }
     [[noreturn]] void fail_expected(std::string_view expected) const {
-        fail(fmt::format("expected {}, got {}", expected, describe(*value_)));
+        fail(fmt::format("expected {}, got {}", expected, describe()));
     }
+
+    // What the value is, for "expected X, got <this>".
+    std::string describe() const;
 
     // ---- objects -------------------------------------------------------------
     void expect_object() const {
-        if (!value_->is_object()) fail_expected("an object");
+        if (!is_object()) fail_expected("an object");
     }
 
     // Rejects any key not listed: a misspelt optional field would otherwise be
@@ -116,26 +98,16 @@ public:
     glm::dvec3 color() const;
 
 private:
-    std::vector<Node> collect() const;
+    const Document::Value& value() const { return doc_->at(index_); }
+    Node child(Document::Index i) const { return Node(*file_, *doc_, i); }
+    std::string format_number() const;
+    // Three numbers, each read and checked by `read(Node)`.
+    template <typename Read>
+    glm::dvec3 triple(Read read) const;
 
     const std::string* file_;
-    const Json* value_;
-    std::string path_;
+    const Document* doc_;
+    Document::Index index_;
 };
-
-// nlohmann reports the 1-based count of bytes read; turn it into the line and
-// column (in characters, not UTF-8 bytes) that an editor shows.
-std::pair<std::size_t, std::size_t> line_column(std::string_view text, std::size_t bytes_read);
-
-// nlohmann's messages carry an exception id, a position (which we give ourselves)
-// and an echo of the input that may span lines; keep only the reason.
-std::string short_parse_reason(std::string message);
-
-// Parses JSON text with // and /* */ comments allowed. Throws SceneError with
-// "<file>:<line>:<col>: invalid JSON: <reason>", or a message naming the JSON path
-// of what the document cannot show afterwards: a key given twice (where the last
-// would silently win), a number too large for a double, nesting deeper than
-// kMaxNesting.
-Json parse_document(const std::string& file, const std::string& text);
 
 }  // namespace vkrt::json

@@ -75,7 +75,7 @@ Camera read_camera(const Node& n) {
 // "grid": "auto" | "on" | "off" | "uniform" | {"resolution": [x, y, z]} (docs/grid.md).
 GridSettings read_grid(const Node& n) {
     GridSettings g;
-    if (n.raw().is_string()) {
+    if (n.is_string()) {
         const std::string mode = n.string();
         if (mode == "auto") g.mode = GridMode::Auto;
         else if (mode == "on") g.mode = GridMode::On;
@@ -85,7 +85,7 @@ GridSettings read_grid(const Node& n) {
                                 "object with \"resolution\")", json::quote_user(mode)));
         return g;
     }
-    if (!n.raw().is_object()) {
+    if (!n.is_object()) {
         n.fail_expected("\"auto\", \"on\", \"off\", \"uniform\" or an object with \"resolution\"");
     }
     n.allow_only({"resolution"});
@@ -410,11 +410,9 @@ Scene load_json_scene(const std::filesystem::path& file) {
 
 Scene parse_json_scene(const std::string& text, const std::filesystem::path& file) {
     const std::string name = file.string();
-    const json::Json doc = json::parse_document(name, text);
-    const Node root(name, doc, "");
-    if (!doc.is_object()) {
-        root.fail(fmt::format("expected a JSON object at the top level, got {}", json::describe(doc)));
-    }
+    const json::Document doc = json::parse_document(name, text);
+    const Node root(name, doc);
+    if (!root.is_object()) root.fail(fmt::format("expected a JSON object at the top level, got {}", root.describe()));
     root.allow_only({"camera", "render", "materials", "lights", "objects"});
 
     Scene scene;

@@ -25,7 +25,7 @@ double scale_factor(const json::Node& n) {
 }
 
 glm::dvec3 read_scale(const json::Node& n) {
-    if (n.raw().is_number()) return glm::dvec3(scale_factor(n));
+    if (n.is_number()) return glm::dvec3(scale_factor(n));
     const auto e = n.elements(3, "a number or an array of 3 numbers");
     return {scale_factor(e[0]), scale_factor(e[1]), scale_factor(e[2])};
 }
