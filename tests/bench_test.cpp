@@ -102,10 +102,24 @@ TEST(Bench, BothBackendsGridAndBruteForce) {
 
     const std::string table = read_file(dir / "stdout.txt");
     for (const char* piece : {"machine: ", "vulkan:  llvmpipe", "command: ", "| scene | primitives | backend | accel",
-                              "| 11 | cpu | brute | 32x24 |"}) {
+                              "| 11 | cpu | brute | 32x24 |", "Command to image",
+                              "| scene | backend | whole process s | load s | set-up s | render s | peak MiB |"}) {
         EXPECT_NE(table.find(piece), std::string::npos) << piece << " not in:\n" << table;
     }
     EXPECT_NE(run.stderr_text.find("run 1/1"), std::string::npos) << "no progress lines:\n" << run.stderr_text;
+    // One command-to-image row per backend, each with figures: the renders ran as
+    // separate processes and their stats were read back.
+    for (const char* backend : {"vulkan", "cpu"}) {
+        const std::string start = "ten_spheres.json | " + std::string(backend) + " | ";
+        const auto at = table.find(start);
+        ASSERT_NE(at, std::string::npos) << start << " not in:\n" << table;
+        const std::string row = table.substr(at + start.size(), table.find('\n', at) - at - start.size());
+        const std::vector<std::string> fields = split(row, '|');
+        ASSERT_GE(fields.size(), 5u) << row;
+        EXPECT_GT(std::stod(fields[0]), 0.0) << row;   // whole process
+        EXPECT_GT(std::stod(fields[3]), 0.0) << row;   // render
+        EXPECT_GE(std::stod(fields[4]), 10.0) << row;  // peak MiB: at least the program itself
+    }
 }
 
 TEST(Bench, OneBackendAndQuiet) {

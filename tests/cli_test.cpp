@@ -161,6 +161,12 @@ TEST(Cli, GridOptionChoosesTheAcceleration) {
     EXPECT_EQ(stats()["grid"]["levels"], 0);
     EXPECT_NE(stats()["grid"]["reason"].get<std::string>().find("uniform: requested"), std::string::npos);
 
+    // The stats say what the process held at most: more than the image's floats
+    // (16 x 12 is nothing), less than this machine has.
+    const double peak = stats()["memory"]["peak_resident_bytes"].get<double>();
+    EXPECT_GT(peak, 1e6);
+    EXPECT_LT(peak, 16e9);
+
     // The default scene has 5 primitives: below the threshold, auto says so.
     ASSERT_EQ(test::run_vkrt(base, dir).code, 0);
     EXPECT_EQ(stats()["grid"]["used"], false);

@@ -12,8 +12,11 @@
 #include <stdexcept>
 #include <utility>
 
+#include <unistd.h>
+
 #include <fmt/format.h>
 
+#include "bench/process.hpp"
 #include "bench/random_spheres.hpp"
 #include "bench/spd.hpp"
 #include "bench/support.hpp"
@@ -231,20 +234,52 @@ void print_header(const BenchArgs& args, const std::vector<std::unique_ptr<Backe
                args.runs, args.runs == 1 ? "" : "s", kBrutePixelPrimitives);
 }
 
-std::vector<BenchScene> load_listed_scenes(const BenchArgs& args) {
+// The scenes named on the command line, else the defaults from the source tree;
+// every file is checked before the first render, not after minutes of benchmark.
+std::vector<ProcessScene> listed_files(const BenchArgs& args) {
     const bool defaults = args.scenes.empty();
-    const std::vector<std::string>& labels = defaults ? kDefaultScenes : args.scenes;
-    std::vector<std::string> files;
-    for (const std::string& label : labels) {
-        files.push_back(defaults ? app::source_tree_path(label).string() : label);
+    std::vector<ProcessScene> listed;
+    for (const std::string& label : defaults ? kDefaultScenes : args.scenes) {
+        listed.push_back({label, defaults ? app::source_tree_path(label).string() : label});
+        if (!fs::is_regular_file(listed.back().file)) {
+            throw std::runtime_error(fmt::format("{}: no such scene file", listed.back().file));
+        }
     }
-    // Every file is checked before the first render, not after minutes of benchmark.
-    for (const std::string& file : files) {
-        if (!fs::is_regular_file(file)) throw std::runtime_error(fmt::format("{}: no such scene file", file));
-    }
+    return listed;
+}
+
+std::vector<BenchScene> load_listed_scenes(const BenchArgs& args, const std::vector<ProcessScene>& listed) {
     std::vector<BenchScene> scenes;
-    for (std::size_t i = 0; i < files.size(); ++i) scenes.push_back(load_bench_scene(labels[i], files[i], args.quiet));
+    for (const ProcessScene& s : listed) scenes.push_back(load_bench_scene(s.label, s.file, args.quiet));
     return scenes;
+}
+
+// The command-to-image table: the listed scene files (with the defaults, also the
+// 100,000 spheres written out as a JSON file), each rendered by its own process.
+std::vector<ProcessRow> measure_command_to_image(const BenchArgs& args, std::vector<ProcessScene> scenes) {
+    const fs::path scratch = fs::temp_directory_path() / fmt::format("vkrt-bench-{}", ::getpid());
+    fs::create_directories(scratch);
+    struct Remove {
+        fs::path dir;
+        ~Remove() {
+            std::error_code ignored;
+            fs::remove_all(dir, ignored);
+        }
+    } remove{scratch};
+    if (args.scenes.empty()) {
+        const fs::path spheres = scratch / "100k_spheres.json";
+        std::ofstream(spheres) << explicit_spheres_json(100000);
+        scenes.push_back({"100,000 spheres, one JSON object each", spheres.string()});
+    }
+    ProcessPlan plan;
+    plan.executable = fs::read_symlink("/proc/self/exe").string();
+    if (args.backend != "cpu") plan.backends.push_back("vulkan");
+    if (args.backend != "vulkan") plan.backends.push_back("cpu");
+    plan.device = args.device;
+    plan.runs = args.runs;
+    plan.scratch = scratch.string();
+    plan.quiet = args.quiet;
+    return measure_processes(plan, scenes);
 }
 
 std::vector<BenchScene> generated_scenes(const std::vector<std::uint64_t>& counts, bool quiet) {
@@ -271,7 +306,8 @@ int run_bench(const BenchArgs& args) {
     // Scene files first (seconds at most, and where most mistakes are), then the
     // CSV file and the devices: every mistake fails before the benchmark, not after.
     const bool listed = (!args.sweep && !args.threshold) || !args.scenes.empty();
-    std::vector<BenchScene> scenes = listed ? load_listed_scenes(args) : std::vector<BenchScene>{};
+    const std::vector<ProcessScene> files = listed ? listed_files(args) : std::vector<ProcessScene>{};
+    std::vector<BenchScene> scenes = load_listed_scenes(args, files);
     std::vector<BenchScene> sweep = args.sweep ? generated_scenes(kSweepCounts, args.quiet) : std::vector<BenchScene>{};
     std::vector<BenchScene> threshold =
         args.threshold ? generated_scenes(kThresholdCounts, args.quiet) : std::vector<BenchScene>{};
@@ -301,6 +337,13 @@ int run_bench(const BenchArgs& args) {
         return rows;
     };
     run_group("Scenes", scenes);
+    if (!files.empty()) {
+        std::ostringstream table;
+        write_process_markdown(table, measure_command_to_image(args, files));
+        fmt::print("Command to image: `vkrt render SCENE`, one process per run, as the scene asks "
+                   "(docs/bench.md#command-to-image)\n\n{}\n", table.str());
+        std::fflush(stdout);
+    }
     run_group("Cost against primitive count (random spheres)", sweep);
     const std::vector<BenchRow> threshold_rows = run_group("Grid against brute force on few primitives", threshold);
     if (!threshold_rows.empty()) {

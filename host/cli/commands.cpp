@@ -10,6 +10,7 @@
 #include "probe/float_profile_json.hpp"
 #include "probe/float_profile_table.hpp"
 #include "app/output_paths.hpp"
+#include "app/peak_memory.hpp"
 #include "app/progress.hpp"
 #include "gpu/float_probe.hpp"
 #include "gpu/vulkan_backend.hpp"
@@ -143,6 +144,7 @@ void print_summary(const RenderStats& s, const std::string& output, bool partial
                s.per_ray(s.intersection_tests));
     fmt::print("seconds   load {:.3f}, setup {:.3f}, render {:.3f}, passes {:.3f}, total {:.3f}\n", s.load_seconds,
                s.flatten_seconds + s.setup_seconds, s.render_seconds, s.pass_seconds, s.total_seconds);
+    if (s.peak_resident_bytes > 0) fmt::print("memory    peak {:.0f} MiB resident\n", double(s.peak_resident_bytes) / (1 << 20));
     fmt::print("wrote     {}{}\n", output, partial ? " (a partial file: vkrt merge adds it up with others)" : "");
 }
 
@@ -234,6 +236,7 @@ int run_render(const RenderArgs& args) {
     s.setup_seconds += backend_seconds;         // device and instance creation
     s.load_seconds = load_seconds;
     s.total_seconds = seconds_since(start);     // from loading the scene to the written image
+    s.peak_resident_bytes = app::peak_resident_bytes();
     if (!args.stats_file.empty()) {
         std::ofstream out(args.stats_file);
         out << stats_to_json(s).dump(2) << '\n';

@@ -50,6 +50,7 @@ struct RenderStats {
     double pass_seconds = 0.0;            // wall clock of the passes, read-back and accumulation included
     double longest_submit_seconds = 0.0;  // Vulkan: the longest single queue submission
     double total_seconds = 0.0;
+    std::uint64_t peak_resident_bytes = 0;  // the process's, once the image is written (set by the command)
     // Vulkan: the layout of the work on the device (RenderResult says more).
     std::string data_paths;
     std::uint32_t slabs = 0, tile_width = 0, tile_height = 0, device_resets = 0;

@@ -33,6 +33,7 @@ nlohmann::json stats_to_json(const RenderStats& s) {
         {"seconds", {{"load", s.load_seconds}, {"flatten", s.flatten_seconds}, {"setup", s.setup_seconds},
                      {"render", s.render_seconds}, {"passes", s.pass_seconds},
                      {"longest_submission", s.longest_submit_seconds}, {"total", s.total_seconds}}},
+        {"memory", {{"peak_resident_bytes", s.peak_resident_bytes}}},
         {"rays_per_second", s.render_seconds > 0.0 ? double(s.rays()) / s.render_seconds : 0.0},
         {"features", {{"kept", s.features.kept()}, {"left_out", s.features.left_out()}}},
         {"buffers", buffers},
