@@ -10,6 +10,7 @@
 
 #include <unistd.h>
 
+#include "gpu/spirv_specialize.hpp"
 #include "render/fingerprint.hpp"
 
 namespace vkrt::gpu {
@@ -134,6 +135,7 @@ std::uint64_t specialization_key(std::span<const std::uint32_t> module,
     for (const auto& [id, on] : values) sorted.emplace_back(id, on ? 1u : 0u);
     std::sort(sorted.begin(), sorted.end());
     Fnv1a hash;
+    hash.add(&kSpecializationRecipe, sizeof kSpecializationRecipe);
     hash.add(module.data(), module.size_bytes());
     hash.add(sorted);
     return hash.value();

@@ -14,12 +14,18 @@ std::vector<std::uint32_t> specialize_spirv(std::span<const std::uint32_t> spirv
     });
     // The constants first, then what they decide: the branches on them, the
     // functions only those branches called, and the code that fed nothing else.
+    // Then every call that can be inlined as it stands (a function with a return
+    // before its end stays a call): lavapipe's pipeline takes half the time on the
+    // inlined module and runs as fast (decision 0025); the result is cached, so
+    // SPIRV-Tools pays once per feature set.
     optimizer.RegisterPass(spvtools::CreateSetSpecConstantDefaultValuePass(defaults))
         .RegisterPass(spvtools::CreateFreezeSpecConstantValuePass())
         .RegisterPass(spvtools::CreateFoldSpecConstantOpAndCompositePass())
         .RegisterPass(spvtools::CreateDeadBranchElimPass())
         .RegisterPass(spvtools::CreateEliminateDeadFunctionsPass())
-        .RegisterPass(spvtools::CreateAggressiveDCEPass());
+        .RegisterPass(spvtools::CreateAggressiveDCEPass())
+        .RegisterPass(spvtools::CreateInlineExhaustivePass())
+        .RegisterPass(spvtools::CreateEliminateDeadFunctionsPass());
     std::vector<std::uint32_t> out;
     if (!optimizer.Run(spirv.data(), spirv.size(), &out)) {
         if (error.empty()) error = "SPIRV-Tools could not specialize the module";
