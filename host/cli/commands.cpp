@@ -92,9 +92,11 @@ std::string default_output(const std::string& scene, const std::optional<SampleR
 
 // The render's output: the image, or for --samples the partial file of the samples
 // done so far. Written whole or not at all, also when it replaces a checkpoint.
+// `resolved`: the image of `sums` where the caller has it already (a full-size
+// image costs a pass over every pixel to make).
 void write_output(const std::string& output, const RenderArgs& args, const Scene& scene, const std::string& backend,
                   const RenderResult& sums, const std::optional<SampleRange>& samples, std::uint32_t samples_done,
-                  std::uint64_t fingerprint, bool corners) {
+                  std::uint64_t fingerprint, bool corners, const Image* resolved = nullptr) {
     app::write_atomically(output, [&](const std::filesystem::path& file) {
         if (samples) {
             write_partial(PartialFile{sums, {SampleRange{samples->first, samples_done}},
@@ -102,7 +104,7 @@ void write_output(const std::string& output, const RenderArgs& args, const Scene
                                       fingerprint, backend, corners},
                           file);
         } else {
-            write_image(resolve_image(sums, corners), file, scene.render.display);
+            write_image(resolved != nullptr ? *resolved : resolve_image(sums, corners), file, scene.render.display);
         }
     });
 }
@@ -230,7 +232,7 @@ int run_render(const RenderArgs& args) {
     });
     progress.finish();
     write_output(output, args, scene, backend->name(), outcome.sums, samples, outcome.stats.samples_per_pixel,
-                 outcome.fingerprint, outcome.corners);
+                 outcome.fingerprint, outcome.corners, &outcome.image);
 
     RenderStats& s = outcome.stats;
     s.setup_seconds += backend_seconds;         // device and instance creation

@@ -3,6 +3,7 @@
 // kernel/sums.glsl make the total the very result of one render of the union.
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 #include "render/backend.hpp"
 
@@ -33,6 +34,17 @@ inline void accumulate(RenderResult& total, const RenderResult& part) {
     total.tile_width = part.tile_width;
     total.tile_height = part.tile_height;
     total.device_resets += part.device_resets;
+}
+
+// The same for a part that is no longer needed: the first part becomes the total
+// as it is, without zeroing a total and adding to it (a one-pass render's only
+// pass, 20 MiB at 513 x 513 corners).
+inline void accumulate(RenderResult& total, RenderResult&& part) {
+    if (total.sums.empty()) {
+        total = std::move(part);
+        return;
+    }
+    accumulate(total, static_cast<const RenderResult&>(part));
 }
 
 }  // namespace vkrt

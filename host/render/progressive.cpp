@@ -48,8 +48,7 @@ bool ProgressiveRender::next_pass(std::uint32_t stop_at, const ProgressiveCallba
             progress(s);
         };
     }
-    const RenderResult pass = session_.render(SampleRange{limits_.samples.first + done_, count}, pass_progress);
-    accumulate(total_, pass);
+    accumulate(total_, session_.render(SampleRange{limits_.samples.first + done_, count}, pass_progress));
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - pass_start).count();
     pass_seconds_ += seconds;
     seconds_per_sample_ = seconds / count;

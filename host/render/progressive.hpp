@@ -7,6 +7,7 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <utility>
 
 #include "render/backend.hpp"
 
@@ -42,6 +43,8 @@ public:
     // The sums and counters of every pass so far; render_seconds is the backends'
     // sample loops (GPU timestamps on Vulkan), added up.
     const RenderResult& total() const { return total_; }
+    // The total, handed over once the passes are done (it leaves this empty).
+    RenderResult take_total() { return std::move(total_); }
     std::uint32_t samples_done() const { return done_; }
     std::uint32_t passes() const { return passes_; }
     // Wall-clock seconds of the passes, read-back and accumulation included.

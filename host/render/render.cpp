@@ -15,21 +15,26 @@ namespace {
 // (truncated or not finite) is left out of the mean rather than counted as black.
 Image average_corners(const RenderResult& result) {
     const std::uint32_t w = result.width - 1, h = result.height - 1;
+    // Each corner's mean once (w = 1 where it has samples): four pixels share it,
+    // and a mean is a division of exact 96-bit sums.
+    std::vector<glm::vec4> means(result.sums.size());
+    for (std::size_t i = 0; i < means.size(); ++i) {
+        const kernel::PixelSum& corner = result.sums[i];
+        means[i] = samples_summed(corner) > 0 ? glm::vec4(mean_radiance(corner), 1.0f) : glm::vec4(0.0f);
+    }
     Image image(w, h);
     for (std::uint32_t y = 0; y < h; ++y) {
         for (std::uint32_t x = 0; x < w; ++x) {
             glm::vec3 sum(0.0f);
-            int valid = 0;
+            float valid = 0.0f;
             for (std::uint32_t dy = 0; dy < 2; ++dy) {
                 for (std::uint32_t dx = 0; dx < 2; ++dx) {
-                    const kernel::PixelSum& corner = result.sums[std::size_t(y + dy) * result.width + x + dx];
-                    if (samples_summed(corner) > 0) {
-                        sum += mean_radiance(corner);
-                        ++valid;
-                    }
+                    const glm::vec4& m = means[std::size_t(y + dy) * result.width + x + dx];
+                    sum += glm::vec3(m);
+                    valid += m.w;
                 }
             }
-            const glm::vec3 c = valid > 0 ? sum / float(valid) : glm::vec3(0.0f);
+            const glm::vec3 c = valid > 0.0f ? sum / valid : glm::vec3(0.0f);
             const std::size_t p = std::size_t(y) * w + x;
             image.rgb[p * 3 + 0] = c.r;
             image.rgb[p * 3 + 1] = c.g;
@@ -139,7 +144,7 @@ RenderOutcome render_scene(const Scene& scene, Backend& backend, const RenderPla
                                                            render.elapsed(), render.seconds_left(), fingerprint});
         }
     }
-    RenderResult result = render.total();
+    RenderResult result = render.take_total();
     result.setup_seconds = session->setup_seconds();
     RenderOutcome out{resolve_image(result, gpu.corners), collect_stats(gpu, backend, result),
                       pixel_decisions(result, gpu.corners), {}, gpu.corners};
