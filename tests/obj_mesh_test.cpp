@@ -423,7 +423,8 @@ TEST_F(ObjMeshTest, BadObjectFieldsAreRefused) {
              std::pair{R"([{"type": "mesh", "material": "a"}])", "objects[0].file: required field is missing"},
              std::pair{R"([{"type": "mesh", "file": "", "material": "a"}])", "objects[0].file: expected a file name"},
              std::pair{R"([{"type": "mesh", "file": 3, "material": "a"}])", "objects[0].file: expected a string"},
-             std::pair{R"([{"type": "mesh", "file": "mesh.obj"}])", "objects[0].material: required field is missing"},
+             // Without "material" the OBJ's own materials are used; this one has none.
+             std::pair{R"([{"type": "mesh", "file": "mesh.obj"}])", "the face has no material (no usemtl before it)"},
              std::pair{R"([{"type": "mesh", "file": "mesh.obj", "material": "c"}])", "unknown material 'c'"},
          }) {
         try {
@@ -482,6 +483,110 @@ void check_real_model(const RealModel& model, const fs::path& scene_file) {
     expect_vec(hi, model.hi, 1e-3);
     // Averaged normals lean away from a face only at sharp creases.
     EXPECT_GT(agreeing, s.triangles.size() * 95 / 100);
+}
+
+// ---- materials from MTL files -------------------------------------------------
+
+// Two faces of a square, each with a material of the OBJ's MTL library.
+constexpr std::string_view kTwoMaterials = R"(mtllib two.mtl
+v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+usemtl red
+f 1 2 3
+usemtl lamp
+f 1 3 4
+)";
+
+constexpr std::string_view kTwoMtl = R"(newmtl red
+Kd 0.8 0.1 0.05
+Ks 0.5 0.5 0.5
+Ns 64
+newmtl lamp
+Kd 0 0 0
+Ke 4 3 2
+)";
+
+TEST_F(ObjMeshTest, MaterialsComeFromTheMtlFileWhenTheObjectGivesNone) {
+    write("mesh.obj", kTwoMaterials);
+    write("two.mtl", kTwoMtl);
+    const Scene s = vkrt::load_json_scene(scene(R"([{"type": "mesh", "file": "mesh.obj"}])"));
+    ASSERT_EQ(s.materials.size(), 4u);  // "a", "b", then the file's two
+    const Material& red = s.materials[2];
+    const Material& lamp = s.materials[3];
+    EXPECT_EQ(red.name, "mesh.obj:red");
+    expect_vec(red.diffuse, {0.8, 0.1, 0.05}, 1e-7);  // read as float by tinyobjloader
+    expect_vec(red.specular, {0.5, 0.5, 0.5});
+    EXPECT_EQ(red.ks, 1.0);
+    EXPECT_EQ(red.shininess, 64.0);
+    expect_vec(red.emission, {0, 0, 0});
+    EXPECT_EQ(lamp.name, "mesh.obj:lamp");
+    expect_vec(lamp.emission, {4, 3, 2});
+    EXPECT_EQ(lamp.ks, 0.0);
+    ASSERT_EQ(s.triangles.size(), 2u);
+    EXPECT_EQ(s.triangles[0].material, 2u);
+    EXPECT_EQ(s.triangles[1].material, 3u);
+    EXPECT_TRUE(s.warnings.empty());
+}
+
+// A scene given by a relative path gives a relative OBJ path: its MTL file is
+// beside it, in the working directory, not at the root.
+TEST_F(ObjMeshTest, TheMtlFileOfARelativeObjPath) {
+    write("mesh.obj", kTwoMaterials);
+    write("two.mtl", kTwoMtl);
+    const fs::path before = fs::current_path();
+    fs::current_path(dir_);
+    std::vector<std::string> warnings;
+    const IndexedMesh mesh = vkrt::load_obj_with_materials("mesh.obj", warnings);
+    fs::current_path(before);
+    ASSERT_EQ(mesh.materials.size(), 2u);
+    EXPECT_EQ(mesh.materials[0].name, "red");
+}
+
+TEST_F(ObjMeshTest, TheObjectsMaterialOverridesTheMtlFile) {
+    write("two.mtl", kTwoMtl);
+    const Scene s = load_mesh(kTwoMaterials);  // "material": "b"
+    EXPECT_EQ(s.materials.size(), 2u);
+    for (const Triangle& t : s.triangles) EXPECT_EQ(t.material, 1u);
+}
+
+TEST_F(ObjMeshTest, WhatMaterialsAskForBeyondPhongIsAWarning) {
+    write("mesh.obj", "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl wood\nf 1 2 3\n");
+    write("t.mtl", "newmtl wood\nKd 0.5 0.3 0.1\nmap_Kd wood.png\nd 0.5\n");
+    const Scene s = vkrt::load_json_scene(scene(R"([{"type": "mesh", "file": "mesh.obj"}])"));
+    ASSERT_EQ(s.warnings.size(), 2u);
+    EXPECT_NE(s.warnings[0].find("objects[0]: "), std::string::npos) << s.warnings[0];
+    EXPECT_NE(s.warnings[0].find("material 'wood': textures are not supported yet; map_Kd 'wood.png' is ignored"),
+              std::string::npos)
+        << s.warnings[0];
+    EXPECT_NE(s.warnings[1].find("transparency (d 0.5) is not supported"), std::string::npos) << s.warnings[1];
+    expect_vec(s.materials.back().diffuse, {0.5, 0.3, 0.1}, 1e-7);
+}
+
+TEST_F(ObjMeshTest, AFaceWithoutAMaterialIsAnErrorWhenTheObjectGivesNone) {
+    const auto refused = [&](std::string_view obj, std::initializer_list<std::string_view> pieces) {
+        write("mesh.obj", obj);
+        const fs::path file = scene(R"([{"type": "mesh", "file": "mesh.obj"}])");
+        try {
+            vkrt::load_json_scene(file);
+            ADD_FAILURE() << "no SceneError for:\n" << obj;
+        } catch (const SceneError& e) {
+            test::expect_error_message(e.what(), file.string() + ": objects[0].file", pieces);
+        }
+    };
+    // No library at all: the first face says so.
+    refused(kCorner, {"mesh.obj:7: the face has no material (no usemtl before it)", "give the mesh object a"});
+    // A library that is not there, and a name it does not define: tinyobjloader's words.
+    refused("mtllib missing.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n",
+            {"mesh.obj:6: the face has no material", "missing.mtl"});
+    write("two.mtl", kTwoMtl);
+    refused("mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl blue\nf 1 2 3\n",
+            {"mesh.obj:6: the face has no material", "blue"});
+    // A negative colour is refused with the material named.
+    write("two.mtl", "newmtl red\nKd 0.5 -1 0\n");
+    refused("mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n",
+            {"material 'red': Kd must be three finite numbers >= 0"});
 }
 
 TEST_F(ObjMeshTest, LoadsTheUtahTeapot) {

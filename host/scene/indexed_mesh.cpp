@@ -130,7 +130,9 @@ void add_mesh(const json::Node& object, IndexedMesh mesh, const Transform& t,
             ++skipped;
             continue;
         }
-        Triangle tri{{p[0], p[1], p[2]}, std::nullopt, options.material};
+        const std::uint32_t material =
+            f.material == IndexedMesh::kNoMaterial ? options.material : options.face_materials.at(f.material);
+        Triangle tri{{p[0], p[1], p[2]}, std::nullopt, material};
         if (options.smooth) tri.normals = corner_normals(mesh, f, computed, p);
         scene.triangles.push_back(tri);
     }

@@ -18,15 +18,18 @@ namespace vkrt {
 
 struct IndexedMesh {
     static constexpr std::uint32_t kNoNormal = 0xFFFFFFFFu;
+    static constexpr std::uint32_t kNoMaterial = 0xFFFFFFFFu;
 
     struct Face {
         std::array<std::uint32_t, 3> position{};                          // into positions
         std::array<std::uint32_t, 3> normal{kNoNormal, kNoNormal, kNoNormal};  // into normals
+        std::uint32_t material = kNoMaterial;                             // into materials
     };
 
     std::vector<glm::dvec3> positions;
     std::vector<glm::dvec3> normals;  // given by the source (OBJ "vn"); may be empty
     std::vector<Face> faces;          // front face = cross(p1 - p0, p2 - p0)
+    std::vector<Material> materials;  // the source's own (OBJ "usemtl" from its MTL file); may be empty
 };
 
 // Moves positions and normals (normals renormalized; zero ones stay zero) and, if
@@ -50,7 +53,9 @@ std::vector<glm::dvec3> angle_weighted_normals(const IndexedMesh& mesh);
 
 struct MeshOptions {
     bool smooth = false;  // per-vertex normals: the mesh's own, else angle-weighted
-    std::uint32_t material = 0;
+    std::uint32_t material = 0;  // for faces without a material of their own
+    // Face::material -> index into Scene::materials, where the faces have their own.
+    std::vector<std::uint32_t> face_materials;
 };
 
 // Transforms the mesh and appends its triangles to scene.triangles. Degenerate

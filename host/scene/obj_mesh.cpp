@@ -142,9 +142,47 @@ std::string one_line(const std::string& message) {
     return out;
 }
 
-}  // namespace
+// An MTL material as vkrt's Phong material: Kd the diffuse colour, Ks the
+// specular one (ks 1 when it is not black), Ns the exponent, Ke the emission.
+// What vkrt cannot show yet is said once per material and feature.
+Material from_mtl(const tinyobj::material_t& m, const std::string& obj_name, std::vector<std::string>& warnings) {
+    const std::string who = fmt::format("{}: material {}", obj_name, json::quote_user(m.name));
+    const auto colour = [&](const tinyobj::real_t* c, const char* keyword) {
+        const dvec3 v(c[0], c[1], c[2]);
+        if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z) || v.x < 0 || v.y < 0 || v.z < 0) {
+            throw SceneError(fmt::format("{}: {} must be three finite numbers >= 0, got {}", who, keyword,
+                                         json::format_vec3(v)));
+        }
+        return v;
+    };
+    Material out;
+    out.name = m.name;
+    out.diffuse = colour(m.diffuse, "Kd");
+    out.specular = colour(m.specular, "Ks");
+    out.ks = is_nonzero(out.specular) ? 1.0 : 0.0;
+    out.emission = colour(m.emission, "Ke");
+    if (!std::isfinite(m.shininess) || m.shininess < 0) {
+        throw SceneError(fmt::format("{}: Ns must be a finite number >= 0, got {}", who, m.shininess));
+    }
+    out.shininess = m.shininess;
+    const std::pair<const char*, const std::string*> maps[] = {
+        {"map_Kd", &m.diffuse_texname},  {"map_Ks", &m.specular_texname}, {"map_Ns", &m.specular_highlight_texname},
+        {"map_bump", &m.bump_texname},   {"map_Ka", &m.ambient_texname},  {"map_d", &m.alpha_texname},
+        {"disp", &m.displacement_texname}, {"refl", &m.reflection_texname}};
+    for (const auto& [keyword, texture] : maps) {
+        if (!texture->empty()) {
+            warnings.push_back(fmt::format("{}: textures are not supported yet; {} {} is ignored", who, keyword,
+                                           json::quote_user(*texture)));
+        }
+    }
+    if (m.dissolve < 1) {
+        warnings.push_back(fmt::format("{}: transparency (d {}) is not supported; the material is opaque", who,
+                                       m.dissolve));
+    }
+    return out;
+}
 
-IndexedMesh load_obj(const std::filesystem::path& file) {
+IndexedMesh read_obj(const std::filesystem::path& file, std::vector<std::string>* material_warnings) {
     const std::string name = file.string();
     const std::string text = read_text(file, name, "mesh");
     Scanned scanned = Scanner(name).scan(text);
@@ -155,13 +193,17 @@ IndexedMesh load_obj(const std::filesystem::path& file) {
     std::string warning;
     std::string error;
     std::istringstream stream(text);
-    // No material reader: mtllib lines are skipped rather than opened (the scene
-    // gives the material). Its warnings are not shown: they concern materials, or
-    // indices out of range, which are checked below with the line named.
+    // The MTL files beside the OBJ only when its materials are wanted; otherwise
+    // mtllib lines are skipped rather than opened (the scene gives the material).
+    // tinyobjloader's warnings concern materials (quoted below where a face lacks
+    // one) or indices out of range, which are checked below with the line named.
     // No triangulation: its quads are split along the shorter diagonal and larger
     // polygons by ear clipping that skips what it cannot use; a fan is predictable.
+    // The directory with its separator ("box.obj" alone is in "./", not "/").
+    const std::filesystem::path dir = file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path();
+    tinyobj::MaterialFileReader mtl_reader(dir.string() + "/");
     const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warning, &error, &stream,
-                                     /*readMatFn=*/nullptr, /*triangulate=*/false,
+                                     material_warnings != nullptr ? &mtl_reader : nullptr, /*triangulate=*/false,
                                      /*default_vcols_fallback=*/false);
     if (!ok) throw SceneError(fmt::format("{}: {}", name, one_line(error)));
 
@@ -196,14 +238,30 @@ IndexedMesh load_obj(const std::filesystem::path& file) {
         return static_cast<std::uint32_t>(index);
     };
 
+    if (material_warnings != nullptr) {
+        for (const tinyobj::material_t& m : materials) mesh.materials.push_back(from_mtl(m, name, *material_warnings));
+    }
     std::size_t face = 0;
     for (const tinyobj::shape_t& shape : shapes) {
         std::size_t first = 0;
-        for (const unsigned char count : shape.mesh.num_face_vertices) {
+        for (std::size_t face_in_shape = 0; face_in_shape < shape.mesh.num_face_vertices.size(); ++face_in_shape) {
+            const unsigned char count = shape.mesh.num_face_vertices[face_in_shape];
             const std::size_t line = scanned.face_lines[face++];
+            std::uint32_t material = IndexedMesh::kNoMaterial;
+            if (material_warnings != nullptr) {
+                const int id = shape.mesh.material_ids[face_in_shape];
+                if (id < 0 || static_cast<std::size_t>(id) >= mesh.materials.size()) {
+                    throw SceneError(fmt::format(
+                        "{}:{}: the face has no material ({}); give the mesh object a \"material\" for the "
+                        "whole mesh",
+                        name, line, warning.empty() ? "no usemtl before it" : "tinyobjloader: " + one_line(warning)));
+                }
+                material = static_cast<std::uint32_t>(id);
+            }
             const auto corner = [&](std::size_t k) { return shape.mesh.indices[first + k]; };
             for (std::size_t k = 1; k + 1 < count; ++k) {
                 IndexedMesh::Face f;
+                f.material = material;
                 const tinyobj::index_t c[3] = {corner(0), corner(k), corner(k + 1)};
                 for (int i = 0; i < 3; ++i) {
                     f.position[i] = position_of(c[i].vertex_index, line);
@@ -217,6 +275,14 @@ IndexedMesh load_obj(const std::filesystem::path& file) {
     return mesh;
 }
 
+}  // namespace
+
+IndexedMesh load_obj(const std::filesystem::path& file) { return read_obj(file, nullptr); }
+
+IndexedMesh load_obj_with_materials(const std::filesystem::path& file, std::vector<std::string>& warnings) {
+    return read_obj(file, &warnings);
+}
+
 void read_mesh(const json::Node& n, const MaterialLookup& material, Scene& scene) {
     n.allow_only({"type", "file", "material", "smooth", "transform"});
     const json::Node file = n.required("file");
@@ -225,18 +291,29 @@ void read_mesh(const json::Node& n, const MaterialLookup& material, Scene& scene
     const std::filesystem::path path = std::filesystem::path(n.file()).parent_path() / relative;
 
     MeshOptions options;
-    options.material = material(n.required("material"));
+    const std::optional<json::Node> given = n.find("material");
+    if (given) options.material = material(*given);
     if (auto smooth = n.find("smooth")) options.smooth = smooth->boolean();
     const std::optional<json::Node> transform = n.find("transform");
     const Transform t = transform ? read_transform(*transform) : Transform{};
 
     IndexedMesh mesh;
+    std::vector<std::string> warnings;
     try {
-        mesh = load_obj(path);
+        mesh = given ? load_obj(path) : load_obj_with_materials(path, warnings);
     } catch (const SceneError& e) {
         // The OBJ's own message ("<obj>:<line>: ...") after the scene's path to it.
         file.fail(e.what());
     }
+    // The file's materials join the scene's, named after the file: JSON objects
+    // cannot refer to them, and two meshes' materials of one name stay apart.
+    for (const Material& m : mesh.materials) {
+        options.face_materials.push_back(static_cast<std::uint32_t>(scene.materials.size()));
+        Material named = m;
+        named.name = fmt::format("{}:{}", relative, m.name);
+        scene.materials.push_back(std::move(named));
+    }
+    for (const std::string& w : warnings) scene.warnings.push_back(fmt::format("{}: {}: {}", n.file(), n.path(), w));
     add_mesh(n, std::move(mesh), t, transform, options, scene);
 }
 

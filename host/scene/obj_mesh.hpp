@@ -1,9 +1,11 @@
 #pragma once
 // Wavefront OBJ meshes: the "mesh" object of the scene format
-// (docs/scene-format.md). Only geometry is read: positions, normals and faces.
-// The OBJ's materials (mtllib/usemtl), texture coordinates, groups, smoothing
-// groups, lines and points are ignored; the scene object's "material" applies.
+// (docs/scene-format.md): positions, normals and faces, and the materials of the
+// file's MTL libraries (usemtl) where the scene object gives no "material".
+// Texture coordinates, groups, smoothing groups, lines and points are ignored.
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "scene/indexed_mesh.hpp"
 #include "scene/json_reader.hpp"
@@ -17,6 +19,12 @@ namespace vkrt {
 // be read, a malformed or non-finite number, a face with fewer than 3 or more
 // than 255 vertices, an index out of range, or a file without faces.
 IndexedMesh load_obj(const std::filesystem::path& file);
+
+// The same with the materials of the file's MTL libraries (Kd, Ks, Ns, Ke; read
+// relative to the OBJ's directory): every face gets its usemtl's, and a face
+// without one is an error. What the materials ask for that vkrt cannot show
+// (textures, transparency) is added to `warnings`, once per material and feature.
+IndexedMesh load_obj_with_materials(const std::filesystem::path& file, std::vector<std::string>& warnings);
 
 // {"type": "mesh", "file", "material", "smooth", "transform"}: appends the mesh's
 // triangles to scene.triangles. "file" is relative to the scene file's directory.
