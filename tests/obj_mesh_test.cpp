@@ -535,11 +535,17 @@ TEST_F(ObjMeshTest, MaterialsComeFromTheMtlFileWhenTheObjectGivesNone) {
 TEST_F(ObjMeshTest, TheMtlFileOfARelativeObjPath) {
     write("mesh.obj", kTwoMaterials);
     write("two.mtl", kTwoMtl);
-    const fs::path before = fs::current_path();
-    fs::current_path(dir_);
+    struct InDirectory {  // back where it was, whatever the load does
+        fs::path before = fs::current_path();
+        explicit InDirectory(const fs::path& dir) { fs::current_path(dir); }
+        ~InDirectory() { fs::current_path(before); }
+    };
     std::vector<std::string> warnings;
-    const IndexedMesh mesh = vkrt::load_obj_with_materials("mesh.obj", warnings);
-    fs::current_path(before);
+    IndexedMesh mesh;
+    {
+        const InDirectory here(dir_);
+        mesh = vkrt::load_obj_with_materials("mesh.obj", warnings);
+    }
     ASSERT_EQ(mesh.materials.size(), 2u);
     EXPECT_EQ(mesh.materials[0].name, "red");
 }
@@ -584,9 +590,17 @@ TEST_F(ObjMeshTest, AFaceWithoutAMaterialIsAnErrorWhenTheObjectGivesNone) {
     refused("mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl blue\nf 1 2 3\n",
             {"mesh.obj:6: the face has no material", "blue"});
     // A negative colour is refused with the material named.
+    const std::string uses_red = "mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n";
     write("two.mtl", "newmtl red\nKd 0.5 -1 0\n");
-    refused("mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n",
-            {"material 'red': Kd must be three finite numbers >= 0"});
+    refused(uses_red, {"material 'red': Kd must be three finite numbers >= 0"});
+    // The MTL's numbers are checked as the OBJ's are, with the MTL's line: a
+    // typo or a missing component would otherwise read as 0.
+    write("two.mtl", "newmtl red\nKd 0.8\n");
+    refused(uses_red, {"two.mtl:2: expected 3 numbers after 'Kd', got 1"});
+    write("two.mtl", "newmtl red\nKd 0.8 0.1 0.1\nNs abc\n");
+    refused(uses_red, {"two.mtl:3: expected a finite number", "after 'Ns', got 'abc'"});
+    write("two.mtl", "newmtl red\nKe 1e13 0 0\n");
+    refused(uses_red, {"two.mtl:2: expected a finite number of magnitude at most", "'1e13'"});
 }
 
 TEST_F(ObjMeshTest, LoadsTheUtahTeapot) {

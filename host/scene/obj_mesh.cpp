@@ -36,6 +36,8 @@ struct Scanned {
     std::vector<dvec3> positions;
     std::vector<dvec3> normals;
     std::vector<std::size_t> face_lines;  // the line of each face, in file order
+    std::vector<std::string> face_usemtl;  // the usemtl name before each face ("" for none)
+    std::vector<std::string> mtllibs;      // every file an mtllib line names
 };
 
 class Scanner {
@@ -82,9 +84,13 @@ private:
                 fail(fmt::format("a face of {} vertices; at most {} are supported", n, kMaxFaceVertices));
             }
             out_.face_lines.push_back(line_);
+            out_.face_usemtl.push_back(usemtl_);
+        } else if (words[0] == "usemtl" && words.size() > 1) {
+            usemtl_ = std::string(words[1]);
+        } else if (words[0] == "mtllib") {
+            for (std::size_t i = 1; i < words.size(); ++i) out_.mtllibs.emplace_back(words[i]);
         }
-        // Every other statement (vt, g, o, s, usemtl, mtllib, l, p, ...) carries
-        // nothing we use.
+        // Every other statement (vt, g, o, s, l, p, ...) carries nothing we use.
     }
 
     // The first three numbers of a "v" or "vn" line; the rest (w, vertex colours)
@@ -125,8 +131,48 @@ private:
 
     const std::string& name_;
     std::size_t line_ = 0;
+    std::string usemtl_;
     Scanned out_;
 };
+
+// The numbers of an MTL file's colour, exponent and dissolve lines, checked as
+// the OBJ's are (tinyobjloader reads "abc" or "0,8" as 0 and a missing colour
+// component as 0): a typo is refused with its line instead of rendering black.
+void check_mtl(const std::filesystem::path& file) {
+    const std::string name = file.string();
+    const std::string text = read_text(file, name, "material");
+    std::size_t line = 0;
+    std::size_t start = 0;
+    while (start < text.size()) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string::npos) end = text.size();
+        ++line;
+        std::string_view row = std::string_view(text).substr(start, end - start);
+        row = row.substr(0, row.find('#'));
+        std::istringstream words{std::string(row)};
+        start = end + 1;
+        std::string keyword;
+        if (!(words >> keyword)) continue;
+        const bool colour = keyword == "Kd" || keyword == "Ks" || keyword == "Ke" || keyword == "Ka" || keyword == "Tf";
+        if (!colour && keyword != "Ns" && keyword != "d" && keyword != "Tr") continue;
+        std::vector<std::string> numbers;
+        for (std::string w; words >> w;) numbers.push_back(w);
+        const std::size_t wanted = colour ? 3 : 1;
+        if (numbers.size() != wanted || (colour && numbers[0] == "spectral") || (colour && numbers[0] == "xyz")) {
+            throw SceneError(fmt::format("{}:{}: expected {} number{} after '{}', got {}", name, line, wanted,
+                                         wanted == 1 ? "" : "s", keyword, numbers.size()));
+        }
+        for (const std::string& w : numbers) {
+            double x = 0.0;
+            const auto [at, ec] = std::from_chars(w.data(), w.data() + w.size(), x);
+            if (at != w.data() + w.size() || ec != std::errc() || !std::isfinite(x) ||
+                std::abs(x) > json::kMaxMagnitude) {
+                throw SceneError(fmt::format("{}:{}: expected a finite number of magnitude at most {} after '{}', got {}",
+                                             name, line, json::kMaxMagnitude, keyword, json::quote_user(w)));
+            }
+        }
+    }
+}
 
 // tinyobjloader's messages end in newlines, sometimes several; one line is wanted.
 std::string one_line(const std::string& message) {
@@ -168,7 +214,8 @@ Material from_mtl(const tinyobj::material_t& m, const std::string& obj_name, std
     const std::pair<const char*, const std::string*> maps[] = {
         {"map_Kd", &m.diffuse_texname},  {"map_Ks", &m.specular_texname}, {"map_Ns", &m.specular_highlight_texname},
         {"map_bump", &m.bump_texname},   {"map_Ka", &m.ambient_texname},  {"map_d", &m.alpha_texname},
-        {"disp", &m.displacement_texname}, {"refl", &m.reflection_texname}};
+        {"disp", &m.displacement_texname}, {"refl", &m.reflection_texname}, {"map_Ke", &m.emissive_texname},
+        {"norm", &m.normal_texname}};
     for (const auto& [keyword, texture] : maps) {
         if (!texture->empty()) {
             warnings.push_back(fmt::format("{}: textures are not supported yet; {} {} is ignored", who, keyword,
@@ -201,6 +248,21 @@ IndexedMesh read_obj(const std::filesystem::path& file, std::vector<std::string>
     // polygons by ear clipping that skips what it cannot use; a fan is predictable.
     // The directory with its separator ("box.obj" alone is in "./", not "/").
     const std::filesystem::path dir = file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path();
+    std::vector<std::string> unreadable;  // mtllib files that are not there
+    if (material_warnings != nullptr) {
+        for (const std::string& lib : scanned.mtllibs) {
+            if (std::filesystem::is_regular_file(dir / lib)) {
+                check_mtl(dir / lib);
+            } else {
+                unreadable.push_back(lib);
+            }
+        }
+        if (scanned.mtllibs.size() > 1) {
+            material_warnings->push_back(fmt::format(
+                "{}: names {} MTL files; tinyobjloader reads the first one of them that exists", name,
+                scanned.mtllibs.size()));
+        }
+    }
     tinyobj::MaterialFileReader mtl_reader(dir.string() + "/");
     const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warning, &error, &stream,
                                      material_warnings != nullptr ? &mtl_reader : nullptr, /*triangulate=*/false,
@@ -251,10 +313,23 @@ IndexedMesh read_obj(const std::filesystem::path& file, std::vector<std::string>
             if (material_warnings != nullptr) {
                 const int id = shape.mesh.material_ids[face_in_shape];
                 if (id < 0 || static_cast<std::size_t>(id) >= mesh.materials.size()) {
+                    const std::string& used = scanned.face_usemtl[face - 1];
+                    std::string why;
+                    if (used.empty()) {
+                        why = "no usemtl before it";
+                    } else if (!unreadable.empty()) {
+                        why = fmt::format("usemtl {}, and mtllib {} is not there", json::quote_user(used),
+                                          json::quote_user(unreadable.front()));
+                    } else if (scanned.mtllibs.empty()) {
+                        why = fmt::format("usemtl {}, but the file names no mtllib", json::quote_user(used));
+                    } else {
+                        why = fmt::format("usemtl {} is not defined in mtllib {}", json::quote_user(used),
+                                          json::quote_user(scanned.mtllibs.front()));
+                    }
                     throw SceneError(fmt::format(
                         "{}:{}: the face has no material ({}); give the mesh object a \"material\" for the "
                         "whole mesh",
-                        name, line, warning.empty() ? "no usemtl before it" : "tinyobjloader: " + one_line(warning)));
+                        name, line, why));
                 }
                 material = static_cast<std::uint32_t>(id);
             }
