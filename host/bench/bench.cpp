@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -11,8 +12,6 @@
 #include <sstream>
 #include <stdexcept>
 #include <utility>
-
-#include <unistd.h>
 
 #include <fmt/format.h>
 
@@ -257,8 +256,12 @@ std::vector<BenchScene> load_listed_scenes(const BenchArgs& args, const std::vec
 // The command-to-image table: the listed scene files (with the defaults, also the
 // 100,000 spheres written out as a JSON file), each rendered by its own process.
 std::vector<ProcessRow> measure_command_to_image(const BenchArgs& args, std::vector<ProcessScene> scenes) {
-    const fs::path scratch = fs::temp_directory_path() / fmt::format("vkrt-bench-{}", ::getpid());
-    fs::create_directories(scratch);
+    std::string pattern = (fs::temp_directory_path() / "vkrt-bench-XXXXXX").string();
+    if (::mkdtemp(pattern.data()) == nullptr) {
+        throw std::runtime_error(fmt::format("cannot make a directory for the command-to-image runs in {}",
+                                             fs::temp_directory_path().string()));
+    }
+    const fs::path scratch = pattern;
     struct Remove {
         fs::path dir;
         ~Remove() {
@@ -268,7 +271,9 @@ std::vector<ProcessRow> measure_command_to_image(const BenchArgs& args, std::vec
     } remove{scratch};
     if (args.scenes.empty()) {
         const fs::path spheres = scratch / "100k_spheres.json";
-        std::ofstream(spheres) << explicit_spheres_json(100000);
+        std::ofstream out(spheres);
+        out << explicit_spheres_json(100000);
+        if (!out.flush()) throw std::runtime_error(fmt::format("{}: cannot write the scene", spheres.string()));
         scenes.push_back({"100,000 spheres, one JSON object each", spheres.string()});
     }
     ProcessPlan plan;

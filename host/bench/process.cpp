@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
@@ -27,15 +28,16 @@ struct Run {
     double seconds = 0.0;
 };
 
-// Runs argv with its output discarded; the wall clock from spawn to exit.
-Run run_process(const std::vector<std::string>& argv) {
+// Runs argv with its standard output discarded and its standard error kept in
+// stderr_file; the wall clock from spawn to exit.
+Run run_process(const std::vector<std::string>& argv, const std::string& stderr_file) {
     std::vector<char*> args;
     for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 2, stderr_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     const auto start = std::chrono::steady_clock::now();
     pid_t pid = 0;
     const int spawned = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
@@ -55,6 +57,16 @@ std::string exit_reason(int status) {
     return "did not exit";
 }
 
+// The last line the child wrote to standard error: its error message.
+std::string last_line(const std::string& file) {
+    std::ifstream in(file);
+    std::string line, last;
+    while (std::getline(in, line)) {
+        if (!line.empty()) last = line;
+    }
+    return last;
+}
+
 struct Samples {
     std::vector<double> whole, load, setup, render, peak;
 };
@@ -72,6 +84,7 @@ std::vector<ProcessRow> measure_processes(const ProcessPlan& plan, const std::ve
     }
     const std::string image = plan.scratch + "/process.png";
     const std::string stats_file = plan.scratch + "/process.json";
+    const std::string errors = plan.scratch + "/process.stderr";
     for (std::uint32_t run = 0; run < plan.runs; ++run) {
         std::size_t i = 0;
         for (const ProcessScene& s : scenes) {
@@ -82,18 +95,26 @@ std::vector<ProcessRow> measure_processes(const ProcessPlan& plan, const std::ve
                 std::vector<std::string> argv = {plan.executable, "render", s.file, "-q", "--backend", b,
                                                  "-o", image, "--stats", stats_file};
                 if (b == "vulkan" && !plan.device.empty()) argv.insert(argv.end(), {"--device", plan.device});
-                const Run r = run_process(argv);
+                std::filesystem::remove(stats_file);
+                const Run r = run_process(argv, errors);
                 if (r.status != 0) {
-                    row.failed = fmt::format("failed ({})", exit_reason(r.status));
+                    const std::string why = last_line(errors);
+                    row.failed = fmt::format("failed ({}{}{})", exit_reason(r.status), why.empty() ? "" : ": ", why);
                     continue;
                 }
-                const nlohmann::json stats = nlohmann::json::parse(std::ifstream(stats_file));
-                const nlohmann::json& sec = stats.at("seconds");
+                double peak = 0.0;
+                try {
+                    const nlohmann::json stats = nlohmann::json::parse(std::ifstream(stats_file));
+                    const nlohmann::json& sec = stats.at("seconds");
+                    got.load.push_back(sec.at("load").get<double>());
+                    got.setup.push_back(sec.at("flatten").get<double>() + sec.at("setup").get<double>());
+                    got.render.push_back(sec.at("render").get<double>());
+                    peak = stats.at("memory").at("peak_resident_bytes").get<double>() / (1 << 20);
+                } catch (const nlohmann::json::exception& e) {
+                    row.failed = fmt::format("failed (its stats file: {})", e.what());
+                    continue;
+                }
                 got.whole.push_back(r.seconds);
-                got.load.push_back(sec.at("load").get<double>());
-                got.setup.push_back(sec.at("flatten").get<double>() + sec.at("setup").get<double>());
-                got.render.push_back(sec.at("render").get<double>());
-                const double peak = stats.at("memory").at("peak_resident_bytes").get<double>() / (1 << 20);
                 got.peak.push_back(peak);
                 if (!plan.quiet) {
                     fmt::print(stderr, "bench: {}: vkrt render --backend {}, run {}/{}: {:.2f} s, {:.0f} MiB\n",
