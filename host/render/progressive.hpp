@@ -43,8 +43,8 @@ public:
     // The sums and counters of every pass so far; render_seconds is the backends'
     // sample loops (GPU timestamps on Vulkan), added up.
     const RenderResult& total() const { return total_; }
-    // The total, handed over once the passes are done (it leaves this empty).
-    RenderResult take_total() { return std::move(total_); }
+    // The total, handed over once the passes are done (this one is left empty).
+    RenderResult take_total() { return std::exchange(total_, RenderResult{}); }
     std::uint32_t samples_done() const { return done_; }
     std::uint32_t passes() const { return passes_; }
     // Wall-clock seconds of the passes, read-back and accumulation included.

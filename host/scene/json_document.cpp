@@ -69,7 +69,7 @@ public:
         // Every value takes at least two characters ("0,"), so up to the cap this
         // never grows: growing by doubling would copy and touch twice the memory.
         // Pages reserved but not reached are never touched.
-        constexpr std::size_t kMaxReserved = std::size_t(1) << 26;  // 2 GiB of address space
+        constexpr std::size_t kMaxReserved = std::size_t(1) << 24;  // 512 MiB of address space
         doc_.values_.reserve(std::min(text.size() / 2 + 1, kMaxReserved));
         doc_.strings_.reserve(text.size());
     }
