@@ -1,7 +1,7 @@
 // Grid construction on the host (host/accel/grid.cpp, grid_split.cpp): the resolution
 // heuristic, and the flattened arrays: every primitive listed in exactly the cells its
-// padded box overlaps, the nodes a prefix sum of the cell sizes, split cells' children
-// at every depth.
+// padded box overlaps (a triangle: the padded cells its polygon overlaps), the nodes a
+// prefix sum of the cell sizes, split cells' children at every depth.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,6 +18,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
 
+#include "accel/box_overlap.hpp"
 #include "accel/grid.hpp"
 
 namespace {
@@ -144,14 +145,23 @@ void expect_exact_binning(const Grid& g, const RandomScene& s) {
     EXPECT_TRUE(std::is_sorted(g.nodes.begin(), g.nodes.end())) << "not a prefix sum";
 
     std::vector<std::vector<std::uint32_t>> want(n);
-    auto bin = [&](const Aabb& box, std::uint32_t ref) {
+    // A triangle goes into the cells of its box that, grown by the padding, its
+    // polygon overlaps.
+    auto bin = [&](const Aabb& box, std::uint32_t ref, const kernel::Triangle* tri = nullptr) {
         if (std::find(loose.begin(), loose.end(), ref) != loose.end()) return;  // in no cell
         const auto [first, last] = g.cells_overlapping(box);
         for (std::uint32_t z = 0; z < g.resolution[2]; ++z) {
             for (std::uint32_t y = 0; y < g.resolution[1]; ++y) {
                 for (std::uint32_t x = 0; x < g.resolution[0]; ++x) {
-                    const bool inside = x >= first[0] && x <= last[0] && y >= first[1] && y <= last[1] &&
-                                        z >= first[2] && z <= last[2];
+                    bool inside = x >= first[0] && x <= last[0] && y >= first[1] && y <= last[1] &&
+                                  z >= first[2] && z <= last[2];
+                    if (inside && tri != nullptr) {
+                        const std::array<dvec3, 3> v{dvec3(tri->p0.x, tri->p0.y, tri->p0.z),
+                                                     dvec3(tri->p1.x, tri->p1.y, tri->p1.z),
+                                                     dvec3(tri->p2.x, tri->p2.y, tri->p2.z)};
+                        const dvec3 lo = g.lo + g.cell * dvec3(x, y, z) - g.pad;
+                        inside = polygon_overlaps_box(v, lo, lo + g.cell + 2.0 * g.pad);
+                    }
                     if (inside) want[(std::uint64_t(z) * g.resolution[1] + y) * g.resolution[0] + x].push_back(ref);
                 }
             }
@@ -161,7 +171,7 @@ void expect_exact_binning(const Grid& g, const RandomScene& s) {
         bin(bounds(s.spheres[i]), (kernel::REF_SPHERE << kernel::REF_KIND_SHIFT) | i);
     }
     for (std::uint32_t i = 0; i < s.triangles.size(); ++i) {
-        bin(bounds(s.triangles[i]), (kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | i);
+        bin(bounds(s.triangles[i]), (kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | i, &s.triangles[i]);
     }
     for (std::uint32_t i = 0; i < s.rings.size(); ++i) {
         bin(bounds(s.rings[i]), (kernel::REF_RING << kernel::REF_KIND_SHIFT) | i);
@@ -174,7 +184,7 @@ void expect_exact_binning(const Grid& g, const RandomScene& s) {
     }
 }
 
-TEST(GridBuild, EveryPrimitiveIsInExactlyTheCellsItsBoxOverlaps) {
+TEST(GridBuild, EveryPrimitiveIsInExactlyTheCellsItOverlaps) {
     const RandomScene s = random_scene(7, 300, 200);
     std::string note;
     const Grid g = build_grid(s.primitives(), GridRequest{}, note);
@@ -271,7 +281,9 @@ TEST(GridBuild, PrimitivesThatStretchTheBoxAreLeftLoose) {
     }
 
     // With max_loose = 0 (a grid asked for over everything): the floor sets the box.
+    // Unsplit, for expect_exact_binning.
     request.max_loose = 0;
+    request.split = false;
     const Grid all = build_grid(s.primitives(), request, note);
     EXPECT_EQ(all.loose, 0u);
     EXPECT_LT(all.lo.x, -499.0);
@@ -335,10 +347,31 @@ TEST(GridBuild, FlatSceneAndSinglePrimitive) {
     expect_exact_binning(single, one);
 }
 
-TEST(GridBuild, CellsListedAreThoseTheBoxTouchesByGeometry) {
-    // Independent of cells_overlapping: a cell must hold a primitive when the cell's
-    // slab intersects the primitive's box on every axis, and may hold it only when it
-    // intersects the box grown by twice the padding.
+// The triangle's points are sampled this far apart at most (its edges are at most
+// 2 * sqrt(3) * 2 long in random_scene).
+constexpr int kSamplesPerEdge = 200;
+constexpr double kSampleSpacing = 7.0 / kSamplesPerEdge;
+
+// The distance from the closed box [lo, hi] to the nearest of the triangle's sampled
+// points: 0 when one lies inside.
+double distance_to_box(const kernel::Triangle& t, const dvec3& lo, const dvec3& hi) {
+    const dvec3 a(t.p0.x, t.p0.y, t.p0.z), b(t.p1.x, t.p1.y, t.p1.z), c(t.p2.x, t.p2.y, t.p2.z);
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int i = 0; i <= kSamplesPerEdge; ++i) {
+        for (int j = 0; i + j <= kSamplesPerEdge; ++j) {
+            const dvec3 p = a + (b - a) * (double(i) / kSamplesPerEdge) + (c - a) * (double(j) / kSamplesPerEdge);
+            nearest = std::min(nearest, glm::length(glm::max(glm::max(lo - p, p - hi), dvec3(0.0))));
+        }
+    }
+    return nearest;
+}
+
+TEST(GridBuild, CellsListedAreThoseThePrimitiveTouchesByGeometry) {
+    // Independent of cells_overlapping and of the overlap test: a cell must hold a
+    // primitive when the cell's slab intersects the primitive's box on every axis (a
+    // triangle: when one of its sampled points lies in the cell), and may hold it only
+    // when it intersects the box grown by twice the padding (a triangle: when a sample
+    // lies within twice the padding and the samples' spacing).
     const RandomScene s = random_scene(13, 120, 80);
     std::string note;
     const Grid g = build_grid(s.primitives(), GridRequest{}, note);
@@ -355,9 +388,16 @@ TEST(GridBuild, CellsListedAreThoseTheBoxTouchesByGeometry) {
                 const std::uint64_t cell = (std::uint64_t(z) * g.resolution[1] + y) * g.resolution[0] + x;
                 for (std::uint32_t i = 0; i < boxes.size(); ++i) {
                     const Aabb& b = boxes[i];
-                    const bool touches = glm::all(glm::lessThanEqual(b.lo, hi)) && glm::all(glm::lessThanEqual(lo, b.hi));
-                    const bool near = glm::all(glm::lessThanEqual(b.lo - 2.0 * g.pad, hi)) &&
-                                      glm::all(glm::lessThanEqual(lo, b.hi + 2.0 * g.pad));
+                    bool touches = glm::all(glm::lessThanEqual(b.lo, hi)) && glm::all(glm::lessThanEqual(lo, b.hi));
+                    bool near = glm::all(glm::lessThanEqual(b.lo - 2.0 * g.pad, hi)) &&
+                                glm::all(glm::lessThanEqual(lo, b.hi + 2.0 * g.pad));
+                    if ((refs[i] >> kernel::REF_KIND_SHIFT) == kernel::REF_TRIANGLE && near) {
+                        // A triangle by its points: one inside the cell, or none nearer
+                        // than the padding and the samples' spacing.
+                        const double gap = distance_to_box(s.triangles[refs[i] & kernel::REF_INDEX_MASK], lo, hi);
+                        touches = gap == 0.0;
+                        near = gap <= 2.0 * std::max({g.pad.x, g.pad.y, g.pad.z}) + kSampleSpacing;
+                    }
                     if (touches) {
                         ASSERT_TRUE(listed(cell, i)) << "primitive " << i << " missing from cell " << cell;
                     }
@@ -516,7 +556,7 @@ TEST(GridBuild, NoPrimitivesGivesAnEmptyGrid) {
 // A dense cluster in a wide scene, the teapot in a stadium: the builder splits the
 // cluster's root cells, and every leaf, at any depth, lists every primitive whose box
 // touches its box, and none farther than twice the padding; within a leaf, by kind.
-TEST(GridSplit, EveryLeafListsThePrimitivesItsBoxOverlaps) {
+TEST(GridSplit, EveryLeafListsThePrimitivesItOverlaps) {
     std::mt19937 rng(61);
     std::uniform_real_distribution<float> pos(-0.5f, 0.5f);
     std::uniform_real_distribution<float> radius(0.002f, 0.02f);
@@ -557,9 +597,18 @@ TEST(GridSplit, EveryLeafListsThePrimitivesItsBoxOverlaps) {
         for (std::size_t i = 0; i < boxes.size(); ++i) {
             const Aabb& b = boxes[i];
             const bool listed = std::find(in.begin(), in.end(), refs[i]) != in.end();
-            const bool touches = glm::all(glm::lessThanEqual(b.lo, box_hi)) && glm::all(glm::lessThanEqual(box_lo, b.hi));
-            const bool near = glm::all(glm::lessThanEqual(b.lo - 2.0 * g.pad, box_hi)) &&
-                              glm::all(glm::lessThanEqual(box_lo, b.hi + 2.0 * g.pad));
+            bool touches = glm::all(glm::lessThanEqual(b.lo, box_hi)) && glm::all(glm::lessThanEqual(box_lo, b.hi));
+            bool near = glm::all(glm::lessThanEqual(b.lo - 2.0 * g.pad, box_hi)) &&
+                        glm::all(glm::lessThanEqual(box_lo, b.hi + 2.0 * g.pad));
+            if ((refs[i] >> kernel::REF_KIND_SHIFT) == kernel::REF_TRIANGLE) {
+                // The floor's triangles by their polygons (box_overlap_test checks the
+                // test against sampled points).
+                const kernel::Triangle& t = s.triangles[refs[i] & kernel::REF_INDEX_MASK];
+                const std::array<dvec3, 3> v{dvec3(t.p0.x, t.p0.y, t.p0.z), dvec3(t.p1.x, t.p1.y, t.p1.z),
+                                             dvec3(t.p2.x, t.p2.y, t.p2.z)};
+                touches = polygon_overlaps_box(v, box_lo, box_hi);
+                near = polygon_overlaps_box(v, box_lo - 2.0 * g.pad, box_hi + 2.0 * g.pad);
+            }
             ASSERT_TRUE(!touches || listed) << "primitive " << i << " missing from node " << node;
             ASSERT_TRUE(near || !listed) << "primitive " << i << " listed in far node " << node;
         }

@@ -111,11 +111,15 @@ GridScene random_scene(std::uint32_t seed, int spheres, int triangles) {
 
 Kernel::Ray make_ray(vec3 origin, vec3 dir) { return Kernel::Ray(origin, dir); }
 
-// Closest hit and shadow answer agree between the grid walk and brute force.
-::testing::AssertionResult same_answers(Kernel& grid, Kernel& brute, const Kernel::Ray& ray, float t_max) {
+// Closest hit and shadow answer agree between the grid walk and brute force. With
+// `ties`, two primitives hit at exactly the same t (a vertex two triangles share)
+// may be answered either way: brute force keeps the first it tests, the walk the first
+// its cells list, and a triangle is listed only in the cells it crosses.
+::testing::AssertionResult same_answers(Kernel& grid, Kernel& brute, const Kernel::Ray& ray, float t_max,
+                                        bool ties = false) {
     const Kernel::Hit a = grid.closest_hit(ray, t_max);
     const Kernel::Hit b = brute.closest_hit(ray, t_max);
-    if (a.t != b.t || (a.t < t_max && a.material != b.material)) {
+    if (a.t != b.t || (a.t < t_max && a.material != b.material && !ties)) {
         return ::testing::AssertionFailure() << "closest hit: grid t " << a.t << " (primitive " << a.material
                                              << "), brute force t " << b.t << " (primitive " << b.material << ")";
     }
@@ -367,13 +371,14 @@ TEST(GridTraversal, RaysGrazingCornersOnTheGridBoundaryKeepTheirHits) {
     std::uniform_real_distribution<float> along(-h, h);
     int failures = 0;
     for (int i = 0; i < 20000 && failures < 10; ++i) {
-        // A floor corner, or a point on a floor edge, nudged by a millionth.
+        // A floor corner, or a point on a floor edge, nudged by a millionth. The two
+        // triangles share two corners, where either may be the answer.
         vec3 target(i % 4 < 2 ? -h : h, 0.0f, i % 2 == 0 ? -h : h);
         if (i % 3 == 0) target[i % 2 == 0 ? 0 : 2] = along(rng);
         target += vec3(jitter(rng), 0.0f, jitter(rng));
         const vec3 origin(pos(rng), height(rng), pos(rng));
         const Kernel::Ray ray = make_ray(origin, glm::normalize(target - origin));
-        const ::testing::AssertionResult same = same_answers(grid, brute, ray, kernel::INFINITY_T);
+        const ::testing::AssertionResult same = same_answers(grid, brute, ray, kernel::INFINITY_T, true);
         if (!same) {
             ADD_FAILURE() << describe(ray) << ": " << same.message();
             ++failures;

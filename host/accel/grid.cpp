@@ -339,6 +339,7 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
         return g;
     }
     const Aabb box = grid_box(boxes);
+    const Binner binner{primitives.triangles};
     const std::uint64_t max_refs = std::min(request.max_entries, kMaxGridRefs);
     // The nodes hold one entry more than there are root cells.
     const std::uint64_t max_cells = std::min(std::max<std::uint64_t>(request.max_entries, 2) - 1, kMaxGridCells);
@@ -378,7 +379,8 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
             g.hi[a] = float_up(g.lo[a] + g.cell[a] * res[a]);
             g.pad[a] = kCellPad * g.cell[a] + (magnitude + reach) * kMagnitudePad;
         }
-        // The references each box adds, counted before anything is allocated: a
+        // The references each box would add, counted before anything is allocated
+        // (an upper bound: triangles go only into the cells they cross): a
         // resolution too fine for the limit is coarsened without building it.
         std::uint64_t total = g.loose;
         for (const Aabb& b : boxes) {
@@ -402,14 +404,12 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
         const std::uint64_t cells = g.cell_count();
         RootCells roots;
         roots.starts.assign(cells + 1, 0);
-        for (const Aabb& b : boxes) {
-            const auto [first, last] = g.cells_overlapping(b);
-            for (std::uint32_t z = first[2]; z <= last[2]; ++z) {
-                for (std::uint32_t y = first[1]; y <= last[1]; ++y) {
-                    const std::uint64_t row = (std::uint64_t(z) * res[1] + y) * res[0];
-                    for (std::uint32_t x = first[0]; x <= last[0]; ++x) ++roots.starts[row + x];
-                }
-            }
+        auto cell_index = [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+            return (std::uint64_t(z) * res[1] + y) * res[0] + x;
+        };
+        for (std::size_t i = 0; i < boxes.size(); ++i) {
+            binner.cells(boxes[i], ids[i], g.lo, g.cell, g.pad, res,
+                         [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) { ++roots.starts[cell_index(x, y, z)]; });
         }
         std::uint32_t sum = 0;
         for (std::uint64_t c = 0; c <= cells; ++c) {
@@ -420,20 +420,17 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
         std::vector<std::uint32_t> cursor(roots.starts.begin(), roots.starts.end() - 1);
         roots.items.assign(sum, 0);
         for (std::size_t i = 0; i < boxes.size(); ++i) {
-            const auto [first, last] = g.cells_overlapping(boxes[i]);
-            for (std::uint32_t z = first[2]; z <= last[2]; ++z) {
-                for (std::uint32_t y = first[1]; y <= last[1]; ++y) {
-                    const std::uint64_t row = (std::uint64_t(z) * res[1] + y) * res[0];
-                    for (std::uint32_t x = first[0]; x <= last[0]; ++x) roots.items[cursor[row + x]++] = std::uint32_t(i);
-                }
-            }
+            binner.cells(boxes[i], ids[i], g.lo, g.cell, g.pad, res,
+                         [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+                             roots.items[cursor[cell_index(x, y, z)]++] = std::uint32_t(i);
+                         });
         }
         const double magnitude_pad = (magnitude + reach) * kMagnitudePad;
         // Half the padding: more than a position's rounding, less than any box's padding.
         g.nudge = magnitude_pad / 2;
         g.refs = std::move(loose_refs);
         const bool split = request.split && product(request.resolution) == 0;
-        place_cells(g, roots, boxes, ids, magnitude_pad, split, max_refs, request.max_entries);
+        place_cells(g, roots, boxes, ids, binner, magnitude_pad, split, max_refs, request.max_entries);
         return g;
     }
 }

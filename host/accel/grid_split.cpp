@@ -56,6 +56,7 @@ struct Splitter {
     Grid& g;
     const std::vector<Aabb>& boxes;
     const std::vector<std::uint32_t>& ids;
+    const Binner& binner;
     double magnitude_pad;
     bool split;
     std::uint64_t max_refs;
@@ -115,15 +116,11 @@ struct Splitter {
         const dvec3 pad = kCellPad * child + magnitude_pad;
         std::uint64_t sum = 0;
         for (std::uint32_t i : items) {
-            const auto [first, last] = cells_overlapping(boxes[i], lo, child, pad, {kPerAxis, kPerAxis, kPerAxis});
-            for (std::uint32_t z = first[2]; z <= last[2]; ++z) {
-                for (std::uint32_t y = first[1]; y <= last[1]; ++y) {
-                    for (std::uint32_t x = first[0]; x <= last[0]; ++x) {
-                        children[(z * kPerAxis + y) * kPerAxis + x].push_back(i);
-                        ++sum;
-                    }
-                }
-            }
+            binner.cells(boxes[i], ids[i], lo, child, pad, {kPerAxis, kPerAxis, kPerAxis},
+                         [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+                             children[(z * kPerAxis + y) * kPerAxis + x].push_back(i);
+                             ++sum;
+                         });
         }
         // One more reference: the inner cell's pointer to its children.
         const std::uint64_t added = sum + 1 - items.size();
@@ -139,9 +136,21 @@ struct Splitter {
 
 }  // namespace
 
+std::size_t Binner::polygon(std::uint32_t id, std::array<dvec3, 4>& v) const {
+    if ((id >> kernel::REF_KIND_SHIFT) != kernel::REF_TRIANGLE) return 0;
+    const kernel::Triangle& t = triangles[id & kernel::REF_INDEX_MASK];
+    auto point = [](const kernel::vec4& p) { return dvec3(p.x, p.y, p.z); };
+    v[0] = point(t.p0);
+    v[1] = point(t.p1);
+    v[2] = point(t.p2);
+    if (t.meta.z == kernel::SHAPE_TRIANGLE) return 3;
+    v[3] = point(t.p0 + (t.p2 - t.p1));   // in float, as bounds() and the kernel
+    return 4;
+}
+
 void place_cells(Grid& g, const RootCells& roots, const std::vector<Aabb>& boxes,
-                 const std::vector<std::uint32_t>& ids, double magnitude_pad, bool split, std::uint64_t max_refs,
-                 std::uint64_t max_words) {
+                 const std::vector<std::uint32_t>& ids, const Binner& binner, double magnitude_pad, bool split,
+                 std::uint64_t max_refs, std::uint64_t max_words) {
     const std::uint64_t cells = g.cell_count();
     const std::size_t loose = g.refs.size();
     auto build = [&](bool split_cells) {
@@ -149,7 +158,7 @@ void place_cells(Grid& g, const RootCells& roots, const std::vector<Aabb>& boxes
         g.refs.resize(loose);
         g.leaves = 0;
         g.levels = 0;
-        Splitter s{g, boxes, ids, magnitude_pad, split_cells, max_refs, max_words, loose + roots.items.size(), 0.0, 0.0, {}};
+        Splitter s{g, boxes, ids, binner, magnitude_pad, split_cells, max_refs, max_words, loose + roots.items.size(), 0.0, 0.0, {}};
         const GridResolution& res = g.resolution;
         for (std::uint64_t c = 0; c < cells; ++c) {
             const std::span<const std::uint32_t> items(roots.items.data() + roots.starts[c],
