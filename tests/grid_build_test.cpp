@@ -159,8 +159,9 @@ void expect_exact_binning(const Grid& g, const RandomScene& s) {
                         const std::array<dvec3, 3> v{dvec3(tri->p0.x, tri->p0.y, tri->p0.z),
                                                      dvec3(tri->p1.x, tri->p1.y, tri->p1.z),
                                                      dvec3(tri->p2.x, tri->p2.y, tri->p2.z)};
-                        const dvec3 lo = g.lo + g.cell * dvec3(x, y, z) - g.pad;
-                        inside = polygon_overlaps_box(v, lo, lo + g.cell + 2.0 * g.pad);
+                        const dvec3 pad = g.padding(box);
+                        const dvec3 lo = g.lo + g.cell * dvec3(x, y, z) - pad;
+                        inside = polygon_overlaps_box(v, lo, lo + g.cell + 2.0 * pad);
                     }
                     if (inside) want[(std::uint64_t(z) * g.resolution[1] + y) * g.resolution[0] + x].push_back(ref);
                 }

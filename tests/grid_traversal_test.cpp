@@ -59,7 +59,6 @@ struct GridScene {
         kernel::set_grid_cell(k.params, vec3(grid.cell));
         kernel::set_grid_inv_cell(k.params, vec3(1.0 / grid.cell));
         kernel::set_grid_resolution(k.params, glm::uvec3(grid.resolution[0], grid.resolution[1], grid.resolution[2]));
-        kernel::set_grid_nudge(k.params, float(grid.nudge));
         k.work_reset();
         return k;
     }
@@ -474,9 +473,9 @@ TEST(GridTraversal, WalkEndsWithinTheCellsOfTheGrid) {
 
 // A dense cluster in a wide scene, the teapot in a stadium: `count` small spheres,
 // triangles, rings and cylinders in a cube of side `size` around `centre`, and a floor
-// and walls of large triangles 1,000 times wider. The builder splits the cluster's
+// and walls of large triangles `room` times wider. The builder splits the cluster's
 // root cells.
-GridScene cluster_scene(std::uint32_t seed, int count, float size, vec3 centre) {
+GridScene cluster_scene(std::uint32_t seed, int count, float size, vec3 centre, float room = 1000.0f) {
     GridScene s = random_scene(seed, count, count);
     const float k = size / 20.0f;   // random_scene fills [-10, 10]^3
     for (kernel::Sphere& sp : s.spheres) {
@@ -499,7 +498,7 @@ GridScene cluster_scene(std::uint32_t seed, int count, float size, vec3 centre) 
         c.top_capped = vec4(base + glm::normalize(vec3(c.top_capped) - vec3(c.base_radius)) * 0.5f * k, c.top_capped.w);
         c.base_radius = vec4(base, std::min(c.base_radius.w, 0.3f) * k);
     }
-    const float w = 1000.0f * size;
+    const float w = room * size;
     std::uint32_t id = std::uint32_t(s.materials.size());
     const vec3 f = centre - vec3(0.0f, size, 0.0f);
     for (int i = 0; i < 40; ++i) {   // a floor of 40 strips, and two walls
@@ -562,6 +561,107 @@ TEST(GridSplit, AClusterInAWideSceneMatchesBruteForce) {
         }
         failures += compare_ray(grid, brute, origin, dir, i) ? 0 : 1;
     }
+}
+
+// The cluster 10^4 times smaller than its room, near the origin as eye-centred
+// coordinates put it: its padding is the rounding of positions near it, not at the
+// room's scale, so its cells split to the finest level. Rays from the eye, from the
+// room's far corners and walls toward the cluster (the longest reach, whose rounding
+// the padding must cover), and from the cluster out to the walls.
+TEST(GridSplit, AClusterTenThousandTimesSmallerThanItsRoomMatchesBruteForce) {
+    GridScene s = cluster_scene(71, 400, 1.0f, vec3(0.0f), 1e4f);
+    const vec3 eye(2.6f, 1.5f, 3.2f);
+    GridRequest request;
+    request.eye = glm::dvec3(eye);
+    s.build(request);
+    EXPECT_EQ(s.grid.levels, kernel::GRID_MAX_LEVELS) << "the cluster's cells do not reach the finest level";
+    Kernel grid = s.kernel(true);
+    Kernel brute = s.kernel(false);
+    std::mt19937 rng(72);
+    std::uniform_real_distribution<float> in(-0.6f, 0.6f);
+    std::uniform_real_distribution<float> wall(-1e4f, 1e4f);
+    std::uniform_int_distribution<int> side(0, 1);
+    int failures = 0;
+    for (int i = 0; i < 40000 && failures < 10; ++i) {
+        const vec3 inside(in(rng), in(rng), in(rng));
+        const float x = side(rng) != 0 ? 1e4f : -1e4f, z = side(rng) != 0 ? 1e4f : -1e4f;
+        vec3 origin = eye, dir = inside - eye;
+        switch (i % 4) {
+        case 1:  // from a far corner of the room
+            origin = vec3(x, std::abs(wall(rng)), z);
+            dir = inside - origin;
+            break;
+        case 2:  // from a point on a far wall
+            origin = vec3(x, std::abs(wall(rng)), wall(rng));
+            dir = inside - origin;
+            break;
+        case 3:  // from the cluster out to a wall
+            origin = inside;
+            dir = vec3(wall(rng), std::abs(wall(rng)), z) - inside;
+            break;
+        default: break;
+        }
+        failures += compare_ray(grid, brute, origin, dir, i) ? 0 : 1;
+    }
+}
+
+// Tiny spheres (far smaller than the rounding of a ray from across the room) in a
+// cluster 10^4 times smaller than its room, each aimed at from a far corner or wall:
+// where such a ray leaves a cell near another face, the walk looks the next cell up
+// a little ahead and skips a sliver, and only the padding keeps the spheres in that
+// sliver listed in the cell it finds. Padding a sixteenth as large loses hits here.
+TEST(GridSplit, TinySpheresAimedAtFromAcrossTheRoomAreAllHit) {
+    GridScene s = cluster_scene(91, 0, 1.0f, vec3(0.0f), 1e4f);
+    std::mt19937 rng(92);
+    std::uniform_real_distribution<float> in(-0.5f, 0.5f);
+    std::uint32_t id = std::uint32_t(s.materials.size());
+    for (int i = 0; i < 3000; ++i) {
+        s.spheres.push_back(kernel::Sphere{vec4(in(rng), in(rng), in(rng), 2e-4f), uvec4(id++, 0u, 0u, 0u)});
+    }
+    s.materials.resize(id);
+    GridRequest request;
+    request.eye = glm::dvec3(2.6, 1.5, 3.2);
+    s.build(request);
+    ASSERT_GE(s.grid.levels, 5u) << "the cluster's cells are not split";
+    Kernel grid = s.kernel(true);
+    Kernel brute = s.kernel(false);
+    std::uniform_real_distribution<float> wall(-1e4f, 1e4f);
+    std::uniform_int_distribution<int> side(0, 1);
+    int failures = 0;
+    for (std::size_t i = 0; i < s.spheres.size() && failures < 10; ++i) {
+        const vec3 target(s.spheres[i].center_radius);
+        const float x = side(rng) != 0 ? 1e4f : -1e4f, z = side(rng) != 0 ? 1e4f : -1e4f;
+        for (const vec3& origin : {vec3(x, std::abs(wall(rng)), z), vec3(x, std::abs(wall(rng)), wall(rng)),
+                                   vec3(wall(rng), std::abs(wall(rng)), z)}) {
+            failures += compare_ray(grid, brute, origin, target - origin, 1) ? 0 : 1;
+        }
+    }
+}
+
+// A point just below a root cell's face is found in the cell below, though p - lo,
+// which rounds at the grid's extent, puts it on the face: the place within the root
+// cell, measured from the cell's corner, corrects the root.
+TEST(GridSplit, PointsBesideARootFaceFindTheirSide) {
+    GridScene s = cluster_scene(81, 200, 1.0f, vec3(0.0f), 1e4f);
+    s.build();
+    ASSERT_GE(s.grid.levels, 1u);
+    Kernel k = s.kernel(true);
+    int corrected = 0;
+    for (int a = 0; a < 3; ++a) {
+        for (std::uint32_t root = 1; root < s.grid.resolution[a]; ++root) {
+            // The face as the kernel computes it: the product is exact, the sum rounded once.
+            const float face = float(s.grid.lo[a]) + float(root) * float(s.grid.cell[a]);
+            vec3 below(0.0f), at(0.0f);
+            below[a] = std::nextafter(face, -kernel::INFINITY_T);
+            at[a] = face;
+            const std::uint32_t first = root << kernel::GRID_FRACTION_BITS;
+            EXPECT_EQ(k.grid_fine(at)[a], first) << "axis " << a << ", root " << root;
+            EXPECT_EQ(k.grid_fine(below)[a], first - 1u) << "axis " << a << ", root " << root;
+            const float estimate = (below[a] - float(s.grid.lo[a])) * float(1.0 / s.grid.cell[a]);
+            corrected += estimate >= float(root) ? 1 : 0;
+        }
+    }
+    EXPECT_GT(corrected, 0) << "no point was put on the wrong side by p - lo: the test shows nothing";
 }
 
 // The same at odd scales and far from the origin, rays from a distant eye and from

@@ -30,9 +30,23 @@ constexpr std::uint64_t kMaxGridCells = std::uint64_t(1) << 25;
 constexpr std::uint64_t kMaxGridRefs = std::uint64_t(1) << 28;
 
 // Padding of each primitive box: a thousandth of a cell (kCellPad), plus the float
-// rounding of positions at the scene's magnitude and the rays' reach (2^-20 is
-// eight float ULPs). Over-inclusion costs a test; under-inclusion loses a hit.
+// rounding of positions near the box (Grid::rounding_pad; 2^-20 is eight float ULPs).
+// Over-inclusion costs a test; under-inclusion loses a hit.
 constexpr double kMagnitudePad = 0x1p-20;
+
+// Significant bits of a root cell's width: root * cell is then exact in float for
+// every root index below kMaxAxisCells (2^18), so the kernel's root cell corners
+// (grid_min + root * cell) are rounded once, at their own magnitude, not at the
+// grid's extent, and a small dense object in a large scene keeps its precision.
+constexpr int kCellBits = 24 - (32 - int(kernel::GRID_FRACTION_BITS));
+
+// x rounded up to kCellBits significant bits.
+double cell_width_up(double x) {
+    int exponent = 0;
+    std::frexp(x, &exponent);
+    const double unit = std::ldexp(1.0, exponent - kCellBits);
+    return std::ceil(x / unit) * unit;
+}
 
 // The float at or below x, and at or above it.
 double float_down(double x) {
@@ -263,8 +277,24 @@ std::array<GridResolution, 2> cells_overlapping(const Aabb& box, const dvec3& lo
     return range;
 }
 
+double Grid::rounding_pad(const Aabb& box) const {
+    const double magnitude = std::max({std::abs(box.lo.x), std::abs(box.lo.y), std::abs(box.lo.z),
+                                       std::abs(box.hi.x), std::abs(box.hi.y), std::abs(box.hi.z)});
+    // The farthest any ray travels to reach the box along one axis: a position's
+    // rounding on an axis grows with the distance travelled along that axis.
+    const dvec3 centre = (box.lo + box.hi) * 0.5, half = (box.hi - box.lo) * 0.5;
+    double reach = 0.0;
+    for (const dvec3& o : origins) {
+        const dvec3 d = glm::abs(o - centre) + half;
+        reach = std::max({reach, d.x, d.y, d.z});
+    }
+    return (magnitude + std::max({cell.x, cell.y, cell.z}) + reach) * kMagnitudePad;
+}
+
+dvec3 Grid::padding(const Aabb& box) const { return kCellPad * cell + rounding_pad(box); }
+
 std::array<GridResolution, 2> Grid::cells_overlapping(const Aabb& box) const {
-    return vkrt::cells_overlapping(box, lo, cell, pad, resolution);
+    return vkrt::cells_overlapping(box, lo, cell, padding(box), resolution);
 }
 
 Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, std::string& note) {
@@ -366,19 +396,37 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
     // Rays travel at most from the eye across the box of everything.
     double reach = glm::length(everything.hi - everything.lo);
     if (request.eye) reach += glm::length(*request.eye - glm::clamp(*request.eye, everything.lo, everything.hi));
+    for (int corner = 0; corner < 8; ++corner) {
+        g.origins.push_back({corner & 1 ? everything.hi.x : everything.lo.x,
+                             corner & 2 ? everything.hi.y : everything.lo.y,
+                             corner & 4 ? everything.hi.z : everything.lo.z});
+    }
+    if (request.eye) g.origins.push_back(*request.eye);
+    // At least any box's rounding padding: a box's magnitude is at most the scene's, a
+    // root cell at most 2.1 times it (the box of everything and the cell's rounding
+    // up), and a ray's reach at most `reach`.
+    const double most_rounding = (3.2 * magnitude + reach) * kMagnitudePad;
+    std::vector<double> rounding(boxes.size());   // each box's rounding padding
     for (;;) {
         g.resolution = res;
-        // The grid box is the primitives' box grown by the padding, so that a ray
-        // grazing a primitive on the boundary still clips to a non-empty interval
+        // The grid box is the primitives' box grown by the largest padding, so that a
+        // ray grazing a primitive on the boundary still clips to a non-empty interval
         // despite rounding in the slab test.
         for (int a = 0; a < 3; ++a) {
-            const double margin =
-                kCellPad * (box.hi[a] - box.lo[a]) / res[a] + (magnitude + reach) * kMagnitudePad;
-            g.lo[a] = float_down(box.lo[a] - margin);
-            g.cell[a] = float_up((box.hi[a] + margin - g.lo[a]) / res[a]);
+            const double margin = 1.1 * kCellPad * (box.hi[a] - box.lo[a]) / res[a] + most_rounding;
+            // Centred on the box: a scene symmetric about a plane keeps the plane a
+            // cell face whenever the resolution allows.
+            const double centre = (box.lo[a] + box.hi[a]) / 2;
+            g.cell[a] = cell_width_up((box.hi[a] - box.lo[a] + 2 * margin) / res[a]);
+            for (;;) {
+                g.lo[a] = float_down(centre - g.cell[a] * res[a] / 2);
+                if (g.lo[a] + g.cell[a] * res[a] >= box.hi[a] + margin) break;
+                g.cell[a] = cell_width_up(std::nextafter(g.cell[a], std::numeric_limits<double>::infinity()));
+            }
             g.hi[a] = float_up(g.lo[a] + g.cell[a] * res[a]);
-            g.pad[a] = kCellPad * g.cell[a] + (magnitude + reach) * kMagnitudePad;
+            g.pad[a] = margin;
         }
+        for (std::size_t i = 0; i < boxes.size(); ++i) rounding[i] = g.rounding_pad(boxes[i]);
         // The references each box would add, counted before anything is allocated
         // (an upper bound: triangles go only into the cells they cross): a
         // resolution too fine for the limit is coarsened without building it.
@@ -408,7 +456,7 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
             return (std::uint64_t(z) * res[1] + y) * res[0] + x;
         };
         for (std::size_t i = 0; i < boxes.size(); ++i) {
-            binner.cells(boxes[i], ids[i], g.lo, g.cell, g.pad, res,
+            binner.cells(boxes[i], ids[i], g.lo, g.cell, kCellPad * g.cell + rounding[i], res,
                          [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) { ++roots.starts[cell_index(x, y, z)]; });
         }
         std::uint32_t sum = 0;
@@ -420,17 +468,14 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
         std::vector<std::uint32_t> cursor(roots.starts.begin(), roots.starts.end() - 1);
         roots.items.assign(sum, 0);
         for (std::size_t i = 0; i < boxes.size(); ++i) {
-            binner.cells(boxes[i], ids[i], g.lo, g.cell, g.pad, res,
+            binner.cells(boxes[i], ids[i], g.lo, g.cell, kCellPad * g.cell + rounding[i], res,
                          [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
                              roots.items[cursor[cell_index(x, y, z)]++] = std::uint32_t(i);
                          });
         }
-        const double magnitude_pad = (magnitude + reach) * kMagnitudePad;
-        // Half the padding: more than a position's rounding, less than any box's padding.
-        g.nudge = magnitude_pad / 2;
         g.refs = std::move(loose_refs);
         const bool split = request.split && product(request.resolution) == 0;
-        place_cells(g, roots, boxes, ids, binner, magnitude_pad, split, max_refs, request.max_entries);
+        place_cells(g, roots, boxes, ids, binner, rounding, split, max_refs, request.max_entries);
         return g;
     }
 }

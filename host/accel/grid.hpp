@@ -61,8 +61,9 @@ struct Grid {
     std::uint32_t loose = 0;
     std::uint64_t leaves = 0;                // leaf cells
     std::uint32_t levels = 0;                // 0: no cell split, a uniform grid
-    // How far ahead the walk looks up the next cell (kernel grid_nudge()).
-    double nudge = 0.0;
+    // Where rays start, for the padding: the corners of the box of everything (loose
+    // primitives included) and the eye, when given.
+    std::vector<glm::dvec3> origins;
     // How many times larger the box would be with the ones left out for their boxes.
     double loose_shrink = 1.0;
 
@@ -70,10 +71,21 @@ struct Grid {
         return std::uint64_t(resolution[0]) * resolution[1] * resolution[2];
     }
     std::size_t bytes() const { return (nodes.size() + refs.size()) * sizeof(std::uint32_t); }
-    glm::dvec3 pad{0.0};                     // added to every primitive's box on each side
+    // The largest padding any primitive's box gets, on each side; the grid box leaves
+    // at least this much around every primitive.
+    glm::dvec3 pad{0.0};
+
+    // The part of a box's padding that is float rounding: a position near the box is
+    // known, on each axis, to within a few 2^-24 of its magnitude, of the width of the
+    // root cell whose corner it is found from, and of the distance a ray travels
+    // along the axis to get there.
+    double rounding_pad(const Aabb& box) const;
+    // A root cell's padding of the box: a thousandth of the cell and the rounding.
+    glm::dvec3 padding(const Aabb& box) const;
 
     // The cell index range [first, last] (inclusive, per axis) a box overlaps once
-    // padded: what the builder binned the box into.
+    // padded: the root cells the builder binned the box into (a triangle's: those of
+    // them it crosses).
     std::array<GridResolution, 2> cells_overlapping(const Aabb& box) const;
 };
 

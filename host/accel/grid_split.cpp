@@ -57,7 +57,7 @@ struct Splitter {
     const std::vector<Aabb>& boxes;
     const std::vector<std::uint32_t>& ids;
     const Binner& binner;
-    double magnitude_pad;
+    const std::vector<double>& rounding;
     bool split;
     std::uint64_t max_refs;
     std::uint64_t max_words;
@@ -110,13 +110,14 @@ struct Splitter {
         if (level >= kernel::GRID_MAX_LEVELS) return false;
         if (g.nodes.size() + kernel::GRID_CHILDREN + 1 > max_words) return false;
         const dvec3 child = g.cell / std::pow(double(kPerAxis), double(level + 1));
-        if (std::max({child.x, child.y, child.z}) < kFinestInPads * magnitude_pad) return false;
+        double most_rounding = 0.0;
+        for (std::uint32_t i : items) most_rounding = std::max(most_rounding, rounding[i]);
+        if (std::max({child.x, child.y, child.z}) < kFinestInPads * most_rounding) return false;
         const dvec3 fine = g.cell / double(kernel::GRID_FINE);
         const dvec3 lo = g.lo + dvec3(fine_lo[0], fine_lo[1], fine_lo[2]) * fine;
-        const dvec3 pad = kCellPad * child + magnitude_pad;
         std::uint64_t sum = 0;
         for (std::uint32_t i : items) {
-            binner.cells(boxes[i], ids[i], lo, child, pad, {kPerAxis, kPerAxis, kPerAxis},
+            binner.cells(boxes[i], ids[i], lo, child, kCellPad * child + rounding[i], {kPerAxis, kPerAxis, kPerAxis},
                          [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
                              children[(z * kPerAxis + y) * kPerAxis + x].push_back(i);
                              ++sum;
@@ -149,8 +150,8 @@ std::size_t Binner::polygon(std::uint32_t id, std::array<dvec3, 4>& v) const {
 }
 
 void place_cells(Grid& g, const RootCells& roots, const std::vector<Aabb>& boxes,
-                 const std::vector<std::uint32_t>& ids, const Binner& binner, double magnitude_pad, bool split,
-                 std::uint64_t max_refs, std::uint64_t max_words) {
+                 const std::vector<std::uint32_t>& ids, const Binner& binner, const std::vector<double>& rounding,
+                 bool split, std::uint64_t max_refs, std::uint64_t max_words) {
     const std::uint64_t cells = g.cell_count();
     const std::size_t loose = g.refs.size();
     auto build = [&](bool split_cells) {
@@ -158,7 +159,7 @@ void place_cells(Grid& g, const RootCells& roots, const std::vector<Aabb>& boxes
         g.refs.resize(loose);
         g.leaves = 0;
         g.levels = 0;
-        Splitter s{g, boxes, ids, binner, magnitude_pad, split_cells, max_refs, max_words, loose + roots.items.size(), 0.0, 0.0, {}};
+        Splitter s{g, boxes, ids, binner, rounding, split_cells, max_refs, max_words, loose + roots.items.size(), 0.0, 0.0, {}};
         const GridResolution& res = g.resolution;
         for (std::uint64_t c = 0; c < cells; ++c) {
             const std::span<const std::uint32_t> items(roots.items.data() + roots.starts[c],

@@ -58,12 +58,12 @@ struct RootCells {
 };
 
 // Fills g.nodes and appends the leaves' lists to g.refs (which holds the loose
-// references). `boxes` and `ids` are the listed primitives; `magnitude_pad` the part
-// of the padding that is float rounding rather than a fraction of a cell. Splits
+// references). `boxes` and `ids` are the listed primitives; `rounding` the part of
+// each one's padding that is float rounding rather than a fraction of a cell. Splits
 // only when `split` is set, and never beyond `max_refs` references or `max_words`
 // node words in all.
 void place_cells(Grid& g, const RootCells& roots, const std::vector<Aabb>& boxes,
-                 const std::vector<std::uint32_t>& ids, const Binner& binner, double magnitude_pad, bool split,
-                 std::uint64_t max_refs, std::uint64_t max_words);
+                 const std::vector<std::uint32_t>& ids, const Binner& binner, const std::vector<double>& rounding,
+                 bool split, std::uint64_t max_refs, std::uint64_t max_words);
 
 }  // namespace vkrt

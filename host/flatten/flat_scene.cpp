@@ -283,7 +283,6 @@ void add_grid(const Scene& scene, const AccelPolicy& policy, FlatScene& g) {
     kernel::set_grid_cell(p, vec3(grid.cell));
     kernel::set_grid_inv_cell(p, vec3(1.0 / grid.cell));
     kernel::set_grid_resolution(p, uvec3(grid.resolution[0], grid.resolution[1], grid.resolution[2]));
-    kernel::set_grid_nudge(p, float(grid.nudge));
     g.grid.used = true;
     g.grid.resolution = grid.resolution;
     g.grid.cells = grid.leaves;

@@ -34,7 +34,6 @@ std::uint64_t scene_fingerprint(const FlatScene& scene) {
         set(params, kernel::vec3(0.0f));
     }
     kernel::set_grid_resolution(params, kernel::uvec3(0u));
-    kernel::set_grid_nudge(params, 0.0f);
     Fnv1a h;
     h.add(&params, sizeof params);  // texels only: no padding bytes
     for (std::uint32_t id = 0; id < kFeatureCount; ++id) {

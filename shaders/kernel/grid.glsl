@@ -17,11 +17,13 @@
 // - Rays with a NaN or infinite component, and rays that miss the box, visit no cell.
 // - The cell beyond an exit face is found in integers on the exit axis (the face's
 //   fine coordinate, or the one before it), so the walk cannot stay in a cell it
-//   leaves. On the other axes the point where the ray leaves is looked up a little
-//   ahead (grid_nudge(), in the ray's direction) and never behind where the last
-//   lookup was: a point rounded back across a face would find a cell the ray has
-//   already left. The sum over axes of step * fine coordinate grows every step, so
-//   the walk ends whatever the input; the loop budget is only a backstop.
+//   leaves. On the other axes the point where the ray leaves is looked up, and taken
+//   no further back than the last lookup: a point rounded back across a face finds,
+//   at worst, a cell the ray meets only within rounding, which it then leaves on the
+//   next step; one rounded ahead skips a sliver within rounding of the cell found,
+//   which the padding of the boxes covers. The sum over axes of step * fine
+//   coordinate grows every step, so the walk ends whatever the input; the loop
+//   budget is only a backstop.
 // - Cell faces are computed from fine coordinates each step (not accumulated), so
 //   the walk does not drift on long rays.
 
@@ -52,14 +54,24 @@ struct GridWalk {
 };
 
 // The fine coordinate of position p on one axis, clamped into the grid. Taken within
-// p's root cell, so that the fraction keeps the precision of the cell, not of the
-// grid's box. Per axis, on scalars: GCC leaves glm's vector clamp and floor as calls.
-// Clamped first, then truncated: for values at or above 0 that is the floor, and the
+// p's root cell, from the cell's corner, so that it keeps the precision of p itself,
+// not of the grid's box: the host gives the cell width few enough significant bits
+// that root * cell is exact, and the corner is rounded once, at its own magnitude.
+// The root found from p - lo, which rounds at the grid's extent, may be one off near
+// a root face; the place within it says which side p is on.
+// Per axis, on scalars: GCC leaves glm's vector clamp and floor as calls. Clamped
+// first, then truncated: for values at or above 0 that is the floor, and the
 // reference backend's floor() is a library call on a baseline x86-64.
 HOT uint grid_fine_axis(float p, float lo, float cell, float inv_cell, uint res) {
-    precise int root = int(min(max((p - lo) * inv_cell, 0.0f), float(int(res) - 1)));
+    int last = int(res) - 1;
+    precise int root = int(min(max((p - lo) * inv_cell, 0.0f), float(last)));
     precise float root_lo = lo + float(root) * cell;
-    precise int f = int(min(max((p - root_lo) * (inv_cell * GRID_FINE), 0.0f), GRID_FINE - 1.0f));
+    precise float x = (p - root_lo) * (inv_cell * GRID_FINE);
+    bool below = x < 0.0f && root > 0;
+    bool above = x >= GRID_FINE && root < last;
+    root += below ? -1 : (above ? 1 : 0);
+    x += below ? GRID_FINE : (above ? -GRID_FINE : 0.0f);
+    int f = int(min(max(x, 0.0f), GRID_FINE - 1.0f));
     return (uint(root) << GRID_FRACTION_BITS) | uint(f);
 }
 
@@ -115,9 +127,11 @@ HOT vec3 grid_t_next(Ray ray, GridWalk w) {
     return grid_select_float(t, vec3(INFINITY_T), w.still);
 }
 
-// The point ray(t), looked up a little ahead along every axis the ray moves on.
-HOT uvec3 grid_fine_ahead(Ray ray, ivec3 step, float t) {
-    precise vec3 p = ray.origin + t * ray.dir + vec3(step) * grid_nudge();
+// The fine coordinates of the point ray(t). Its rounding grows with its magnitude,
+// the width of the root cell it is measured from and the distance the ray has
+// travelled; the host pads every box by more than that (Grid::rounding_pad).
+HOT uvec3 grid_fine_at(Ray ray, float t) {
+    precise vec3 p = ray.origin + t * ray.dir;
     return grid_fine(p);
 }
 
@@ -154,7 +168,7 @@ GridWalk grid_walk_start(Ray ray, float t_max) {
     // The clamp in grid_fine absorbs rounding: the point may land a hair outside the
     // box. A cell entered too early costs a few tests; one entered too late is
     // covered by the padding of the boxes the host binned.
-    w.at = grid_fine_ahead(ray, w.step, t_start);
+    w.at = grid_fine_at(ray, t_start);
     grid_locate(w.at, w);
     w.t_next = grid_t_next(ray, w);
     w.t_end = t_end;
@@ -184,11 +198,11 @@ HOT bool grid_walk_step(Ray ray, INOUT(GridWalk) w) {
     // Past the face on the exit axis. On the others, in a uniform grid, where the
     // last lookup was: every cell across the face is the same size and holds the
     // whole face. Where cells are split, the one across may be smaller, and the place
-    // is where the ray leaves, looked up a little ahead but never behind the last.
+    // is where the ray leaves, but never behind the last lookup.
     uvec3 across = grid_select(w.lo - uvec3(1u), w.hi, ahead);
     uvec3 at = w.at;
     if (GRID_SPLIT) {
-        uvec3 leaving = grid_fine_ahead(ray, w.step, t);
+        uvec3 leaving = grid_fine_at(ray, t);
         leaving = grid_select(min(leaving, at), max(leaving, at), ahead);
         at = grid_select(leaving, at, w.still);
     }

@@ -55,9 +55,6 @@ PARAM3(vec3, grid_max, 12)
 PARAM3(vec3, grid_cell, 13)
 PARAM3(vec3, grid_inv_cell, 14)      // 1 / grid_cell(), per axis
 PARAM3(uvec3, grid_resolution, 15)   // root cells per axis
-// How far ahead along each axis the walk looks up the next cell: more than the float
-// rounding of a position, less than the padding of the primitives' boxes.
-PARAM(float, grid_nudge, 16, x)
 
 #undef PARAM3
 #undef PARAM
