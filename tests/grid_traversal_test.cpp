@@ -607,9 +607,9 @@ TEST(GridSplit, AClusterTenThousandTimesSmallerThanItsRoomMatchesBruteForce) {
 
 // Tiny spheres (far smaller than the rounding of a ray from across the room) in a
 // cluster 10^4 times smaller than its room, each aimed at from a far corner or wall:
-// where such a ray leaves a cell near another face, the walk looks the next cell up
-// a little ahead and skips a sliver, and only the padding keeps the spheres in that
-// sliver listed in the cell it finds. Padding a sixteenth as large loses hits here.
+// where such a ray leaves a cell near another face, its rounded position may skip a
+// sliver of the cell it meets, and only the padding keeps the spheres in that sliver
+// listed in the cell it finds.
 TEST(GridSplit, TinySpheresAimedAtFromAcrossTheRoomAreAllHit) {
     GridScene s = cluster_scene(91, 0, 1.0f, vec3(0.0f), 1e4f);
     std::mt19937 rng(92);
@@ -636,32 +636,6 @@ TEST(GridSplit, TinySpheresAimedAtFromAcrossTheRoomAreAllHit) {
             failures += compare_ray(grid, brute, origin, target - origin, 1) ? 0 : 1;
         }
     }
-}
-
-// A point just below a root cell's face is found in the cell below, though p - lo,
-// which rounds at the grid's extent, puts it on the face: the place within the root
-// cell, measured from the cell's corner, corrects the root.
-TEST(GridSplit, PointsBesideARootFaceFindTheirSide) {
-    GridScene s = cluster_scene(81, 200, 1.0f, vec3(0.0f), 1e4f);
-    s.build();
-    ASSERT_GE(s.grid.levels, 1u);
-    Kernel k = s.kernel(true);
-    int corrected = 0;
-    for (int a = 0; a < 3; ++a) {
-        for (std::uint32_t root = 1; root < s.grid.resolution[a]; ++root) {
-            // The face as the kernel computes it: the product is exact, the sum rounded once.
-            const float face = float(s.grid.lo[a]) + float(root) * float(s.grid.cell[a]);
-            vec3 below(0.0f), at(0.0f);
-            below[a] = std::nextafter(face, -kernel::INFINITY_T);
-            at[a] = face;
-            const std::uint32_t first = root << kernel::GRID_FRACTION_BITS;
-            EXPECT_EQ(k.grid_fine(at)[a], first) << "axis " << a << ", root " << root;
-            EXPECT_EQ(k.grid_fine(below)[a], first - 1u) << "axis " << a << ", root " << root;
-            const float estimate = (below[a] - float(s.grid.lo[a])) * float(1.0 / s.grid.cell[a]);
-            corrected += estimate >= float(root) ? 1 : 0;
-        }
-    }
-    EXPECT_GT(corrected, 0) << "no point was put on the wrong side by p - lo: the test shows nothing";
 }
 
 // The same at odd scales and far from the origin, rays from a distant eye and from

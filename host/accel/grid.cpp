@@ -34,19 +34,6 @@ constexpr std::uint64_t kMaxGridRefs = std::uint64_t(1) << 28;
 // Over-inclusion costs a test; under-inclusion loses a hit.
 constexpr double kMagnitudePad = 0x1p-20;
 
-// Significant bits of a root cell's width: root * cell is then exact in float for
-// every root index below kMaxAxisCells (2^18), so the kernel's root cell corners
-// (grid_min + root * cell) are rounded once, at their own magnitude, not at the
-// grid's extent, and a small dense object in a large scene keeps its precision.
-constexpr int kCellBits = 24 - (32 - int(kernel::GRID_FRACTION_BITS));
-
-// x rounded up to kCellBits significant bits.
-double cell_width_up(double x) {
-    int exponent = 0;
-    std::frexp(x, &exponent);
-    const double unit = std::ldexp(1.0, exponent - kCellBits);
-    return std::ceil(x / unit) * unit;
-}
 
 // The float at or below x, and at or above it.
 double float_down(double x) {
@@ -403,9 +390,9 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
     }
     if (request.eye) g.origins.push_back(*request.eye);
     // At least any box's rounding padding: a box's magnitude is at most the scene's, a
-    // root cell at most 2.1 times it (the box of everything and the cell's rounding
-    // up), and a ray's reach at most `reach`.
-    const double most_rounding = (3.2 * magnitude + reach) * kMagnitudePad;
+    // root cell at most twice it (the box of everything, with a little margin), and a
+    // ray's reach at most `reach`.
+    const double most_rounding = (3.1 * magnitude + reach) * kMagnitudePad;
     std::vector<double> rounding(boxes.size());   // each box's rounding padding
     for (;;) {
         g.resolution = res;
@@ -414,15 +401,8 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
         // despite rounding in the slab test.
         for (int a = 0; a < 3; ++a) {
             const double margin = 1.1 * kCellPad * (box.hi[a] - box.lo[a]) / res[a] + most_rounding;
-            // Centred on the box: a scene symmetric about a plane keeps the plane a
-            // cell face whenever the resolution allows.
-            const double centre = (box.lo[a] + box.hi[a]) / 2;
-            g.cell[a] = cell_width_up((box.hi[a] - box.lo[a] + 2 * margin) / res[a]);
-            for (;;) {
-                g.lo[a] = float_down(centre - g.cell[a] * res[a] / 2);
-                if (g.lo[a] + g.cell[a] * res[a] >= box.hi[a] + margin) break;
-                g.cell[a] = cell_width_up(std::nextafter(g.cell[a], std::numeric_limits<double>::infinity()));
-            }
+            g.lo[a] = float_down(box.lo[a] - margin);
+            g.cell[a] = float_up((box.hi[a] + margin - g.lo[a]) / res[a]);
             g.hi[a] = float_up(g.lo[a] + g.cell[a] * res[a]);
             g.pad[a] = margin;
         }

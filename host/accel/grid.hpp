@@ -78,7 +78,9 @@ struct Grid {
     // The part of a box's padding that is float rounding: a position near the box is
     // known, on each axis, to within a few 2^-24 of its magnitude, of the width of the
     // root cell whose corner it is found from, and of the distance a ray travels
-    // along the axis to get there.
+    // along the axis to get there. (A root corner, grid_min + root * cell, is rounded
+    // at the grid's extent, but every box has a corner of the scene at least half
+    // the extent away, so the reach covers it.)
     double rounding_pad(const Aabb& box) const;
     // A root cell's padding of the box: a thousandth of the cell and the rounding.
     glm::dvec3 padding(const Aabb& box) const;

@@ -54,24 +54,14 @@ struct GridWalk {
 };
 
 // The fine coordinate of position p on one axis, clamped into the grid. Taken within
-// p's root cell, from the cell's corner, so that it keeps the precision of p itself,
-// not of the grid's box: the host gives the cell width few enough significant bits
-// that root * cell is exact, and the corner is rounded once, at its own magnitude.
-// The root found from p - lo, which rounds at the grid's extent, may be one off near
-// a root face; the place within it says which side p is on.
-// Per axis, on scalars: GCC leaves glm's vector clamp and floor as calls. Clamped
-// first, then truncated: for values at or above 0 that is the floor, and the
+// p's root cell, so that the fraction keeps the precision of the cell, not of the
+// grid's box. Per axis, on scalars: GCC leaves glm's vector clamp and floor as calls.
+// Clamped first, then truncated: for values at or above 0 that is the floor, and the
 // reference backend's floor() is a library call on a baseline x86-64.
 HOT uint grid_fine_axis(float p, float lo, float cell, float inv_cell, uint res) {
-    int last = int(res) - 1;
-    precise int root = int(min(max((p - lo) * inv_cell, 0.0f), float(last)));
+    precise int root = int(min(max((p - lo) * inv_cell, 0.0f), float(int(res) - 1)));
     precise float root_lo = lo + float(root) * cell;
-    precise float x = (p - root_lo) * (inv_cell * GRID_FINE);
-    bool below = x < 0.0f && root > 0;
-    bool above = x >= GRID_FINE && root < last;
-    root += below ? -1 : (above ? 1 : 0);
-    x += below ? GRID_FINE : (above ? -GRID_FINE : 0.0f);
-    int f = int(min(max(x, 0.0f), GRID_FINE - 1.0f));
+    precise int f = int(min(max((p - root_lo) * (inv_cell * GRID_FINE), 0.0f), GRID_FINE - 1.0f));
     return (uint(root) << GRID_FRACTION_BITS) | uint(f);
 }
 
