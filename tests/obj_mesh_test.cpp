@@ -598,9 +598,17 @@ TEST_F(ObjMeshTest, AFaceWithoutAMaterialIsAnErrorWhenTheObjectGivesNone) {
     write("two.mtl", "newmtl red\nKd 0.8\n");
     refused(uses_red, {"two.mtl:2: expected 3 numbers after 'Kd', got 1"});
     write("two.mtl", "newmtl red\nKd 0.8 0.1 0.1\nNs abc\n");
-    refused(uses_red, {"two.mtl:3: expected a finite number", "after 'Ns', got 'abc'"});
+    refused(uses_red, {"two.mtl:3: expected a number, got 'abc'"});
+    write("two.mtl", "newmtl red\nKd nan 0 0\n");
+    refused(uses_red, {"two.mtl:2: expected a finite number, got 'nan'"});
     write("two.mtl", "newmtl red\nKe 1e13 0 0\n");
-    refused(uses_red, {"two.mtl:2: expected a finite number of magnitude at most", "'1e13'"});
+    refused(uses_red, {"two.mtl:2: expected a number of magnitude at most 1000000000000, got '1e13'"});
+    // The same numbers as the OBJ's are taken: a leading '+' is one.
+    write("two.mtl", "newmtl red\nKd +0.8 0.1 0.1\n");
+    std::vector<std::string> warnings;
+    const IndexedMesh mesh = load_obj_with_materials(write("mesh.obj", uses_red), warnings);
+    ASSERT_EQ(mesh.materials.size(), 1u);
+    expect_vec(mesh.materials[0].diffuse, {0.8, 0.1, 0.1}, 1e-7);
 }
 
 TEST_F(ObjMeshTest, LoadsTheUtahTeapot) {

@@ -34,6 +34,7 @@ private:
     std::size_t axes_ = 0;
 };
 
+// One polygon against one box, for a single question.
 inline bool polygon_overlaps_box(std::span<const glm::dvec3> v, const glm::dvec3& lo, const glm::dvec3& hi) {
     return PolygonOverlap(v).overlaps(lo, hi);
 }

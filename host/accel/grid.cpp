@@ -34,7 +34,6 @@ constexpr std::uint64_t kMaxGridRefs = std::uint64_t(1) << 28;
 // Over-inclusion costs a test; under-inclusion loses a hit.
 constexpr double kMagnitudePad = 0x1p-20;
 
-
 // The float at or below x, and at or above it.
 double float_down(double x) {
     float f = static_cast<float>(x);
@@ -400,6 +399,7 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
         // ray grazing a primitive on the boundary still clips to a non-empty interval
         // despite rounding in the slab test.
         for (int a = 0; a < 3; ++a) {
+            // 1.1: the cell ends up a little wider than extent / res, by the margins.
             const double margin = 1.1 * kCellPad * (box.hi[a] - box.lo[a]) / res[a] + most_rounding;
             g.lo[a] = float_down(box.lo[a] - margin);
             g.cell[a] = float_up((box.hi[a] + margin - g.lo[a]) / res[a]);
@@ -407,12 +407,14 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
             g.pad[a] = margin;
         }
         for (std::size_t i = 0; i < boxes.size(); ++i) rounding[i] = g.rounding_pad(boxes[i]);
+        // A root cell's padding of box i (Grid::padding, from the rounding above).
+        const auto root_pad = [&](std::size_t i) { return kCellPad * g.cell + rounding[i]; };
         // The references each box would add, counted before anything is allocated
         // (an upper bound: triangles go only into the cells they cross): a
         // resolution too fine for the limit is coarsened without building it.
         std::uint64_t total = g.loose;
-        for (const Aabb& b : boxes) {
-            const auto [first, last] = g.cells_overlapping(b);
+        for (std::size_t i = 0; i < boxes.size(); ++i) {
+            const auto [first, last] = vkrt::cells_overlapping(boxes[i], g.lo, g.cell, root_pad(i), res);
             total += std::uint64_t(last[0] - first[0] + 1) * (last[1] - first[1] + 1) * (last[2] - first[2] + 1);
         }
         if (total > max_refs && product(res) > 1) {
@@ -436,7 +438,7 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
             return (std::uint64_t(z) * res[1] + y) * res[0] + x;
         };
         for (std::size_t i = 0; i < boxes.size(); ++i) {
-            binner.cells(boxes[i], ids[i], g.lo, g.cell, kCellPad * g.cell + rounding[i], res,
+            binner.cells(boxes[i], ids[i], g.lo, g.cell, root_pad(i), res,
                          [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) { ++roots.starts[cell_index(x, y, z)]; });
         }
         std::uint32_t sum = 0;
@@ -448,7 +450,7 @@ Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, st
         std::vector<std::uint32_t> cursor(roots.starts.begin(), roots.starts.end() - 1);
         roots.items.assign(sum, 0);
         for (std::size_t i = 0; i < boxes.size(); ++i) {
-            binner.cells(boxes[i], ids[i], g.lo, g.cell, kCellPad * g.cell + rounding[i], res,
+            binner.cells(boxes[i], ids[i], g.lo, g.cell, root_pad(i), res,
                          [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
                              roots.items[cursor[cell_index(x, y, z)]++] = std::uint32_t(i);
                          });

@@ -31,6 +31,60 @@ using glm::dvec3;
 // tinyobjloader keeps a face's vertex count in an unsigned char.
 constexpr std::size_t kMaxFaceVertices = 255;
 
+// The words of one OBJ or MTL line; a comment runs from '#' to the end of the line.
+std::vector<std::string_view> words_of(std::string_view line) {
+    line = line.substr(0, line.find('#'));
+    std::vector<std::string_view> words;
+    std::size_t at = 0;
+    while (true) {
+        at = line.find_first_not_of(" \t\r", at);
+        if (at == std::string_view::npos) break;
+        const std::size_t end = std::min(line.find_first_of(" \t\r", at), line.size());
+        words.push_back(line.substr(at, end - at));
+        at = end;
+    }
+    return words;
+}
+
+// Calls statement(line number from 1, words) for every line of the text with words.
+template <class F>
+void for_each_statement(std::string_view text, F&& statement) {
+    std::size_t start = 0, line = 0;
+    while (start < text.size()) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string_view::npos) end = text.size();
+        ++line;
+        const std::vector<std::string_view> words = words_of(text.substr(start, end - start));
+        if (!words.empty()) statement(line, words);
+        start = end + 1;
+    }
+}
+
+// A number of an OBJ or MTL file, or an error naming FILE:LINE: finite, and at most
+// json::kMaxMagnitude in magnitude, as the scene's own numbers.
+double file_number(std::string_view word, const std::string& name, std::size_t line) {
+    const auto fail = [&](const std::string& message) {
+        throw SceneError(fmt::format("{}:{}: {}", name, line, message));
+    };
+    std::string_view digits = word;
+    if (digits.size() > 1 && digits[0] == '+') digits.remove_prefix(1);  // from_chars takes no '+'
+    double x = 0.0;
+    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), x);
+    if (end != digits.data() + digits.size() || ec == std::errc::invalid_argument) {
+        fail(fmt::format("expected a number, got {}", json::quote_user(word)));
+    }
+    if (ec == std::errc::result_out_of_range) {
+        // Either too large for a double or too small: strtod says which.
+        x = std::strtod(std::string(digits).c_str(), nullptr);
+    }
+    if (!std::isfinite(x)) fail(fmt::format("expected a finite number, got {}", json::quote_user(word)));
+    if (std::abs(x) > json::kMaxMagnitude) {
+        fail(fmt::format("expected a number of magnitude at most {}, got {}", json::kMaxMagnitude,
+                         json::quote_user(word)));
+    }
+    return x;
+}
+
 // What the first pass takes from the file.
 struct Scanned {
     std::vector<dvec3> positions;
@@ -45,14 +99,10 @@ public:
     explicit Scanner(const std::string& name) : name_(name) {}
 
     Scanned scan(std::string_view text) {
-        std::size_t start = 0;
-        while (start < text.size()) {
-            std::size_t end = text.find('\n', start);
-            if (end == std::string_view::npos) end = text.size();
-            ++line_;
-            statement(text.substr(start, end - start));
-            start = end + 1;
-        }
+        for_each_statement(text, [this](std::size_t line, const std::vector<std::string_view>& words) {
+            line_ = line;
+            statement(words);
+        });
         return std::move(out_);
     }
 
@@ -61,18 +111,7 @@ private:
         throw SceneError(fmt::format("{}:{}: {}", name_, line_, message));
     }
 
-    void statement(std::string_view line) {
-        line = line.substr(0, line.find('#'));  // a comment runs to the end of the line
-        std::vector<std::string_view> words;
-        std::size_t at = 0;
-        while (true) {
-            at = line.find_first_not_of(" \t\r", at);
-            if (at == std::string_view::npos) break;
-            const std::size_t end = std::min(line.find_first_of(" \t\r", at), line.size());
-            words.push_back(line.substr(at, end - at));
-            at = end;
-        }
-        if (words.empty()) return;
+    void statement(const std::vector<std::string_view>& words) {
         if (words[0] == "v") {
             out_.positions.push_back(triple(words, "v"));
         } else if (words[0] == "vn") {
@@ -101,32 +140,10 @@ private:
         }
         dvec3 v(0.0);
         for (std::size_t i = 1; i < words.size(); ++i) {
-            const double x = number(words[i]);
-            if (i <= 3) {
-                if (std::abs(x) > json::kMaxMagnitude) {
-                    fail(fmt::format("expected a number of magnitude at most {}, got {}", json::kMaxMagnitude,
-                                     json::quote_user(words[i])));
-                }
-                v[static_cast<int>(i - 1)] = x;
-            }
+            const double x = file_number(words[i], name_, line_);
+            if (i <= 3) v[static_cast<int>(i - 1)] = x;
         }
         return v;
-    }
-
-    double number(std::string_view word) const {
-        std::string_view digits = word;
-        if (digits.size() > 1 && digits[0] == '+') digits.remove_prefix(1);  // from_chars takes no '+'
-        double x = 0.0;
-        const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), x);
-        if (end != digits.data() + digits.size() || ec == std::errc::invalid_argument) {
-            fail(fmt::format("expected a number, got {}", json::quote_user(word)));
-        }
-        if (ec == std::errc::result_out_of_range) {
-            // Either too large for a double or too small: strtod says which.
-            x = std::strtod(std::string(digits).c_str(), nullptr);
-        }
-        if (!std::isfinite(x)) fail(fmt::format("expected a finite number, got {}", json::quote_user(word)));
-        return x;
     }
 
     const std::string& name_;
@@ -141,37 +158,17 @@ private:
 void check_mtl(const std::filesystem::path& file) {
     const std::string name = file.string();
     const std::string text = read_text(file, name, "material");
-    std::size_t line = 0;
-    std::size_t start = 0;
-    while (start < text.size()) {
-        std::size_t end = text.find('\n', start);
-        if (end == std::string::npos) end = text.size();
-        ++line;
-        std::string_view row = std::string_view(text).substr(start, end - start);
-        row = row.substr(0, row.find('#'));
-        std::istringstream words{std::string(row)};
-        start = end + 1;
-        std::string keyword;
-        if (!(words >> keyword)) continue;
+    for_each_statement(text, [&](std::size_t line, const std::vector<std::string_view>& words) {
+        const std::string_view keyword = words[0];
         const bool colour = keyword == "Kd" || keyword == "Ks" || keyword == "Ke" || keyword == "Ka" || keyword == "Tf";
-        if (!colour && keyword != "Ns" && keyword != "d" && keyword != "Tr") continue;
-        std::vector<std::string> numbers;
-        for (std::string w; words >> w;) numbers.push_back(w);
+        if (!colour && keyword != "Ns" && keyword != "d" && keyword != "Tr") return;
         const std::size_t wanted = colour ? 3 : 1;
-        if (numbers.size() != wanted || (colour && numbers[0] == "spectral") || (colour && numbers[0] == "xyz")) {
+        if (words.size() - 1 != wanted) {
             throw SceneError(fmt::format("{}:{}: expected {} number{} after '{}', got {}", name, line, wanted,
-                                         wanted == 1 ? "" : "s", keyword, numbers.size()));
+                                         wanted == 1 ? "" : "s", keyword, words.size() - 1));
         }
-        for (const std::string& w : numbers) {
-            double x = 0.0;
-            const auto [at, ec] = std::from_chars(w.data(), w.data() + w.size(), x);
-            if (at != w.data() + w.size() || ec != std::errc() || !std::isfinite(x) ||
-                std::abs(x) > json::kMaxMagnitude) {
-                throw SceneError(fmt::format("{}:{}: expected a finite number of magnitude at most {} after '{}', got {}",
-                                             name, line, json::kMaxMagnitude, keyword, json::quote_user(w)));
-            }
-        }
-    }
+        for (std::size_t i = 1; i < words.size(); ++i) file_number(words[i], name, line);
+    });
 }
 
 // tinyobjloader's messages end in newlines, sometimes several; one line is wanted.
