@@ -68,6 +68,23 @@ TEST(Features, TrianglesWithNormalsKeepSmoothNormals) {
     EXPECT_EQ(g.triangles.size(), 1u);
 }
 
+// The terminator lift moves shadow rays: it needs smooth normals and shadows, and
+// the scene may turn it off.
+TEST(Features, TerminatorNeedsSmoothNormalsAndShadows) {
+    Scene s = spheres_only();
+    Triangle t;
+    t.vertices = {dvec3(0, 0, 0), dvec3(1, 0, 0), dvec3(0, 1, 0)};
+    s.triangles.push_back(t);
+    EXPECT_FALSE(flatten_scene(s).features.has(Feature::HAS_TERMINATOR));
+    s.triangles[0].normals = std::array<dvec3, 3>{dvec3(0, 0, 1), dvec3(0, 0, 1), dvec3(0, 0, 1)};
+    EXPECT_TRUE(flatten_scene(s).features.has(Feature::HAS_TERMINATOR));
+    s.render.shadows = false;
+    EXPECT_FALSE(flatten_scene(s).features.has(Feature::HAS_TERMINATOR));
+    s.render.shadows = true;
+    s.render.terminator = false;
+    EXPECT_FALSE(flatten_scene(s).features.has(Feature::HAS_TERMINATOR));
+}
+
 // Brute force defers the spheres a ray starts near past its loop from 8 spheres on;
 // with the grid, or fewer spheres, the loop tests them in place.
 TEST(Features, DeferredSpheresOnlyForBruteForceOverManySpheres) {

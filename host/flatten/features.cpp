@@ -89,6 +89,9 @@ FeatureSet analyze_features(const Scene& scene) {
     f.set(Feature::HAS_GLOBAL, global);
     f.set(Feature::HAS_POINT_LIGHTS, has_lights && has_geometry);
     f.set(Feature::HAS_SHADOWS, scene.render.shadows && any_light && has_geometry);
+    // The lift moves shadow rays' origins; without shadow rays it has nothing to move.
+    f.set(Feature::HAS_TERMINATOR,
+          f.has(Feature::HAS_SMOOTH_NORMALS) && f.has(Feature::HAS_SHADOWS) && scene.render.terminator);
     // In global mode the glossy lobe reflects whatever the paths bring, lights or not.
     f.set(Feature::HAS_SPECULAR, specular && (any_light || global));
     // Ambient light is local mode's stand-in for the indirect light global mode computes.

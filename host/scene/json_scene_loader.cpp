@@ -132,7 +132,7 @@ void read_global(const Node& n, RenderSettings& r) {
 }
 
 RenderSettings read_render(const Node& n) {
-    n.allow_only({"mode", "aa", "jitter", "shadows", "max_depth", "min_weight", "corners", "ambient", "background",
+    n.allow_only({"mode", "aa", "jitter", "shadows", "terminator", "max_depth", "min_weight", "corners", "ambient", "background",
                   "seed", "spp", "loop_budget", "grid", "light_samples", "estimator", "hemisphere", "nee",
                   "max_bounces", "sampler", "exposure", "tonemap"});
     RenderSettings r;
@@ -163,6 +163,7 @@ RenderSettings read_render(const Node& n) {
         r.display.tonemap = *t;
     }
     if (auto shadows = n.find("shadows")) r.shadows = shadows->boolean();
+    if (auto terminator = n.find("terminator")) r.terminator = terminator->boolean();
     if (auto depth = n.find("max_depth")) r.max_depth = whole32(*depth, 0, limits::kMaxDepth);
     if (auto weight = n.find("min_weight")) {
         r.min_weight = weight->number_at_least(0.0);

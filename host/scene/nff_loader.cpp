@@ -147,8 +147,10 @@ public:
         // The SPD test rules (scenes/spd/README.md): rays through the pixel
         // corners, four averaged; a ray tree of depth 5 counting the eye ray, so 4
         // generations after it; every reflection and refraction ray traced, however
-        // little it weighs. Ambient stays 0: NFF has none.
+        // little it weighs; shadow rays only toward lights in front of the flat
+        // surface, as counted. Ambient stays 0: NFF has none.
         scene_.render.aa = 1;
+        scene_.render.terminator = false;
         scene_.render.corners = true;
         scene_.render.max_depth = 4;
         scene_.render.min_weight = 0.0;

@@ -57,6 +57,7 @@ struct RenderSettings {
     std::uint32_t aa = 1;          // aa x aa sub-pixel rays per pixel (paper's Fig. 6)
     bool jitter = false;           // random position inside each sub-pixel
     bool shadows = true;
+    bool terminator = true;        // shadow rays from the smooth surface of smooth triangles
     std::uint32_t max_depth = 5;   // reflection/refraction generations after the eye ray
     double min_weight = 1e-3;      // secondary rays weighing less are not traced (0: all are)
     bool corners = false;          // one ray through each pixel corner, four averaged (SPD)

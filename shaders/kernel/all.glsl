@@ -10,6 +10,7 @@
 #include "sampler.glsl"
 #include "ray.glsl"
 #include "intersect.glsl"
+#include "terminator.glsl"
 #include "budget.glsl"
 #include "camera.glsl"
 #include "grid.glsl"

@@ -22,7 +22,7 @@
 
 vec3 shade_area_lights(Ray ray, Hit hit, Material m, INOUT(Rng) rng, INOUT(uint) shadow_rays) {
     precise vec3 p = ray.origin + hit.t * ray.dir;
-    vec3 shadow_origin = offset_ray_origin(p, hit.geo_normal);
+    vec3 shadow_origin = shadow_ray_origin(p, hit);
     vec3 to_eye = -ray.dir;
     vec3 diffuse = vec3(m.diffuse_kd) * m.diffuse_kd.w;
     // A surface that reflects nothing (a lamp is often black) gets nothing from any

@@ -45,3 +45,7 @@ FEATURE(25, HAS_QUADS)
 // With HAS_GRID, whether any cell is split into children (host/accel/grid_split.cpp):
 // without it every cell is a root cell, found in one step, as in a uniform grid.
 FEATURE(26, GRID_SPLIT)
+// Shadow rays of smooth triangles leave from the smooth surface their normals
+// describe (terminator.glsl): on with smooth normals and shadows, unless the scene
+// turns it off (render.terminator; the SPD rules do, to count rays as published).
+FEATURE(27, HAS_TERMINATOR)

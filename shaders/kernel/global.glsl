@@ -61,7 +61,7 @@ float power_heuristic(float pdf_this, float pdf_other) {
 vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smooth, uint slot,
                 INOUT(Rng) rng, INOUT(SampleResult) s) {
     vec3 sum = vec3(0.0f);
-    vec3 shadow_origin = offset_ray_origin(p, hit.geo_normal);
+    vec3 shadow_origin = shadow_ray_origin(p, hit);
     if (HAS_POINT_LIGHTS) {
         loop_enter();
         for (uint i = 0u; i < light_count(); ++i) {

@@ -9,6 +9,7 @@ struct Hit {
     float t;          // INFINITY_T when nothing was hit
     vec3 normal;      // shading normal, unit length, facing the incoming ray
     vec3 geo_normal;  // geometric normal, unit length, facing the incoming ray
+    vec3 lift;        // toward the smooth surface the vertex normals describe (terminator.glsl); zero elsewhere
     uint material;
     bool front_face;  // the ray arrived on the side the primitive calls its front
     uint prim;        // what was hit, as a grid reference (kind << REF_KIND_SHIFT | index); REF_NONE for nothing
@@ -31,7 +32,7 @@ bool is_finite_bits(float x) {
 }
 
 Hit no_hit() {
-    return Hit(INFINITY_T, vec3(0.0f), vec3(0.0f), 0u, false, REF_NONE);
+    return Hit(INFINITY_T, vec3(0.0f), vec3(0.0f), vec3(0.0f), 0u, false, REF_NONE);
 }
 
 // Moves a point off a surface along its geometric normal by an amount proportional to
@@ -52,4 +53,10 @@ vec3 offset_ray_origin(vec3 p, vec3 geo_normal) {
     return vec3(offset_coordinate(p.x, geo_normal.x),
                 offset_coordinate(p.y, geo_normal.y),
                 offset_coordinate(p.z, geo_normal.z));
+}
+
+// Where shadow rays leave a hit at p: lifted toward the smooth surface (zero lift but
+// on smooth triangles), then moved off the flat one.
+vec3 shadow_ray_origin(vec3 p, Hit hit) {
+    return offset_ray_origin(p + hit.lift, hit.geo_normal);
 }

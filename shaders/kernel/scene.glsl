@@ -309,7 +309,7 @@ Hit sphere_hit(Ray ray, uint index, float t) {
     vec3 n = unit_vector(p - center);
     bool front = dot(n, ray.dir) < 0.0f;
     vec3 facing = front ? n : -n;
-    return Hit(t, facing, facing, s.meta.x, front, (REF_SPHERE << REF_KIND_SHIFT) | index);
+    return Hit(t, facing, facing, vec3(0.0f), s.meta.x, front, (REF_SPHERE << REF_KIND_SHIFT) | index);
 }
 
 Hit triangle_hit(Ray ray, uint index, TriangleHit th) {
@@ -325,7 +325,11 @@ Hit triangle_hit(Ray ray, uint index, TriangleHit th) {
     bool flip = dot(ns, g) < 0.0f;
     note_decision(flip ? 11u : 10u);
     vec3 s = flip ? -ns : ns;
-    return Hit(th.t, s, g, tri.meta.x, front, (REF_TRIANGLE << REF_KIND_SHIFT) | index);
+    vec3 lift = vec3(0.0f);
+    if (HAS_TERMINATOR && tri.meta.y != 0u) {
+        lift = terminator_lift(tri, th.u, th.v, flip ? -1.0f : 1.0f, g);
+    }
+    return Hit(th.t, s, g, lift, tri.meta.x, front, (REF_TRIANGLE << REF_KIND_SHIFT) | index);
 }
 
 // Rings and cylinders have no shading normals of their own: both normals are the
@@ -336,7 +340,7 @@ Hit ring_hit(Ray ray, uint index, float t) {
     vec3 n = vec3(r.normal_outer);
     bool front = dot(n, ray.dir) < 0.0f;
     vec3 facing = front ? n : -n;
-    return Hit(t, facing, facing, r.meta.x, front, (REF_RING << REF_KIND_SHIFT) | index);
+    return Hit(t, facing, facing, vec3(0.0f), r.meta.x, front, (REF_RING << REF_KIND_SHIFT) | index);
 }
 
 Hit cylinder_hit(Ray ray, uint index, float t, uint part) {
@@ -345,7 +349,7 @@ Hit cylinder_hit(Ray ray, uint index, float t, uint part) {
     vec3 n = cylinder_normal(vec3(c.base_radius), vec3(c.top_capped), p, part);
     bool front = dot(n, ray.dir) < 0.0f;
     vec3 facing = front ? n : -n;
-    return Hit(t, facing, facing, c.meta.x, front, (REF_CYLINDER << REF_KIND_SHIFT) | index);
+    return Hit(t, facing, facing, vec3(0.0f), c.meta.x, front, (REF_CYLINDER << REF_KIND_SHIFT) | index);
 }
 
 Hit make_hit(Ray ray, Nearest nearest) {

@@ -3,7 +3,7 @@
 // cos(alpha)^shininess), with alpha between the mirrored light vector and the eye
 // vector; plus ambient * kd * diffuse, plus the material's own emission seen from
 // its front face, plus the light of emissive primitives (area_lights.glsl). Lights
-// below the surface get no shadow ray (the SPD rule).
+// below the surface get no shadow ray (the SPD rule; visibility.glsl).
 
 vec3 shade_local(Ray ray, Hit hit, INOUT(Rng) rng, INOUT(uint) shadow_rays) {
     Material m = load_material(hit.material);
@@ -17,7 +17,7 @@ vec3 shade_local(Ray ray, Hit hit, INOUT(Rng) rng, INOUT(uint) shadow_rays) {
     }
     if (HAS_POINT_LIGHTS) {
         precise vec3 p = ray.origin + hit.t * ray.dir;
-        vec3 shadow_origin = offset_ray_origin(p, hit.geo_normal);
+        vec3 shadow_origin = shadow_ray_origin(p, hit);
         vec3 to_eye = -ray.dir;
         loop_enter();
         for (uint i = 0u; i < light_count(); ++i) {

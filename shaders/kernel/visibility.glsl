@@ -2,11 +2,14 @@
 // lights and area lights share, in local mode (shade.glsl, area_lights.glsl) and in
 // global mode's next-event estimation (global.glsl).
 
-// l is the unit direction from the hit toward the light point `light`; source_faces says whether the light sends light that way (an emitter's front
-// faces the hit; always true for a point light). The light counts only where both
-// of the surface's normals face it (a shading normal alone would let light through
-// a coarse mesh's silhouette), and, with shadows, where nothing lies in between:
-// that costs one shadow ray, counted. Written as plain `> 0` tests so that a light
+// l is the unit direction from the hit toward the light point `light`; source_faces
+// says whether the light sends light that way (an emitter's front faces the hit;
+// always true for a point light). The light counts only where both of the surface's
+// normals face it (a shading normal alone would let light through a coarse mesh's
+// silhouette), and, with shadows, where nothing lies in between: that costs one
+// shadow ray, counted. A hit lifted toward its smooth surface (terminator.glsl) needs
+// only the shading normal to face the light: its shadow ray, from the lifted point,
+// decides, so the terminator follows the smooth surface, not the facets. Written as plain `> 0` tests so that a light
 // exactly at the hit point (dist 0, l NaN) fails them. A flat emitter cannot light
 // itself: l lies in its plane, so one of the cosines is at most a rounding error
 // above 0.
@@ -16,7 +19,8 @@
 // leaves before the light, and a ray of the hit's length from the moved origin then
 // reached the emitter's own surface (found by issue 6's scale cases).
 bool light_reaches(Hit hit, vec3 shadow_origin, vec3 l, vec3 light, bool source_faces, INOUT(uint) shadow_rays) {
-    bool faces = source_faces && dot(hit.normal, l) > 0.0f && dot(hit.geo_normal, l) > 0.0f;
+    bool lifted = HAS_TERMINATOR && dot(hit.lift, hit.geo_normal) > 0.0f;
+    bool faces = source_faces && dot(hit.normal, l) > 0.0f && (lifted || dot(hit.geo_normal, l) > 0.0f);
     note_decision(faces ? 3u : 2u);
     if (!faces) {
         return false;
