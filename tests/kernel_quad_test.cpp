@@ -122,7 +122,7 @@ TEST(QuadScene, OneRecordAndTheFeatureOnlyWhereNeeded) {
 TEST(QuadScene, RendersAsItsTwoTrianglesWithHalfTheTests) {
     using glm::dvec3;
     vkrt::Scene quads;
-    quads.camera = vkrt::Camera{{0, 1, 3.4}, {0, 1, 0}, {0, 1, 0}, 40.0, 48, 36};
+    quads.camera = vkrt::Camera{{0, 1, 3.4}, {0, 1, 0}, {0, 1, 0}, 40.0, 48, 36, 0.0, {}};
     vkrt::Material white;
     white.diffuse = dvec3(0.75);
     quads.materials = {white};

@@ -98,6 +98,7 @@ FeatureSet analyze_features(const Scene& scene) {
     f.set(Feature::HAS_AMBIENT, is_nonzero(scene.render.ambient) && has_geometry && !global);
     f.set(Feature::HAS_EMISSION, emission);
     f.set(Feature::HAS_JITTER, scene.render.jitter && !scene.render.corners);
+    f.set(Feature::HAS_LENS, scene.camera.lens_radius > 0.0);
     // Glass reflects too: its reflection rays run under HAS_REFRACTION.
     const bool secondary = (global ? scene.render.max_bounces : scene.render.max_depth) > 0 && has_geometry;
     f.set(Feature::HAS_REFLECTION, secondary && reflection);

@@ -71,6 +71,8 @@ void set_camera(const Camera& cam, bool corners, const dvec3& origin, kernel::Pa
     kernel::set_camera_corner(p, vec3(corner));
     kernel::set_camera_right(p, vec3(step_right));
     kernel::set_camera_down(p, vec3(step_down));
+    kernel::set_lens_scale(p, static_cast<float>(cam.lens_radius / pixel));
+    kernel::set_focus_distance(p, static_cast<float>(cam.focus_distance.value_or(glm::length(cam.look_at - cam.eye))));
 }
 
 kernel::Material flatten(const Material& m) {

@@ -45,7 +45,7 @@ std::uint32_t whole32(const Node& n, std::uint64_t lo, std::uint64_t hi) {
 }
 
 Camera read_camera(const Node& n) {
-    n.allow_only({"eye", "look_at", "up", "fov", "width", "height"});
+    n.allow_only({"eye", "look_at", "up", "fov", "width", "height", "lens_radius", "focus_distance"});
     Camera c;
     c.eye = n.required("eye").vec3();
     c.look_at = n.required("look_at").vec3();
@@ -53,6 +53,8 @@ Camera read_camera(const Node& n) {
     if (auto fov = n.find("fov")) c.fov = fov->number_between_exclusive(0.0, 180.0);
     if (auto w = n.find("width")) c.width = whole32(*w, 1, limits::kMaxImageSide);
     if (auto h = n.find("height")) c.height = whole32(*h, 1, limits::kMaxImageSide);
+    if (auto r = n.find("lens_radius")) c.lens_radius = r->number_at_least(0.0);
+    if (auto f = n.find("focus_distance")) c.focus_distance = f->number_above(0.0);
 
     if (const std::string problem = limits::image_size_problem(c.width, c.height); !problem.empty()) {
         n.fail(problem);

@@ -25,6 +25,10 @@ struct Camera {
     double fov = 40.0;  // vertical, degrees, in (0, 180)
     std::uint32_t width = 400;
     std::uint32_t height = 300;
+    // A thin lens of this radius (0: a pinhole), sharp at focus_distance along the
+    // view axis (unset: at look_at).
+    double lens_radius = 0.0;
+    std::optional<double> focus_distance;
 };
 
 // Local: the paper's ray tracer (Phong from lights, the mirror/glass ray tree).

@@ -89,10 +89,12 @@ const uint ESTIMATOR_PATH = 1u;
 const uint SAMPLER_HASH = 0u;   // an independent hash per number
 const uint SAMPLER_SOBOL = 1u;  // Owen-scrambled Sobol points, one shuffled 2-D set per slot
 
-// The slots a path draws from (rng.glsl, global.glsl): the camera's first, then
-// BOUNCE_SLOTS per bounce in this order, so a decision always takes the same slot
-// whichever branches the path took before it.
+// The slots a path draws from (rng.glsl, global.glsl): the camera's and the lens's
+// first, then from SLOT_PATH on BOUNCE_SLOTS per bounce in this order, so a decision
+// always takes the same slot whichever branches the path took before it.
 const uint SLOT_CAMERA = 0u;
+const uint SLOT_LENS = 1u;
+const uint SLOT_PATH = 2u;
 const uint SLOT_LIGHT = 0u;  // offsets within a bounce's slots: the light's choice and its point
 const uint SLOT_LOBE = 1u;
 const uint SLOT_DIRECTION = 2u;

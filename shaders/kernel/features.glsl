@@ -49,3 +49,5 @@ FEATURE(26, GRID_SPLIT)
 // describe (terminator.glsl): on with smooth normals and shadows, unless the scene
 // turns it off (render.terminator; the SPD rules do, to count rays as published).
 FEATURE(27, HAS_TERMINATOR)
+// A thin lens instead of the pinhole (camera.glsl): the camera's lens_radius > 0.
+FEATURE(28, HAS_LENS)

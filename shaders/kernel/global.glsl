@@ -164,7 +164,7 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
         Basis frame = basis_around(hit.normal);
         float w_smooth = lobes.w_diffuse + lobes.w_glossy;
         float p_smooth = w_smooth / total;
-        uint slot = SLOT_CAMERA + 1u + bounce * BOUNCE_SLOTS;
+        uint slot = SLOT_PATH + bounce * BOUNCE_SLOTS;
         if ((HAS_POINT_LIGHTS || HAS_AREA_LIGHTS) && w_smooth > 0.0f) {
             s.radiance += beta * next_event(hit, p, wo, lobes, frame, p_smooth, slot, rng, s);
         }

@@ -56,5 +56,9 @@ PARAM3(vec3, grid_cell, 13)
 PARAM3(vec3, grid_inv_cell, 14)      // 1 / grid_cell(), per axis
 PARAM3(uvec3, grid_resolution, 15)   // root cells per axis
 
+// A thin lens (kernel/camera.glsl, HAS_LENS).
+PARAM(float, lens_scale, 16, x)      // the lens radius over a pixel's width on the plane at distance 1
+PARAM(float, focus_distance, 16, y)  // along the view axis, to the plane in focus
+
 #undef PARAM3
 #undef PARAM

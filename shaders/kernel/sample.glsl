@@ -131,8 +131,9 @@ SampleResult render_sample(uint px, uint py, uint sample_index) {
     SampleResult s = SampleResult(vec3(0.0f), 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, false, false);
     Rng rng = rng_start(py * image_width() + px, sample_index, sample_seed());
     vec2 sub = subpixel_position(sample_index, rng);
-    rng_seek(rng, SLOT_CAMERA + 1u);
-    PendingRay eye = PendingRay(camera_ray(float(px) + sub.x, float(py) + sub.y), vec3(1.0f), 0u, vec4(0.0f));
+    vec2 lens = lens_position(rng);
+    rng_seek(rng, SLOT_PATH);
+    PendingRay eye = PendingRay(camera_ray(float(px) + sub.x, float(py) + sub.y, lens), vec3(1.0f), 0u, vec4(0.0f));
     // A scene without mirrors or glass skips the tree's loop and its stack.
     if (HAS_GLOBAL) {
         global_sample(eye.ray, rng, s);
