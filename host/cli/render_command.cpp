@@ -16,7 +16,7 @@ namespace vkrt::cli {
 Command add_render_command(CLI::App& program) {
     auto args = std::make_shared<RenderArgs>();
     CLI::App* r = program.add_subcommand("render", "Render a scene file to an image");
-    r->add_option("scene", args->scene, "Scene file (.json, .nff, either optionally gzipped as .gz)")->required();
+    r->add_option("scene", args->scene, "Scene file (.json, .nff, either optionally gzipped as .gz; .gltf, .glb)")->required();
     r->add_option("-o,--output", args->output,
                   "Output image; the extension picks the format (.png .ppm: 8-bit sRGB; .exr .hdr: linear float). "
                   "Default: <scene name>.png");

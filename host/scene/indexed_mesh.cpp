@@ -106,19 +106,7 @@ bool needs_computed_normals(const IndexedMesh& mesh) {
 
 }  // namespace
 
-void add_mesh(const json::Node& object, IndexedMesh mesh, const Transform& t,
-              const std::optional<json::Node>& transform, const MeshOptions& options, Scene& scene) {
-    transform_mesh(mesh, t);
-    for (const dvec3& p : mesh.positions) {
-        if (max_abs(p) > json::kMaxMagnitude) {
-            const std::string message = fmt::format(
-                "the {}mesh has a vertex at {}, beyond the largest coordinate allowed ({})",
-                transform ? "transformed " : "", json::format_vec3(p), json::kMaxMagnitude);
-            if (transform) transform->fail(message);
-            object.fail(message);
-        }
-    }
-
+std::size_t append_mesh(const IndexedMesh& mesh, const MeshOptions& options, Scene& scene) {
     std::vector<dvec3> computed;
     if (options.smooth && needs_computed_normals(mesh)) computed = angle_weighted_normals(mesh);
 
@@ -136,6 +124,22 @@ void add_mesh(const json::Node& object, IndexedMesh mesh, const Transform& t,
         if (options.smooth) tri.normals = corner_normals(mesh, f, computed, p);
         scene.triangles.push_back(tri);
     }
+    return skipped;
+}
+
+void add_mesh(const json::Node& object, IndexedMesh mesh, const Transform& t,
+              const std::optional<json::Node>& transform, const MeshOptions& options, Scene& scene) {
+    transform_mesh(mesh, t);
+    for (const dvec3& p : mesh.positions) {
+        if (max_abs(p) > json::kMaxMagnitude) {
+            const std::string message = fmt::format(
+                "the {}mesh has a vertex at {}, beyond the largest coordinate allowed ({})",
+                transform ? "transformed " : "", json::format_vec3(p), json::kMaxMagnitude);
+            if (transform) transform->fail(message);
+            object.fail(message);
+        }
+    }
+    const std::size_t skipped = append_mesh(mesh, options, scene);
     if (skipped == mesh.faces.size()) {
         object.fail(fmt::format("all {} triangles of the mesh have zero area{}", skipped,
                                 transform ? " after the transform" : ""));

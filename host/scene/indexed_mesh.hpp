@@ -4,6 +4,7 @@
 // smooth normals. Vertices shared by index share their computed normal, which is
 // what makes a mesh look smooth across its edges.
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -57,6 +58,10 @@ struct MeshOptions {
     // Face::material -> index into Scene::materials, where the faces have their own.
     std::vector<std::uint32_t> face_materials;
 };
+
+// Appends the mesh's triangles, as they are, to scene.triangles, skipping the
+// degenerate ones; returns how many it skipped.
+std::size_t append_mesh(const IndexedMesh& mesh, const MeshOptions& options, Scene& scene);
 
 // Transforms the mesh and appends its triangles to scene.triangles. Degenerate
 // triangles are skipped and counted in a scene warning; a mesh left with no

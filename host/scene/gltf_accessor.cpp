@@ -1,0 +1,169 @@
+#include "scene/gltf_accessor.hpp"
+
+#include <cmath>
+#include <cstring>
+
+#include <fmt/format.h>
+#include <tiny_gltf.h>
+
+#include "scene/scene_error.hpp"
+
+namespace vkrt::gltf {
+namespace {
+
+[[noreturn]] void fail(const Origin& origin, const std::string& what) {
+    throw SceneError(fmt::format("{}: {}: {}", origin.file, origin.element, what));
+}
+
+std::size_t component_size(int type) {
+    switch (type) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+        case TINYGLTF_COMPONENT_TYPE_SHORT:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+        case TINYGLTF_COMPONENT_TYPE_INT:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+        default: return 0;
+    }
+}
+
+const char* component_name(int type) {
+    switch (type) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "UNSIGNED_BYTE";
+        case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "UNSIGNED_SHORT";
+        case TINYGLTF_COMPONENT_TYPE_INT: return "INT";
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "UNSIGNED_INT";
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: return "FLOAT";
+        default: return "an unknown component type";
+    }
+}
+
+// The bytes of an accessor's elements: element i starts at data + i * stride and
+// holds `components` values of `size` bytes each.
+struct Elements {
+    const unsigned char* data = nullptr;
+    std::size_t stride = 0;
+    std::size_t count = 0;
+    std::size_t size = 0;
+    int component = 0;
+    bool normalized = false;
+};
+
+Elements locate(const tinygltf::Model& model, int index, int type, const char* type_name, const Origin& origin) {
+    if (index < 0 || static_cast<std::size_t>(index) >= model.accessors.size()) {
+        fail(origin, fmt::format("accessor {} does not exist (the file has {})", index, model.accessors.size()));
+    }
+    const tinygltf::Accessor& a = model.accessors[static_cast<std::size_t>(index)];
+    const std::string name = fmt::format("accessors[{}]", index);
+    if (a.type != type) fail(origin, fmt::format("{} is not {}", name, type_name));
+    if (a.sparse.isSparse) fail(origin, fmt::format("{} is sparse, which vkrt does not read yet", name));
+    Elements e;
+    e.component = a.componentType;
+    e.size = component_size(a.componentType);
+    e.count = a.count;
+    e.normalized = a.normalized;
+    if (e.size == 0) fail(origin, fmt::format("{} has component type {}, which glTF does not define", name, a.componentType));
+    const std::size_t components = type == TINYGLTF_TYPE_VEC3 ? 3 : 1;
+    const std::size_t element = e.size * components;
+    if (a.bufferView < 0 || static_cast<std::size_t>(a.bufferView) >= model.bufferViews.size()) {
+        fail(origin, fmt::format("{} refers to bufferView {}, which does not exist (the file has {})", name,
+                                 a.bufferView, model.bufferViews.size()));
+    }
+    const tinygltf::BufferView& view = model.bufferViews[static_cast<std::size_t>(a.bufferView)];
+    if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model.buffers.size()) {
+        fail(origin, fmt::format("bufferViews[{}] refers to buffer {}, which does not exist", a.bufferView, view.buffer));
+    }
+    const std::vector<unsigned char>& buffer = model.buffers[static_cast<std::size_t>(view.buffer)].data;
+    if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset) {
+        fail(origin, fmt::format("bufferViews[{}] spans bytes {} to {} of buffers[{}], which holds {}", a.bufferView,
+                                 view.byteOffset, view.byteOffset + view.byteLength, view.buffer, buffer.size()));
+    }
+    e.stride = view.byteStride == 0 ? element : view.byteStride;
+    if (e.stride < element) {
+        fail(origin, fmt::format("bufferViews[{}] has a byteStride of {}, less than an element of {} ({} bytes)",
+                                 a.bufferView, view.byteStride, name, element));
+    }
+    // The last element ends at byteOffset + (count - 1) * stride + element; counted
+    // in a way that cannot overflow for any count a file can claim.
+    if (e.count > 0) {
+        const std::size_t room = view.byteLength;
+        const bool fits = a.byteOffset <= room && element <= room - a.byteOffset &&
+                          (e.count - 1) <= (room - a.byteOffset - element) / e.stride;
+        if (!fits) {
+            fail(origin, fmt::format("{} ({} elements of {} bytes, from byte {}) does not fit in bufferViews[{}] of "
+                                     "{} bytes",
+                                     name, e.count, element, a.byteOffset, a.bufferView, room));
+        }
+    }
+    e.data = buffer.data() + view.byteOffset + a.byteOffset;
+    return e;
+}
+
+template <typename T>
+T load(const unsigned char* p) {
+    T v;
+    std::memcpy(&v, p, sizeof v);  // glTF data is little-endian, as is every host vkrt builds for
+    return v;
+}
+
+// Component k of element i as a double: floats as they are, normalized integers
+// mapped to [0, 1] or [-1, 1] as the specification says (3.11).
+double component_value(const Elements& e, std::size_t i, std::size_t k) {
+    const unsigned char* p = e.data + i * e.stride + k * e.size;
+    switch (e.component) {
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: return load<float>(p);
+        case TINYGLTF_COMPONENT_TYPE_BYTE: return std::max(load<std::int8_t>(p) / 127.0, -1.0);
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return load<std::uint8_t>(p) / 255.0;
+        case TINYGLTF_COMPONENT_TYPE_SHORT: return std::max(load<std::int16_t>(p) / 32767.0, -1.0);
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return load<std::uint16_t>(p) / 65535.0;
+        default: return 0.0;
+    }
+}
+
+}  // namespace
+
+std::vector<glm::dvec3> read_vec3(const tinygltf::Model& model, int accessor, const Origin& origin) {
+    const Elements e = locate(model, accessor, TINYGLTF_TYPE_VEC3, "a VEC3", origin);
+    if (e.component != TINYGLTF_COMPONENT_TYPE_FLOAT && !e.normalized) {
+        fail(origin, fmt::format("accessors[{}] holds {} values that are not normalized; expected FLOAT", accessor,
+                                 component_name(e.component)));
+    }
+    std::vector<glm::dvec3> out(e.count);
+    for (std::size_t i = 0; i < e.count; ++i) {
+        for (int k = 0; k < 3; ++k) {
+            const double v = component_value(e, i, static_cast<std::size_t>(k));
+            if (!std::isfinite(v)) fail(origin, fmt::format("accessors[{}] element {} is not finite", accessor, i));
+            out[i][k] = v;
+        }
+    }
+    return out;
+}
+
+std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int accessor, std::uint32_t limit,
+                                        const Origin& origin) {
+    const Elements e = locate(model, accessor, TINYGLTF_TYPE_SCALAR, "a SCALAR", origin);
+    if (e.component != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && e.component != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        e.component != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
+        fail(origin, fmt::format("accessors[{}] holds {}; indices are UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT",
+                                 accessor, component_name(e.component)));
+    }
+    std::vector<std::uint32_t> out(e.count);
+    for (std::size_t i = 0; i < e.count; ++i) {
+        const unsigned char* p = e.data + i * e.stride;
+        const std::uint32_t v = e.size == 1 ? load<std::uint8_t>(p)
+                                : e.size == 2 ? load<std::uint16_t>(p)
+                                              : load<std::uint32_t>(p);
+        if (v >= limit) {
+            fail(origin, fmt::format("index {} (element {} of accessors[{}]) is out of range: the primitive has {} "
+                                     "vertices",
+                                     v, i, accessor, limit));
+        }
+        out[i] = v;
+    }
+    return out;
+}
+
+}  // namespace vkrt::gltf

@@ -1,0 +1,31 @@
+#pragma once
+// Reading a glTF 2.0 accessor's elements (glTF 2.0 specification, section 3.6),
+// with every index and byte range checked against what the file holds: a bad file
+// ends in a SceneError naming the file and the element that asked for the data,
+// never in a read out of bounds.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace tinygltf {
+class Model;
+}
+
+namespace vkrt::gltf {
+
+// Where a read comes from, for messages: "<file>: <element>: ...".
+struct Origin {
+    std::string file;
+    std::string element;  // e.g. "meshes[2].primitives[0].attributes.POSITION"
+};
+
+// A VEC3 accessor of floats (or normalized integers) as doubles; each value finite.
+std::vector<glm::dvec3> read_vec3(const tinygltf::Model& model, int accessor, const Origin& origin);
+
+// A SCALAR accessor of unsigned bytes, shorts or ints, each below `limit`.
+std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int accessor, std::uint32_t limit,
+                                        const Origin& origin);
+
+}  // namespace vkrt::gltf

@@ -1,0 +1,471 @@
+#include "scene/gltf_loader.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/mat4x4.hpp>
+#include <tiny_gltf.h>
+
+#include "scene/gltf_accessor.hpp"
+#include "scene/indexed_mesh.hpp"
+#include "scene/json_reader.hpp"
+#include "scene/scene_error.hpp"
+#include "scene/vec_math.hpp"
+
+namespace vkrt {
+namespace {
+
+using glm::dmat4;
+using glm::dvec3;
+
+// The extensions read (docs/gltf.md); any other the file uses is named in a warning.
+const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
+
+// Textures are not sampled yet: their images are neither decoded nor kept, but a
+// missing image file still fails, as any missing part of the asset does.
+bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+    return true;
+}
+
+// A URI's percent escapes decoded (RFC 3986, 2.1), as glTF relative URIs are written.
+std::string decode_uri(const std::string& uri) {
+    std::string out;
+    for (std::size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+            std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+            out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
+
+// tinygltf only warns about an image file it cannot find; a missing part of the
+// asset is an error here, as a missing buffer is.
+void check_image_files(const std::filesystem::path& file, const tinygltf::Model& model) {
+    for (std::size_t i = 0; i < model.images.size(); ++i) {
+        const std::string& uri = model.images[i].uri;
+        if (uri.empty() || uri.rfind("data:", 0) == 0) continue;
+        const std::filesystem::path image = file.parent_path() / decode_uri(uri);
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(image, ec)) {
+            throw SceneError(fmt::format("{}: images[{}].uri: the image file {} does not exist", file.string(), i,
+                                         image.string()));
+        }
+    }
+}
+
+tinygltf::Model read_model(const std::filesystem::path& file, std::vector<std::string>& warnings) {
+    tinygltf::TinyGLTF reader;
+    reader.SetImageLoader(skip_image, nullptr);
+    tinygltf::Model model;
+    std::string error, warning;
+    const std::string ext = file.extension().string();
+    const bool binary = ext == ".glb" || ext == ".GLB";
+    const bool ok = binary ? reader.LoadBinaryFromFile(&model, &error, &warning, file.string())
+                           : reader.LoadASCIIFromFile(&model, &error, &warning, file.string());
+    const auto lines = [](std::string text) {
+        while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+        std::replace(text.begin(), text.end(), '\n', ';');
+        return text;
+    };
+    if (!ok) {
+        throw SceneError(fmt::format("{}: not a readable glTF {} file: {}", file.string(), binary ? "binary (.glb)" : "(.gltf)",
+                                     error.empty() ? "no reason given" : lines(error)));
+    }
+    if (!warning.empty()) warnings.push_back(fmt::format("{}: {}", file.string(), lines(warning)));
+    check_image_files(file, model);
+    return model;
+}
+
+// What the loader counts to say once, at the end, per kind.
+struct Unsupported {
+    std::map<std::string, std::size_t> counts;  // what -> how many
+    void add(const std::string& what) { ++counts[what]; }
+};
+
+class GltfReader {
+public:
+    GltfReader(std::filesystem::path file, tinygltf::Model model, Scene& scene)
+        : file_(std::move(file)), model_(std::move(model)), scene_(scene) {}
+
+    void read() {
+        check_extensions();
+        read_materials();
+        const std::vector<int> roots = scene_roots();
+        for (int root : roots) visit(root, dmat4(1.0), 0);
+        if (scene_.triangles.empty()) fail("the file's scene has no triangles to render");
+        if (degenerate_ > 0) {
+            warn(fmt::format("skipped {} of {} triangles that have zero area", degenerate_, triangles_read_));
+        }
+        for (const auto& [what, count] : unsupported_.counts) warn(fmt::format("{} ({}): ignored", what, count));
+    }
+
+    bool has_camera() const { return camera_found_; }
+
+private:
+    [[noreturn]] void fail(const std::string& what) const {
+        throw SceneError(fmt::format("{}: {}", file_.string(), what));
+    }
+    [[noreturn]] void fail_at(const std::string& element, const std::string& what) const {
+        throw SceneError(fmt::format("{}: {}: {}", file_.string(), element, what));
+    }
+    void warn(const std::string& what) { scene_.warnings.push_back(fmt::format("{}: {}", file_.string(), what)); }
+
+    void check_extensions() {
+        for (const std::string& name : model_.extensionsRequired) {
+            if (!kSupportedExtensions.count(name)) {
+                fail(fmt::format("the file requires the extension {}, which vkrt does not support", name));
+            }
+        }
+        for (const std::string& name : model_.extensionsUsed) {
+            if (!kSupportedExtensions.count(name)) warn(fmt::format("the extension {} is not supported; ignored", name));
+        }
+    }
+
+    // Base colour as the diffuse colour, emission as emissive factor times strength.
+    // Until the metallic-roughness BSDF exists, everything else is listed as ignored.
+    void read_materials() {
+        for (std::size_t i = 0; i < model_.materials.size(); ++i) {
+            const tinygltf::Material& g = model_.materials[i];
+            const std::string element = fmt::format("materials[{}]", i);
+            Material m;
+            m.name = g.name.empty() ? element : g.name;
+            const std::vector<double>& base = g.pbrMetallicRoughness.baseColorFactor;
+            if (base.size() == 4) m.diffuse = color(dvec3(base[0], base[1], base[2]), element + ".pbrMetallicRoughness.baseColorFactor");
+            if (base.size() == 4 && base[3] < 1.0) unsupported_.add("materials with a base colour alpha below 1, rendered opaque");
+            double strength = 1.0;
+            if (auto e = g.extensions.find("KHR_materials_emissive_strength"); e != g.extensions.end()) {
+                const tinygltf::Value& s = e->second.Get("emissiveStrength");
+                if (s.IsNumber()) strength = s.GetNumberAsDouble();
+                if (!(strength >= 0.0 && strength <= 1e6)) {
+                    fail_at(element + ".extensions.KHR_materials_emissive_strength.emissiveStrength",
+                            fmt::format("expected a number from 0 to 1e6, got {}", strength));
+                }
+            }
+            if (g.emissiveFactor.size() == 3) {
+                m.emission = strength * color(dvec3(g.emissiveFactor[0], g.emissiveFactor[1], g.emissiveFactor[2]),
+                                              element + ".emissiveFactor");
+            }
+            if (g.pbrMetallicRoughness.metallicFactor > 0.0) unsupported_.add("metallic materials, rendered as diffuse base colour");
+            if (g.pbrMetallicRoughness.baseColorTexture.index >= 0 || g.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 ||
+                g.emissiveTexture.index >= 0) {
+                unsupported_.add("materials with textures, rendered with their factors");
+            }
+            if (g.normalTexture.index >= 0) unsupported_.add("normal maps");
+            if (g.occlusionTexture.index >= 0) unsupported_.add("occlusion maps (not needed by a path tracer)");
+            if (g.alphaMode != "OPAQUE") unsupported_.add(fmt::format("materials with alphaMode {}, rendered opaque", g.alphaMode));
+            materials_.push_back(static_cast<std::uint32_t>(scene_.materials.size()));
+            scene_.materials.push_back(m);
+        }
+    }
+
+    dvec3 color(dvec3 c, const std::string& element) const {
+        for (int k = 0; k < 3; ++k) {
+            if (!(c[k] >= 0.0 && c[k] <= 1e6)) fail_at(element, fmt::format("expected components from 0 to 1e6, got {}", c[k]));
+        }
+        return c;
+    }
+
+    // The glTF default material (specification 3.9.6): white, rough; metallic too,
+    // which is listed as ignored when a primitive uses it.
+    std::uint32_t default_material() {
+        if (!default_material_) {
+            Material m;
+            m.name = "glTF default";
+            m.diffuse = dvec3(1.0);
+            default_material_ = static_cast<std::uint32_t>(scene_.materials.size());
+            scene_.materials.push_back(m);
+        }
+        return *default_material_;
+    }
+
+    std::vector<int> scene_roots() const {
+        if (model_.scenes.empty()) {
+            // No scene: the specification leaves it to the client; every node no
+            // other node has as a child is a root.
+            std::vector<bool> child(model_.nodes.size(), false);
+            for (const tinygltf::Node& n : model_.nodes) {
+                for (int c : n.children) {
+                    if (c >= 0 && static_cast<std::size_t>(c) < child.size()) child[static_cast<std::size_t>(c)] = true;
+                }
+            }
+            std::vector<int> roots;
+            for (std::size_t i = 0; i < child.size(); ++i) {
+                if (!child[i]) roots.push_back(static_cast<int>(i));
+            }
+            return roots;
+        }
+        const int s = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+        if (static_cast<std::size_t>(s) >= model_.scenes.size()) {
+            fail_at("scene", fmt::format("scene {} does not exist (the file has {})", s, model_.scenes.size()));
+        }
+        return model_.scenes[static_cast<std::size_t>(s)].nodes;
+    }
+
+    dmat4 local_matrix(const tinygltf::Node& n, const std::string& element) const {
+        dmat4 m(1.0);
+        if (n.matrix.size() == 16) {
+            for (int c = 0; c < 4; ++c) {
+                for (int r = 0; r < 4; ++r) m[c][r] = n.matrix[static_cast<std::size_t>(4 * c + r)];
+            }
+        } else {
+            dmat4 t(1.0), r(1.0), s(1.0);
+            if (n.translation.size() == 3) t[3] = glm::dvec4(n.translation[0], n.translation[1], n.translation[2], 1.0);
+            if (n.rotation.size() == 4) {
+                const glm::dquat q(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
+                const double len = glm::length(q);
+                if (!(len > 0.0) || !std::isfinite(len)) fail_at(element + ".rotation", "expected a non-zero quaternion");
+                r = glm::mat4_cast(q / len);
+            }
+            if (n.scale.size() == 3) s = glm::scale(dmat4(1.0), dvec3(n.scale[0], n.scale[1], n.scale[2]));
+            m = t * r * s;
+        }
+        for (int c = 0; c < 4; ++c) {
+            for (int r = 0; r < 4; ++r) {
+                if (!std::isfinite(m[c][r])) fail_at(element, "the node's transform is not finite");
+            }
+        }
+        return m;
+    }
+
+    void visit(int index, const dmat4& parent, int depth) {
+        if (index < 0 || static_cast<std::size_t>(index) >= model_.nodes.size()) {
+            fail(fmt::format("node {} does not exist (the file has {})", index, model_.nodes.size()));
+        }
+        const std::string element = fmt::format("nodes[{}]", index);
+        // A node hierarchy is a forest; deeper than the nodes there are means a cycle.
+        if (static_cast<std::size_t>(depth) > model_.nodes.size()) fail_at(element, "the node is its own ancestor");
+        const tinygltf::Node& n = model_.nodes[static_cast<std::size_t>(index)];
+        const dmat4 world = parent * local_matrix(n, element);
+        if (n.mesh >= 0) add_mesh_instance(n.mesh, world, element);
+        if (n.skin >= 0 || !n.weights.empty()) unsupported_.add("skins and morph targets (the mesh is used at rest)");
+        if (n.camera >= 0 && !camera_found_) read_camera(n.camera, world, element);
+        if (auto light = n.extensions.find("KHR_lights_punctual"); light != n.extensions.end()) {
+            read_light(light->second, world, element);
+        }
+        for (int child : n.children) visit(child, world, depth + 1);
+    }
+
+    Transform transform_of(const dmat4& m, const std::string& element) const {
+        Transform t;
+        t.linear = glm::dmat3(m);
+        t.translate = dvec3(m[3]);
+        const double det = glm::determinant(t.linear);
+        if (!(std::abs(det) > 0.0)) fail_at(element, "the node's transform flattens its mesh (determinant 0)");
+        // A positive multiple of the inverse transpose: the cofactor matrix over the
+        // determinant's sign, scaled so that no entry exceeds 1.
+        glm::dmat3 cof = glm::transpose(glm::inverse(t.linear)) * det;
+        if (det < 0.0) cof = -cof;
+        double biggest = 0.0;
+        for (int c = 0; c < 3; ++c) {
+            for (int r = 0; r < 3; ++r) biggest = std::max(biggest, std::abs(cof[c][r]));
+        }
+        t.normal_matrix = cof / biggest;
+        t.mirrors = det < 0.0;
+        return t;
+    }
+
+    void add_mesh_instance(int mesh_index, const dmat4& world, const std::string& node) {
+        if (static_cast<std::size_t>(mesh_index) >= model_.meshes.size()) {
+            fail_at(node + ".mesh", fmt::format("mesh {} does not exist (the file has {})", mesh_index, model_.meshes.size()));
+        }
+        const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(mesh_index)];
+        const Transform t = transform_of(world, node);
+        for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+            const tinygltf::Primitive& prim = mesh.primitives[p];
+            const std::string element = fmt::format("meshes[{}].primitives[{}]", mesh_index, p);
+            if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) {
+                unsupported_.add("primitives that are not TRIANGLES (points, lines, strips, fans)");
+                continue;
+            }
+            if (!prim.targets.empty()) unsupported_.add("skins and morph targets (the mesh is used at rest)");
+            add_primitive(prim, t, element);
+        }
+    }
+
+    void add_primitive(const tinygltf::Primitive& prim, const Transform& t, const std::string& element) {
+        const auto position = prim.attributes.find("POSITION");
+        if (position == prim.attributes.end()) fail_at(element + ".attributes", "no POSITION attribute");
+        IndexedMesh mesh;
+        mesh.positions = gltf::read_vec3(model_, position->second, {file_.string(), element + ".attributes.POSITION"});
+        const auto normal = prim.attributes.find("NORMAL");
+        if (normal != prim.attributes.end()) {
+            mesh.normals = gltf::read_vec3(model_, normal->second, {file_.string(), element + ".attributes.NORMAL"});
+            if (mesh.normals.size() != mesh.positions.size()) {
+                fail_at(element + ".attributes.NORMAL", fmt::format("{} normals for {} positions",
+                                                                    mesh.normals.size(), mesh.positions.size()));
+            }
+        }
+        if (mesh.positions.size() > std::numeric_limits<std::uint32_t>::max()) fail_at(element, "too many vertices");
+        const auto vertices = static_cast<std::uint32_t>(mesh.positions.size());
+        std::vector<std::uint32_t> indices;
+        if (prim.indices >= 0) {
+            indices = gltf::read_indices(model_, prim.indices, vertices, {file_.string(), element + ".indices"});
+        } else {
+            indices.resize(vertices);
+            for (std::uint32_t i = 0; i < vertices; ++i) indices[i] = i;
+        }
+        if (indices.size() % 3 != 0) {
+            fail_at(element + (prim.indices >= 0 ? ".indices" : ".attributes.POSITION"),
+                    fmt::format("{} vertices do not make whole triangles", indices.size()));
+        }
+        const bool smooth = !mesh.normals.empty();
+        for (std::size_t i = 0; i < indices.size(); i += 3) {
+            IndexedMesh::Face f;
+            f.position = {indices[i], indices[i + 1], indices[i + 2]};
+            if (smooth) f.normal = f.position;
+            mesh.faces.push_back(f);
+        }
+        transform_mesh(mesh, t);
+        for (const dvec3& p : mesh.positions) {
+            if (max_abs(p) > json::kMaxMagnitude) {
+                fail_at(element, fmt::format("a vertex, placed by its nodes, lies at {}, beyond the largest coordinate "
+                                             "allowed ({})",
+                                             json::format_vec3(p), json::kMaxMagnitude));
+            }
+        }
+        MeshOptions options;
+        options.smooth = smooth;
+        if (prim.material >= 0) {
+            if (static_cast<std::size_t>(prim.material) >= materials_.size()) {
+                fail_at(element + ".material", fmt::format("material {} does not exist (the file has {})", prim.material,
+                                                           materials_.size()));
+            }
+            options.material = materials_[static_cast<std::size_t>(prim.material)];
+        } else {
+            options.material = default_material();
+            unsupported_.add("primitives without a material: the glTF default material, metallic, rendered as white diffuse");
+        }
+        triangles_read_ += mesh.faces.size();
+        degenerate_ += append_mesh(mesh, options, scene_);
+    }
+
+    void read_camera(int index, const dmat4& world, const std::string& node) {
+        if (static_cast<std::size_t>(index) >= model_.cameras.size()) {
+            fail_at(node + ".camera", fmt::format("camera {} does not exist (the file has {})", index, model_.cameras.size()));
+        }
+        const tinygltf::Camera& c = model_.cameras[static_cast<std::size_t>(index)];
+        if (c.type != "perspective") {
+            unsupported_.add("orthographic cameras (the view is framed instead)");
+            return;
+        }
+        const double fov = glm::degrees(c.perspective.yfov);
+        if (!(fov > 0.0 && fov < 180.0)) {
+            fail_at(fmt::format("cameras[{}].perspective.yfov", index),
+                    fmt::format("expected an angle between 0 and pi, got {}", c.perspective.yfov));
+        }
+        Camera& cam = scene_.camera;
+        cam.fov = fov;
+        cam.eye = dvec3(world * glm::dvec4(0, 0, 0, 1));
+        const dvec3 forward = glm::dmat3(world) * dvec3(0, 0, -1);
+        const dvec3 up = glm::dmat3(world) * dvec3(0, 1, 0);
+        if (!is_nonzero(forward) || parallel_or_zero(forward, up, 1e-9)) fail_at(node, "the camera's node flattens its view");
+        cam.look_at = cam.eye + robust_normalize(forward);
+        cam.up = robust_normalize(up);
+        if (c.perspective.aspectRatio > 0.0) {
+            const double aspect = std::clamp(c.perspective.aspectRatio, 1.0 / 64.0, 64.0);
+            cam.width = 800;
+            cam.height = static_cast<std::uint32_t>(std::max(1.0, std::round(800.0 / aspect)));
+        }
+        camera_found_ = true;
+    }
+
+    void read_light(const tinygltf::Value& extension, const dmat4& world, const std::string& node) {
+        const tinygltf::Value& index = extension.Get("light");
+        if (!index.IsNumber()) fail_at(node + ".extensions.KHR_lights_punctual", "no light index");
+        const int i = index.GetNumberAsInt();
+        if (i < 0 || static_cast<std::size_t>(i) >= model_.lights.size()) {
+            fail_at(node + ".extensions.KHR_lights_punctual.light",
+                    fmt::format("light {} does not exist (the file has {})", i, model_.lights.size()));
+        }
+        const tinygltf::Light& l = model_.lights[static_cast<std::size_t>(i)];
+        if (l.type != "point") {
+            unsupported_.add(fmt::format("{} lights", l.type));
+            return;
+        }
+        PointLight p;
+        p.position = dvec3(world * glm::dvec4(0, 0, 0, 1));
+        if (l.color.size() == 3) p.color = color(dvec3(l.color[0], l.color[1], l.color[2]), fmt::format("extensions.KHR_lights_punctual.lights[{}].color", i));
+        if (!(l.intensity >= 0.0 && std::isfinite(l.intensity))) {
+            fail_at(fmt::format("extensions.KHR_lights_punctual.lights[{}].intensity", i), "expected a number >= 0");
+        }
+        // Candela taken as the renderer's radiant intensity, one for one, as glTF
+        // viewers do: a light of intensity I lights a surface facing it at distance r
+        // with I / r^2 (docs/gltf.md).
+        p.intensity = l.intensity;
+        if (l.range > 0.0) unsupported_.add("light ranges (lights reach everywhere)");
+        scene_.lights.push_back(p);
+    }
+
+    std::filesystem::path file_;
+    tinygltf::Model model_;
+    Scene& scene_;
+    std::vector<std::uint32_t> materials_;  // glTF material -> scene material
+    std::optional<std::uint32_t> default_material_;
+    Unsupported unsupported_;
+    std::size_t degenerate_ = 0;
+    std::size_t triangles_read_ = 0;
+    bool camera_found_ = false;
+};
+
+// Without a camera in the file: look at the scene's bounding box from the front and a
+// little above, at a distance that fits its bounding sphere in the view.
+void frame_scene(Scene& scene) {
+    dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (const Triangle& t : scene.triangles) {
+        for (const dvec3& v : t.vertices) {
+            lo = glm::min(lo, v);
+            hi = glm::max(hi, v);
+        }
+    }
+    const dvec3 centre = 0.5 * (lo + hi);
+    const double radius = std::max(0.5 * glm::length(hi - lo), 1e-6);
+    Camera& cam = scene.camera;
+    cam.fov = 40.0;
+    const double distance = 1.1 * radius / std::sin(glm::radians(cam.fov / 2.0));
+    cam.eye = centre + distance * glm::normalize(dvec3(0.0, 0.35, 1.0));
+    cam.look_at = centre;
+    cam.up = dvec3(0, 1, 0);
+}
+
+bool emits(const Scene& scene) {
+    return std::any_of(scene.materials.begin(), scene.materials.end(),
+                       [](const Material& m) { return is_nonzero(m.emission); });
+}
+
+}  // namespace
+
+Scene load_gltf_scene(const std::filesystem::path& file) {
+    Scene scene;
+    scene.source = file;
+    scene.camera.width = 800;
+    scene.camera.height = 600;
+    tinygltf::Model model = read_model(file, scene.warnings);
+    GltfReader reader(file, std::move(model), scene);
+    reader.read();
+    if (!reader.has_camera()) frame_scene(scene);
+    // Global mode with its defaults (docs/gltf.md): 64 samples a pixel, and a uniform
+    // sky as the environment, white when the file brings no light of its own, dim
+    // when it does.
+    scene.render.mode = RenderMode::Global;
+    scene.render.jitter = true;
+    scene.render.spp = 64;
+    scene.render.background = dvec3(scene.lights.empty() && !emits(scene) ? 1.0 : 0.05);
+    return scene;
+}
+
+}  // namespace vkrt
