@@ -31,7 +31,7 @@ TEST(Cli, VersionAndHelp) {
     EXPECT_EQ(test::run_vkrt("render --help", dir).code, 0);
     const std::string help = read_file(dir / "stdout.txt");
     for (const char* option : {"--output", "--backend", "--device", "--width", "--height", "--spp", "--time", "--samples", "--seed",
-                               "--threads", "--stats", "--serve", "--reference", "--checkpoint", "--validate", "--quiet"}) {
+                               "--bounces", "--background", "--threads", "--stats", "--serve", "--reference", "--checkpoint", "--validate", "--quiet"}) {
         EXPECT_NE(help.find(option), std::string::npos) << option;
     }
 }
@@ -245,6 +245,22 @@ TEST(Cli, SamplerOptionPicksTheRandomNumbers) {
     ASSERT_EQ(test::run_vkrt(render + out("hash.exr") + " --sampler hash", dir).code, 0);
     ASSERT_EQ(test::run_vkrt("compare " + out("default.exr") + " " + out("sobol.exr") + " --max-abs 0", dir).code, 0);
     EXPECT_NE(test::run_vkrt("compare " + out("default.exr") + " " + out("hash.exr") + " --max-abs 0", dir).code, 0);
+}
+
+// --background sets the radiance of rays that miss, one number for all channels or
+// three; --bounces the path length of global mode.
+TEST(Cli, BackgroundAndBouncesOverrideTheScene) {
+    const fs::path dir = test::temp_dir("cli_background");
+    const std::string render =
+        "render " + test::shell_quote(scene("gallery/k_room").string()) + " --backend cpu --width 24 --height 18 --spp 2 -q -o ";
+    auto out = [&](const char* name) { return test::shell_quote((dir / name).string()); };
+    ASSERT_EQ(test::run_vkrt(render + out("default.exr"), dir).code, 0);
+    ASSERT_EQ(test::run_vkrt(render + out("grey.exr") + " --background 0.5", dir).code, 0);
+    ASSERT_EQ(test::run_vkrt(render + out("grey3.exr") + " --background 0.5,0.5,0.5", dir).code, 0);
+    ASSERT_EQ(test::run_vkrt(render + out("short.exr") + " --bounces 0", dir).code, 0);
+    EXPECT_EQ(test::run_vkrt("compare " + out("grey.exr") + " " + out("grey3.exr") + " --max-abs 0", dir).code, 0);
+    EXPECT_NE(test::run_vkrt("compare " + out("default.exr") + " " + out("grey.exr") + " --max-abs 0", dir).code, 0);
+    EXPECT_NE(test::run_vkrt("compare " + out("default.exr") + " " + out("short.exr") + " --max-abs 0", dir).code, 0);
 }
 
 // --exposure and --tonemap change an 8-bit output and leave a float one alone; merge

@@ -52,6 +52,11 @@ void apply_overrides(const RenderArgs& args, Scene& scene) {
     }
     if (args.seed) scene.render.seed = *args.seed;
     if (!args.sampler.empty()) scene.render.sampler = parse_sampler(args.sampler).value();  // checked by the parser
+    if (args.bounces) scene.render.max_bounces = *args.bounces;
+    if (!args.background.empty()) {
+        const std::array<double, 3> c = parse_colour(args.background);  // checked by the parser
+        scene.render.background = glm::dvec3(c[0], c[1], c[2]);
+    }
     scene.render.display = display_with(scene.render.display, args.display);
     if (!args.grid.empty()) {
         const GridSettings grid = parse_grid_option(args.grid).value();  // checked by the parser

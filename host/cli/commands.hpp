@@ -23,6 +23,8 @@ struct RenderArgs {
     std::string samples;         // "A:B": render samples [A, B) only, to a partial file
     std::optional<std::uint32_t> seed;
     std::string sampler;  // empty: the scene's; else sobol or hash
+    std::optional<std::uint32_t> bounces;  // global mode's max_bounces
+    std::string background;                // empty: the scene's; else a colour (parse_colour)
     DisplayOptions display;
     std::string grid;    // empty: the scene's choice; else auto, on or off
     unsigned threads = 0;

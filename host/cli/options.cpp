@@ -4,6 +4,7 @@
 #include <functional>
 #include <stdexcept>
 #include <type_traits>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -52,6 +53,34 @@ CLI::Validator accepted_by(std::function<void(const std::string&)> parse, const 
             return std::string();
         },
         name);
+}
+
+std::array<double, 3> parse_colour(const std::string& text) {
+    std::vector<double> values;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t comma = text.find(',', start);
+        const std::string part = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        std::size_t used = 0;
+        double v = 0.0;
+        try {
+            v = std::stod(part, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (part.empty() || used != part.size() || !(v >= 0.0 && v <= 1e6)) {
+            throw std::invalid_argument(
+                fmt::format("expected a number from 0 to 1e6, or three separated by commas (R,G,B), got '{}'", text));
+        }
+        values.push_back(v);
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    if (values.size() == 1) return {values[0], values[0], values[0]};
+    if (values.size() != 3) {
+        throw std::invalid_argument(fmt::format("expected one number or three (R,G,B), got {} in '{}'", values.size(), text));
+    }
+    return {values[0], values[1], values[2]};
 }
 
 CLI::Validator whole_number(std::uint64_t lo, std::uint64_t hi) {

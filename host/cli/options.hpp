@@ -2,6 +2,7 @@
 // The options several commands share, each defined once, and the validators that
 // answer a wrong value with what was expected (CLI11's own Range answers "abc" with
 // "not in range").
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -41,6 +42,10 @@ struct DisplayOptions {
 void add_display(CLI::App* command, DisplayOptions& display, const char* overrides);
 // `base` with the options given applied.
 Display display_with(Display base, const DisplayOptions& options);
+// A colour given as one number for all three channels ("0.5") or three separated by
+// commas ("1,0.9,0.8"), each finite and from 0 to 1e6; std::invalid_argument
+// otherwise, saying what was expected.
+std::array<double, 3> parse_colour(const std::string& text);
 // -q, --quiet.
 void add_quiet(CLI::App* command, bool& quiet, const char* description = "Print nothing but warnings and errors");
 

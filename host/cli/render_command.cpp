@@ -39,6 +39,13 @@ Command add_render_command(CLI::App& program) {
     r->add_option("--sampler", args->sampler,
                   "Random numbers: sobol (Owen-scrambled Sobol points) or hash (independent); overrides the scene")
         ->check(CLI::IsMember({"sobol", "hash"}));
+    r->add_option("--bounces", args->bounces,
+                  "Global mode: scattering events after the first hit (render.max_bounces); overrides the scene")
+        ->check(whole_number(0, limits::kMaxBounces));
+    r->add_option("--background", args->background,
+                  "Radiance of rays that hit nothing, one number or R,G,B (render.background; in global mode the "
+                  "uniform sky that lights the scene); overrides the scene")
+        ->check(accepted_by([](const std::string& text) { parse_colour(text); }, "V|R,G,B"));
     add_display(r, args->display, "; overrides the scene");
     r->add_option("--grid", args->grid,
                   "Grid: auto (when the scene has enough primitives for it to pay), on, off, uniform (on, no "
