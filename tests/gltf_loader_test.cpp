@@ -204,6 +204,38 @@ TEST(Gltf, WhatIsNotRenderedIsNamedOnce) {
     EXPECT_EQ(s.triangles.size(), 8u);
 }
 
+// A JSON scene places a glTF file like a mesh: its triangles moved by the
+// transform, its materials added, its camera not taken.
+TEST(Gltf, AJsonSceneIncludesAFileWithATransform) {
+    const std::string nodes = R"([{"mesh": 0, "children": [1]}, {"translation": [0, 0, 5], "camera": 0}])";
+    const std::string cameras = R"(, "cameras": [{"type": "perspective", "perspective": {"yfov": 0.6, "znear": 0.1}}])";
+    const std::filesystem::path gltf = write_gltf("included", gltf_json("mesh.bin", nodes, cameras));
+    const std::string json = R"({
+      "camera": { "eye": [0, 0, 10], "look_at": [0, 0, 0] },
+      "materials": { "m": { "diffuse": [1, 0, 0] } },
+      "objects": [ { "type": "sphere", "center": [0, 0, 0], "radius": 0.1, "material": "m" },
+                   { "type": "gltf", "file": ")" + gltf.string() + R"(", "transform": { "scale": 2, "translate": [3, 0, 0] } } ] })";
+    const Scene s = vkrt::test::scene_from_text("with_gltf", json);
+    ASSERT_EQ(s.triangles.size(), 8u);
+    EXPECT_EQ(s.triangles[0].vertices[0], dvec3(5, 0, 0));
+    EXPECT_EQ(s.materials.at(s.triangles[0].material).diffuse, dvec3(0.5));
+    EXPECT_EQ(s.camera.eye, dvec3(0, 0, 10));
+    EXPECT_EQ(s.render.mode, vkrt::RenderMode::Local) << "the scene's own settings";
+}
+
+TEST(GltfErrors, AnIncludedFilesErrorFollowsTheScenesPath) {
+    const std::string json = R"({
+      "camera": { "eye": [0, 0, 10], "look_at": [0, 0, 0] },
+      "materials": { "m": { "diffuse": [1, 0, 0] } },
+      "objects": [ { "type": "gltf", "file": "absent.glb" } ] })";
+    try {
+        vkrt::test::scene_from_text("absent_gltf", json);
+        ADD_FAILURE() << "no error";
+    } catch (const vkrt::SceneError& e) {
+        vkrt::test::expect_error_message(e.what(), "", {"objects[0].file", "absent.glb"});
+    }
+}
+
 // ------------------------------------------------------------------ bad files
 
 TEST(GltfErrors, AnIndexOutOfRangeNamesTheAccessor) {

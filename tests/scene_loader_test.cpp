@@ -587,7 +587,7 @@ TEST_F(SceneLoaderTest, UnknownMaterial) {
 
 TEST_F(SceneLoaderTest, UnknownTypes) {
     expect_error(Parts{.objects = R"([{"type": "cube", "material": "chalk"}])"},
-                 {": objects[0].type: unknown object type 'cube' (expected one of: sphere, triangle, quad, ring, cylinder, mesh, random_spheres, sphereflake, torus_knot)"});
+                 {": objects[0].type: unknown object type 'cube' (expected one of: sphere, triangle, quad, ring, cylinder, mesh, gltf, random_spheres, sphereflake, torus_knot)"});
     expect_error(Parts{.lights = R"([{"type": "spot", "position": [0, 0, 0]}])"},
                  {": lights[0].type: unknown light type 'spot'"});
 }

@@ -99,15 +99,16 @@ struct Unsupported {
 
 class GltfReader {
 public:
-    GltfReader(std::filesystem::path file, tinygltf::Model model, Scene& scene)
-        : file_(std::move(file)), model_(std::move(model)), scene_(scene) {}
+    GltfReader(std::filesystem::path file, tinygltf::Model model, Scene& scene, bool want_camera)
+        : file_(std::move(file)), model_(std::move(model)), scene_(scene), want_camera_(want_camera) {}
 
-    void read() {
+    // Everything under the default scene's roots, placed by `root`.
+    void read(const dmat4& root) {
         check_extensions();
         read_materials();
-        const std::vector<int> roots = scene_roots();
-        for (int root : roots) visit(root, dmat4(1.0), 0);
-        if (scene_.triangles.empty()) fail("the file's scene has no triangles to render");
+        const std::size_t before = scene_.triangles.size();
+        for (int node : scene_roots()) visit(node, root, 0);
+        if (scene_.triangles.size() == before) fail("the file's scene has no triangles to render");
         if (degenerate_ > 0) {
             warn(fmt::format("skipped {} of {} triangles that have zero area", degenerate_, triangles_read_));
         }
@@ -253,7 +254,7 @@ private:
         const dmat4 world = parent * local_matrix(n, element);
         if (n.mesh >= 0) add_mesh_instance(n.mesh, world, element);
         if (n.skin >= 0 || !n.weights.empty()) unsupported_.add("skins and morph targets (the mesh is used at rest)");
-        if (n.camera >= 0 && !camera_found_) read_camera(n.camera, world, element);
+        if (n.camera >= 0 && want_camera_ && !camera_found_) read_camera(n.camera, world, element);
         if (auto light = n.extensions.find("KHR_lights_punctual"); light != n.extensions.end()) {
             read_light(light->second, world, element);
         }
@@ -419,6 +420,7 @@ private:
     Unsupported unsupported_;
     std::size_t degenerate_ = 0;
     std::size_t triangles_read_ = 0;
+    bool want_camera_ = true;
     bool camera_found_ = false;
 };
 
@@ -455,8 +457,8 @@ Scene load_gltf_scene(const std::filesystem::path& file) {
     scene.camera.width = 800;
     scene.camera.height = 600;
     tinygltf::Model model = read_model(file, scene.warnings);
-    GltfReader reader(file, std::move(model), scene);
-    reader.read();
+    GltfReader reader(file, std::move(model), scene, true);
+    reader.read(dmat4(1.0));
     if (!reader.has_camera()) frame_scene(scene);
     // Global mode with its defaults (docs/gltf.md): 64 samples a pixel, and a uniform
     // sky as the environment, white when the file brings no light of its own, dim
@@ -466,6 +468,13 @@ Scene load_gltf_scene(const std::filesystem::path& file) {
     scene.render.spp = 64;
     scene.render.background = dvec3(scene.lights.empty() && !emits(scene) ? 1.0 : 0.05);
     return scene;
+}
+
+void add_gltf(const std::filesystem::path& file, const Transform& placement, Scene& scene) {
+    dmat4 root(placement.linear);
+    root[3] = glm::dvec4(placement.translate, 1.0);
+    GltfReader reader(file, read_model(file, scene.warnings), scene, false);
+    reader.read(root);
 }
 
 }  // namespace vkrt

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "scene/scene.hpp"
+#include "scene/transform.hpp"
 
 namespace vkrt {
 
@@ -14,5 +15,10 @@ namespace vkrt {
 // cannot render as the file means (textures, metallic materials, spot lights, ...)
 // becomes one warning per kind in Scene::warnings.
 Scene load_gltf_scene(const std::filesystem::path& file);
+
+// The file's meshes with their materials, and its point lights, placed by
+// `placement` and appended to `scene` (a JSON scene's "gltf" object); its camera
+// and the render defaults are not taken.
+void add_gltf(const std::filesystem::path& file, const Transform& placement, Scene& scene);
 
 }  // namespace vkrt

@@ -20,6 +20,7 @@
 
 #include "scene/estimator_spec.hpp"
 #include "scene/generators.hpp"
+#include "scene/gltf_loader.hpp"
 #include "scene/json_reader.hpp"
 #include "scene/limits.hpp"
 #include "scene/material_lookup.hpp"
@@ -372,6 +373,22 @@ void read_quad(const Node& n, const MaterialIndex& materials, std::vector<Triang
     out.push_back(quad(corner, e1, e2, material_of(n, materials)));
 }
 
+// {"type": "gltf", "file": F, "transform": T}: a glTF file's meshes, materials and
+// point lights, placed by T (docs/scene-format.md).
+void read_gltf_object(const Node& n, Scene& scene) {
+    n.allow_only({"type", "file", "transform"});
+    const Node file = n.required("file");
+    const std::string relative = file.string();
+    if (relative.empty()) file.fail("expected a file name, got an empty string");
+    const std::optional<Node> transform = n.find("transform");
+    const Transform t = transform ? read_transform(*transform) : Transform{};
+    try {
+        add_gltf(std::filesystem::path(n.file()).parent_path() / relative, t, scene);
+    } catch (const SceneError& e) {
+        file.fail(e.what());  // the glTF's own message after the scene's path to it
+    }
+}
+
 void read_objects(const Node& n, const MaterialIndex& materials, Scene& scene) {
     const MaterialLookup lookup = [&materials](const Node& name) { return material_named(name, materials); };
     Tolerated tolerated;
@@ -396,9 +413,11 @@ void read_objects(const Node& n, const MaterialIndex& materials, Scene& scene) {
             read_sphereflake(object, lookup, scene.spheres);
         } else if (t == "torus_knot") {
             read_torus_knot(object, lookup, scene);
+        } else if (t == "gltf") {
+            read_gltf_object(object, scene);
         } else {
             type.fail(fmt::format("unknown object type {} (expected one of: sphere, triangle, quad, ring, "
-                                  "cylinder, mesh, random_spheres, sphereflake, torus_knot)",
+                                  "cylinder, mesh, gltf, random_spheres, sphereflake, torus_knot)",
                                   json::quote_user(t)));
         }
     }
