@@ -34,7 +34,9 @@ std::vector<std::filesystem::path> repo_scenes() {
     std::vector<std::filesystem::path> scenes;
     for (const auto& entry : std::filesystem::recursive_directory_iterator(source_dir() / "scenes")) {
         const auto ext = entry.path().extension();
-        if (entry.is_regular_file() && (ext == ".json" || ext == ".jsonc")) scenes.push_back(entry.path());
+        if (entry.is_regular_file() && (ext == ".json" || ext == ".jsonc" || ext == ".glb" || ext == ".gltf")) {
+            scenes.push_back(entry.path());
+        }
     }
     std::sort(scenes.begin(), scenes.end());
     return scenes;

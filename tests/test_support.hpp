@@ -22,7 +22,7 @@ std::filesystem::path source_dir();
 // so that concurrent test runs do not share files.
 std::filesystem::path temp_dir(const std::string& name);
 
-// Every scene shipped under scenes/ (recursively), sorted.
+// Every scene shipped under scenes/ (recursively): JSON and glTF files, sorted.
 std::vector<std::filesystem::path> repo_scenes();
 
 // A test name for a scene parameter (one of repo_scenes()): its stem, with every
