@@ -1,0 +1,10 @@
+// libFuzzer harness: JSON scenes (parse_json_scene, meshes it names included).
+// Built with -DVKRT_FUZZ=ON and run by scripts/fuzz (docs/fuzzing.md).
+#include <cstddef>
+#include <cstdint>
+
+#include "harness.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    return vkrt::fuzz::run_one(vkrt::fuzz::Loader::Json, data, size);
+}
