@@ -43,7 +43,7 @@ std::string read_bytes(const fs::path& file) {
 
 std::vector<Input> inputs() {
     std::vector<Input> out;
-    for (Loader loader : {Loader::Json, Loader::Nff, Loader::Obj, Loader::Mtl}) {
+    for (Loader loader : {Loader::Json, Loader::Nff, Loader::Obj, Loader::Mtl, Loader::Gltf}) {
         for (const char* kind : {"corpus", "regressions"}) {
             const fs::path dir = test::source_dir() / "tests" / "fuzz" / kind / vkrt::fuzz::loader_name(loader);
             if (!fs::is_directory(dir)) continue;

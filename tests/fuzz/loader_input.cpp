@@ -1,6 +1,8 @@
 #include "loader_input.hpp"
 
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <utility>
@@ -62,6 +64,19 @@ constexpr std::string_view kSceneHead =
  "materials": {"grey": {"diffuse": [0.5, 0.5, 0.5]}},
  "objects": [)";
 
+// The buffer a .gltf input may name as "mesh.bin": an octahedron's 6 positions,
+// their 6 normals (the same unit vectors) and 24 unsigned short indices, 192 bytes
+// (the layout of tests/gltf_loader_test.cpp).
+std::string octahedron_buffer() {
+    const float p[18] = {1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1};
+    const std::uint16_t i[24] = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
+    std::string bytes(192, '\0');
+    std::memcpy(bytes.data(), p, 72);
+    std::memcpy(bytes.data() + 72, p, 72);
+    std::memcpy(bytes.data() + 144, i, 48);
+    return bytes;
+}
+
 // Fuzz inputs are bytes; a failed write is the harness's problem, not a finding
 // in the loader, so it is a std::runtime_error that no caller catches.
 void write_file(const fs::path& file, std::string_view bytes) {
@@ -83,6 +98,7 @@ std::string_view loader_name(Loader loader) {
     case Loader::Nff: return "nff";
     case Loader::Obj: return "obj";
     case Loader::Mtl: return "mtl";
+    case Loader::Gltf: return "gltf";
     }
     return "?";
 }
@@ -92,6 +108,7 @@ Scratch::Scratch(fs::path dir) : dir_(std::move(dir)) {
     write_file(dir_ / "mesh.obj", kMeshObj);
     write_file(dir_ / "mesh.mtl", kMeshMtl);
     write_file(dir_ / "mtl_user.obj", kMtlUserObj);
+    write_file(dir_ / "mesh.bin", octahedron_buffer());
 }
 
 std::optional<std::string> Scratch::load(Loader loader, std::string_view bytes) const {
@@ -115,6 +132,12 @@ std::optional<std::string> Scratch::load(Loader loader, std::string_view bytes) 
             write_file(dir_ / "input.mtl", bytes);
             load_mesh_object(dir_, R"({"type": "mesh", "file": "mtl_user.obj"})");
             break;
+        case Loader::Gltf: {
+            const fs::path file = dir_ / (bytes.substr(0, 4) == "glTF" ? "input.glb" : "input.gltf");
+            write_file(file, bytes);
+            load_scene(file);
+            break;
+        }
         }
     } catch (const SceneError& e) {
         return e.what();

@@ -10,9 +10,9 @@
 
 namespace vkrt::fuzz {
 
-enum class Loader { Json, Nff, Obj, Mtl };
+enum class Loader { Json, Nff, Obj, Mtl, Gltf };
 
-// "json", "nff", "obj", "mtl": the loader's directory under tests/fuzz/corpus/ and
+// "json", "nff", "obj", "mtl", "gltf": the loader's directory under tests/fuzz/corpus/ and
 // tests/fuzz/regressions/.
 std::string_view loader_name(Loader loader);
 
@@ -28,7 +28,9 @@ public:
     // Loads `bytes` as the loader's input: JSON and NFF as scene files (NFF read
     // from disk, so gzip is detected as for any file), OBJ as a mesh (geometry,
     // then with its MTL materials), MTL as the library of a fixed one-triangle
-    // OBJ. Returns the SceneError's message, or nothing when the input loaded.
+    // OBJ, glTF as a .glb file when it starts with the binary magic "glTF", else as
+    // a .gltf file (whose buffer mesh.bin, an octahedron, lies beside it). Returns
+    // the SceneError's message, or nothing when the input loaded.
     // Any other exception is a finding and propagates.
     std::optional<std::string> load(Loader loader, std::string_view bytes) const;
 
