@@ -1,6 +1,6 @@
-// The thin-lens camera (kernel/camera.glsl): the concentric disc map, rays that meet
-// on the plane in focus, and the blur of a sphere out of focus against its closed
-// form.
+// The thin-lens camera (kernel/camera.glsl): the concentric disc map and the blur of
+// a sphere out of focus against its closed form. Its rays' geometry is checked with
+// the pinhole's, in kernel_sampling_test.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -53,50 +53,6 @@ TEST(ConcentricDisc, IsUniformOnTheDisc) {
     EXPECT_NEAR(r2 / (n * n), 0.5, 1e-4);
     EXPECT_NEAR(double(inner) / (n * n), 0.25, 2e-3);  // the disc of radius 1/2
     for (int q : quadrant) EXPECT_EQ(q, n * n / 4);
-}
-
-// A camera at the origin looking down -z, 90 degrees over 4 x 2 pixels, so a pixel is
-// one unit on the plane at distance 1; a lens of radius 0.5 in focus at 3.
-Kernel lens_kernel(double lens_radius, double focus) {
-    vkrt::Scene scene;
-    scene.camera.eye = {0, 0, 0};
-    scene.camera.look_at = {0, 0, -1};
-    scene.camera.fov = 90;
-    scene.camera.width = 4;
-    scene.camera.height = 2;
-    scene.camera.lens_radius = lens_radius;
-    scene.camera.focus_distance = focus;
-    Kernel k;
-    k.params = vkrt::flatten_scene(scene).params;
-    return k;
-}
-
-TEST(ThinLens, RaysOfOnePixelMeetOnThePlaneInFocus) {
-    Kernel k = lens_kernel(0.5, 3.0);
-    for (const vec2 pixel : {vec2(2.0f, 1.0f), vec2(0.25f, 0.5f), vec2(3.5f, 1.75f)}) {
-        const Kernel::Ray pinhole = k.camera_ray(pixel.x, pixel.y);
-        const vec3 focus = pinhole.origin + (3.0f / -pinhole.dir.z) * pinhole.dir;
-        for (const vec2 u : {vec2(0.5f), vec2(0.9f, 0.1f), vec2(0.0f, 0.3f), vec2(0.7f, 1.0f)}) {
-            const Kernel::Ray r = k.camera_ray(pixel.x, pixel.y, u);
-            EXPECT_EQ(r.origin.z, 0.0f) << "on the lens";
-            EXPECT_LE(std::hypot(r.origin.x, r.origin.y), 0.5f + 1e-6f) << "within its radius";
-            EXPECT_NEAR(glm::length(r.dir), 1.0f, 1e-6f);
-            const vec3 at = r.origin + (3.0f / -r.dir.z) * r.dir;
-            for (int c = 0; c < 3; ++c) EXPECT_NEAR(at[c], focus[c], 2e-6f) << "lens point " << u.x << ", " << u.y;
-        }
-    }
-    // The lens's edge: u = (1, 0.5) is its rightmost point, +x.
-    const Kernel::Ray edge = k.camera_ray(2.0f, 1.0f, vec2(1.0f, 0.5f));
-    EXPECT_NEAR(edge.origin.x, 0.5f, 1e-6f);
-    EXPECT_NEAR(edge.origin.y, 0.0f, 1e-6f);
-}
-
-TEST(ThinLens, WithoutARadiusItIsThePinhole) {
-    Kernel k = lens_kernel(0.0, 3.0);
-    const Kernel::Ray a = k.camera_ray(0.25f, 1.5f, vec2(0.9f, 0.2f));
-    const Kernel::Ray b = k.camera_ray(0.25f, 1.5f);
-    EXPECT_EQ(a.origin, b.origin);
-    EXPECT_EQ(a.dir, b.dir);
 }
 
 TEST(ThinLens, FeatureOnlyWithALens) {

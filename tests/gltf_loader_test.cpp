@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "scene/gltf_loader.hpp"
 #include "scene/load_scene.hpp"
 #include "scene/scene_error.hpp"
@@ -281,6 +283,22 @@ TEST(GltfErrors, AMissingNodeOrMeshIsNamed) {
                                      {"nodes[0].mesh", "mesh 3 does not exist"});
     vkrt::test::expect_error_message(load_error(write_gltf("cycle", gltf_json("mesh.bin", R"([{"mesh": 0, "children": [0]}])"))), "",
                                      {"nodes[0]"});
+}
+
+// Forty nodes that each list the next one twice would be placed 2^40 times.
+TEST(GltfErrors, AHierarchyThatMultipliesItsNodesIsRefused) {
+    std::string nodes = "[";
+    for (int i = 0; i < 40; ++i) nodes += fmt::format(R"({{"children": [{0}, {0}]}}, )", i + 1);
+    nodes += R"({"mesh": 0}])";
+    vkrt::test::expect_error_message(load_error(write_gltf("doubling", gltf_json("mesh.bin", nodes))), "",
+                                     {"doubling.gltf", "more than 100000 nodes"});
+}
+
+// Binary or JSON is told by the file's first bytes, not its name.
+TEST(Gltf, ABinaryFileUnderAnotherNameStillLoads) {
+    const std::filesystem::path glb = write_glb("renamed", gltf_json("", kOneNode), octahedron_bytes());
+    std::filesystem::copy_file(glb, glb.parent_path() / "model.gltf");
+    EXPECT_EQ(vkrt::load_scene(glb.parent_path() / "model.gltf").triangles.size(), 8u);
 }
 
 TEST(GltfErrors, AFlatteningTransformIsRefused) {

@@ -11,11 +11,13 @@ namespace {
 using vkrt::kernel::Kernel;
 using vkrt::kernel::uint;
 using vkrt::kernel::uvec4;
+using vkrt::kernel::vec2;
 using vkrt::kernel::vec3;
 
 // A camera at the origin looking down -z with a 90 degree vertical field of view on
-// a 4x2 image: one pixel is exactly one unit on the image plane at distance 1.
-Kernel kernel_for_camera(std::uint32_t aa = 1, bool jitter = false) {
+// a 4x2 image: one pixel is exactly one unit on the image plane at distance 1; with
+// a lens of the given radius, in focus at `focus`.
+Kernel kernel_for_camera(std::uint32_t aa = 1, bool jitter = false, double lens_radius = 0.0, double focus = 1.0) {
     vkrt::Scene scene;
     scene.camera.eye = {0, 0, 0};
     scene.camera.look_at = {0, 0, -1};
@@ -24,6 +26,8 @@ Kernel kernel_for_camera(std::uint32_t aa = 1, bool jitter = false) {
     scene.camera.height = 2;
     scene.render.aa = aa;
     scene.render.jitter = jitter;
+    scene.camera.lens_radius = lens_radius;
+    scene.camera.focus_distance = focus;
     Kernel k;
     k.params = vkrt::flatten_scene(scene).params;
     k.HAS_JITTER = jitter;
@@ -52,6 +56,36 @@ TEST(Camera, RowsGrowDownwards) {
     EXPECT_GT(k.camera_ray(0.5f, 0.5f).dir.y, 0.0f);
     EXPECT_LT(k.camera_ray(0.5f, 1.5f).dir.y, 0.0f);
     EXPECT_LT(k.camera_ray(0.5f, 0.5f).dir.x, k.camera_ray(3.5f, 0.5f).dir.x);
+}
+
+// A lens of radius 0.5 in focus at 3: every ray of a pixel leaves the lens disc and
+// passes through the pinhole ray's point on the plane in focus.
+TEST(ThinLens, RaysOfOnePixelMeetOnThePlaneInFocus) {
+    Kernel k = kernel_for_camera(1, false, 0.5, 3.0);
+    for (const vec2 pixel : {vec2(2.0f, 1.0f), vec2(0.25f, 0.5f), vec2(3.5f, 1.75f)}) {
+        const Kernel::Ray pinhole = k.camera_ray(pixel.x, pixel.y);
+        const vec3 focus = pinhole.origin + (3.0f / -pinhole.dir.z) * pinhole.dir;
+        for (const vec2 u : {vec2(0.5f), vec2(0.9f, 0.1f), vec2(0.0f, 0.3f), vec2(0.7f, 1.0f)}) {
+            const Kernel::Ray r = k.camera_ray(pixel.x, pixel.y, u);
+            EXPECT_EQ(r.origin.z, 0.0f) << "on the lens";
+            EXPECT_LE(std::hypot(r.origin.x, r.origin.y), 0.5f + 1e-6f) << "within its radius";
+            EXPECT_NEAR(glm::length(r.dir), 1.0f, 1e-6f);
+            const vec3 at = r.origin + (3.0f / -r.dir.z) * r.dir;
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(at[c], focus[c], 2e-6f) << "lens point " << u.x << ", " << u.y;
+        }
+    }
+    // The lens's edge: u = (1, 0.5) is its rightmost point, +x.
+    const Kernel::Ray edge = k.camera_ray(2.0f, 1.0f, vec2(1.0f, 0.5f));
+    EXPECT_NEAR(edge.origin.x, 0.5f, 1e-6f);
+    EXPECT_NEAR(edge.origin.y, 0.0f, 1e-6f);
+}
+
+TEST(ThinLens, WithoutARadiusItIsThePinhole) {
+    Kernel k = kernel_for_camera(1, false, 0.0, 3.0);
+    const Kernel::Ray a = k.camera_ray(0.25f, 1.5f, vec2(0.9f, 0.2f));
+    const Kernel::Ray b = k.camera_ray(0.25f, 1.5f);
+    EXPECT_EQ(a.origin, b.origin);
+    EXPECT_EQ(a.dir, b.dir);
 }
 
 TEST(Subpixel, RegularGridCentresWithoutJitter) {

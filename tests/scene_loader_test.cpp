@@ -508,6 +508,13 @@ TEST_F(SceneLoaderTest, FieldOfViewIsStrictlyInsideZeroTo180) {
     }
 }
 
+TEST_F(SceneLoaderTest, ALensHasARadiusAndAFocusDistance) {
+    expect_error(Parts{.camera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "lens_radius": -0.1})"},
+                 {": camera.lens_radius: expected a number >= 0, got -0.1"});
+    expect_error(Parts{.camera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "lens_radius": 0.1, "focus_distance": 0})"},
+                 {": camera.focus_distance: expected a number > 0, got 0"});
+}
+
 TEST_F(SceneLoaderTest, ImageSizeLimits) {
     const std::string side = std::to_string(vkrt::limits::kMaxImageSide);
     expect_error(Parts{.camera = R"({"eye": [0, 1, 3], "look_at": [0, 1, 0], "width": 0})"},

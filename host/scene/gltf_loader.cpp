@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <fstream>
 #include <cstdint>
 #include <limits>
 #include <map>
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
@@ -28,6 +30,10 @@ namespace {
 
 using glm::dmat4;
 using glm::dvec3;
+
+// Node placements (a node under each of its parents counts once per path): far more
+// than any asset has, few enough to walk in a moment.
+constexpr std::size_t kMaxNodeVisits = 100'000;
 
 // The extensions read (docs/gltf.md); any other the file uses is named in a warning.
 const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
@@ -73,8 +79,10 @@ tinygltf::Model read_model(const std::filesystem::path& file, std::vector<std::s
     reader.SetImageLoader(skip_image, nullptr);
     tinygltf::Model model;
     std::string error, warning;
-    const std::string ext = file.extension().string();
-    const bool binary = ext == ".glb" || ext == ".GLB";
+    // Binary or JSON by the file's first bytes, the .glb magic "glTF", whatever its name.
+    char magic[4] = {};
+    std::ifstream(file, std::ios::binary).read(magic, 4);
+    const bool binary = std::string_view(magic, 4) == "glTF";
     const bool ok = binary ? reader.LoadBinaryFromFile(&model, &error, &warning, file.string())
                            : reader.LoadASCIIFromFile(&model, &error, &warning, file.string());
     const auto lines = [](std::string text) {
@@ -91,12 +99,6 @@ tinygltf::Model read_model(const std::filesystem::path& file, std::vector<std::s
     return model;
 }
 
-// What the loader counts to say once, at the end, per kind.
-struct Unsupported {
-    std::map<std::string, std::size_t> counts;  // what -> how many
-    void add(const std::string& what) { ++counts[what]; }
-};
-
 class GltfReader {
 public:
     GltfReader(std::filesystem::path file, tinygltf::Model model, Scene& scene, bool want_camera)
@@ -112,7 +114,7 @@ public:
         if (degenerate_ > 0) {
             warn(fmt::format("skipped {} of {} triangles that have zero area", degenerate_, triangles_read_));
         }
-        for (const auto& [what, count] : unsupported_.counts) warn(fmt::format("{} ({}): ignored", what, count));
+        for (const auto& [what, count] : unsupported_) warn(fmt::format("{} ({}): ignored", what, count));
     }
 
     bool has_camera() const { return camera_found_; }
@@ -125,6 +127,7 @@ private:
         throw SceneError(fmt::format("{}: {}: {}", file_.string(), element, what));
     }
     void warn(const std::string& what) { scene_.warnings.push_back(fmt::format("{}: {}", file_.string(), what)); }
+    void note_unsupported(const std::string& what) { ++unsupported_[what]; }
 
     void check_extensions() {
         for (const std::string& name : model_.extensionsRequired) {
@@ -147,7 +150,7 @@ private:
             m.name = g.name.empty() ? element : g.name;
             const std::vector<double>& base = g.pbrMetallicRoughness.baseColorFactor;
             if (base.size() == 4) m.diffuse = color(dvec3(base[0], base[1], base[2]), element + ".pbrMetallicRoughness.baseColorFactor");
-            if (base.size() == 4 && base[3] < 1.0) unsupported_.add("materials with a base colour alpha below 1, rendered opaque");
+            if (base.size() == 4 && base[3] < 1.0) note_unsupported("materials with a base colour alpha below 1, rendered opaque");
             double strength = 1.0;
             if (auto e = g.extensions.find("KHR_materials_emissive_strength"); e != g.extensions.end()) {
                 const tinygltf::Value& s = e->second.Get("emissiveStrength");
@@ -161,14 +164,14 @@ private:
                 m.emission = strength * color(dvec3(g.emissiveFactor[0], g.emissiveFactor[1], g.emissiveFactor[2]),
                                               element + ".emissiveFactor");
             }
-            if (g.pbrMetallicRoughness.metallicFactor > 0.0) unsupported_.add("metallic materials, rendered as diffuse base colour");
+            if (g.pbrMetallicRoughness.metallicFactor > 0.0) note_unsupported("metallic materials, rendered as diffuse base colour");
             if (g.pbrMetallicRoughness.baseColorTexture.index >= 0 || g.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 ||
                 g.emissiveTexture.index >= 0) {
-                unsupported_.add("materials with textures, rendered with their factors");
+                note_unsupported("materials with textures, rendered with their factors");
             }
-            if (g.normalTexture.index >= 0) unsupported_.add("normal maps");
-            if (g.occlusionTexture.index >= 0) unsupported_.add("occlusion maps (not needed by a path tracer)");
-            if (g.alphaMode != "OPAQUE") unsupported_.add(fmt::format("materials with alphaMode {}, rendered opaque", g.alphaMode));
+            if (g.normalTexture.index >= 0) note_unsupported("normal maps");
+            if (g.occlusionTexture.index >= 0) note_unsupported("occlusion maps (not needed by a path tracer)");
+            if (g.alphaMode != "OPAQUE") note_unsupported(fmt::format("materials with alphaMode {}, rendered opaque", g.alphaMode));
             materials_.push_back(static_cast<std::uint32_t>(scene_.materials.size()));
             scene_.materials.push_back(m);
         }
@@ -250,10 +253,17 @@ private:
         const std::string element = fmt::format("nodes[{}]", index);
         // A node hierarchy is a forest; deeper than the nodes there are means a cycle.
         if (static_cast<std::size_t>(depth) > model_.nodes.size()) fail_at(element, "the node is its own ancestor");
+        // Nodes listed as children of several parents are visited once per path, and
+        // a few dozen nodes that each list the next twice would take 2^N visits.
+        if (++visits_ > kMaxNodeVisits) {
+            fail(fmt::format("the node hierarchy places more than {} nodes (nodes listed as the children of "
+                             "several parents are placed once for each)",
+                             kMaxNodeVisits));
+        }
         const tinygltf::Node& n = model_.nodes[static_cast<std::size_t>(index)];
         const dmat4 world = parent * local_matrix(n, element);
         if (n.mesh >= 0) add_mesh_instance(n.mesh, world, element);
-        if (n.skin >= 0 || !n.weights.empty()) unsupported_.add("skins and morph targets (the mesh is used at rest)");
+        if (n.skin >= 0 || !n.weights.empty()) note_unsupported("skins and morph targets (the mesh is used at rest)");
         if (n.camera >= 0 && want_camera_ && !camera_found_) read_camera(n.camera, world, element);
         if (auto light = n.extensions.find("KHR_lights_punctual"); light != n.extensions.end()) {
             read_light(light->second, world, element);
@@ -261,40 +271,22 @@ private:
         for (int child : n.children) visit(child, world, depth + 1);
     }
 
-    Transform transform_of(const dmat4& m, const std::string& element) const {
-        Transform t;
-        t.linear = glm::dmat3(m);
-        t.translate = dvec3(m[3]);
-        const double det = glm::determinant(t.linear);
-        if (!(std::abs(det) > 0.0)) fail_at(element, "the node's transform flattens its mesh (determinant 0)");
-        // A positive multiple of the inverse transpose: the cofactor matrix over the
-        // determinant's sign, scaled so that no entry exceeds 1.
-        glm::dmat3 cof = glm::transpose(glm::inverse(t.linear)) * det;
-        if (det < 0.0) cof = -cof;
-        double biggest = 0.0;
-        for (int c = 0; c < 3; ++c) {
-            for (int r = 0; r < 3; ++r) biggest = std::max(biggest, std::abs(cof[c][r]));
-        }
-        t.normal_matrix = cof / biggest;
-        t.mirrors = det < 0.0;
-        return t;
-    }
-
     void add_mesh_instance(int mesh_index, const dmat4& world, const std::string& node) {
         if (static_cast<std::size_t>(mesh_index) >= model_.meshes.size()) {
             fail_at(node + ".mesh", fmt::format("mesh {} does not exist (the file has {})", mesh_index, model_.meshes.size()));
         }
         const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(mesh_index)];
-        const Transform t = transform_of(world, node);
+        const std::optional<Transform> t = affine_transform(glm::dmat3(world), dvec3(world[3]));
+        if (!t) fail_at(node, "the node's transform flattens its mesh (determinant 0)");
         for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
             const tinygltf::Primitive& prim = mesh.primitives[p];
             const std::string element = fmt::format("meshes[{}].primitives[{}]", mesh_index, p);
             if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) {
-                unsupported_.add("primitives that are not TRIANGLES (points, lines, strips, fans)");
+                note_unsupported("primitives that are not TRIANGLES (points, lines, strips, fans)");
                 continue;
             }
-            if (!prim.targets.empty()) unsupported_.add("skins and morph targets (the mesh is used at rest)");
-            add_primitive(prim, t, element);
+            if (!prim.targets.empty()) note_unsupported("skins and morph targets (the mesh is used at rest)");
+            add_primitive(prim, *t, element);
         }
     }
 
@@ -332,12 +324,10 @@ private:
             mesh.faces.push_back(f);
         }
         transform_mesh(mesh, t);
-        for (const dvec3& p : mesh.positions) {
-            if (max_abs(p) > json::kMaxMagnitude) {
-                fail_at(element, fmt::format("a vertex, placed by its nodes, lies at {}, beyond the largest coordinate "
-                                             "allowed ({})",
-                                             json::format_vec3(p), json::kMaxMagnitude));
-            }
+        if (const std::optional<dvec3> p = vertex_beyond_limit(mesh)) {
+            fail_at(element, fmt::format("a vertex, placed by its nodes, lies at {}, beyond the largest coordinate "
+                                         "allowed ({})",
+                                         json::format_vec3(*p), json::kMaxMagnitude));
         }
         MeshOptions options;
         options.smooth = smooth;
@@ -349,7 +339,7 @@ private:
             options.material = materials_[static_cast<std::size_t>(prim.material)];
         } else {
             options.material = default_material();
-            unsupported_.add("primitives without a material: the glTF default material, metallic, rendered as white diffuse");
+            note_unsupported("primitives without a material: the glTF default material, metallic, rendered as white diffuse");
         }
         triangles_read_ += mesh.faces.size();
         degenerate_ += append_mesh(mesh, options, scene_);
@@ -361,7 +351,7 @@ private:
         }
         const tinygltf::Camera& c = model_.cameras[static_cast<std::size_t>(index)];
         if (c.type != "perspective") {
-            unsupported_.add("orthographic cameras (the view is framed instead)");
+            note_unsupported("orthographic cameras (the view is framed instead)");
             return;
         }
         const double fov = glm::degrees(c.perspective.yfov);
@@ -395,7 +385,7 @@ private:
         }
         const tinygltf::Light& l = model_.lights[static_cast<std::size_t>(i)];
         if (l.type != "point") {
-            unsupported_.add(fmt::format("{} lights", l.type));
+            note_unsupported(fmt::format("{} lights", l.type));
             return;
         }
         PointLight p;
@@ -408,7 +398,7 @@ private:
         // viewers do: a light of intensity I lights a surface facing it at distance r
         // with I / r^2 (docs/gltf.md).
         p.intensity = l.intensity;
-        if (l.range > 0.0) unsupported_.add("light ranges (lights reach everywhere)");
+        if (l.range > 0.0) note_unsupported("light ranges (lights reach everywhere)");
         scene_.lights.push_back(p);
     }
 
@@ -417,7 +407,8 @@ private:
     Scene& scene_;
     std::vector<std::uint32_t> materials_;  // glTF material -> scene material
     std::optional<std::uint32_t> default_material_;
-    Unsupported unsupported_;
+    std::map<std::string, std::size_t> unsupported_;  // what the image will not show -> how many, said once
+    std::size_t visits_ = 0;
     std::size_t degenerate_ = 0;
     std::size_t triangles_read_ = 0;
     bool want_camera_ = true;

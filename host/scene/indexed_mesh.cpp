@@ -106,6 +106,13 @@ bool needs_computed_normals(const IndexedMesh& mesh) {
 
 }  // namespace
 
+std::optional<dvec3> vertex_beyond_limit(const IndexedMesh& mesh) {
+    for (const dvec3& p : mesh.positions) {
+        if (max_abs(p) > json::kMaxMagnitude) return p;
+    }
+    return std::nullopt;
+}
+
 std::size_t append_mesh(const IndexedMesh& mesh, const MeshOptions& options, Scene& scene) {
     std::vector<dvec3> computed;
     if (options.smooth && needs_computed_normals(mesh)) computed = angle_weighted_normals(mesh);
@@ -130,14 +137,12 @@ std::size_t append_mesh(const IndexedMesh& mesh, const MeshOptions& options, Sce
 void add_mesh(const json::Node& object, IndexedMesh mesh, const Transform& t,
               const std::optional<json::Node>& transform, const MeshOptions& options, Scene& scene) {
     transform_mesh(mesh, t);
-    for (const dvec3& p : mesh.positions) {
-        if (max_abs(p) > json::kMaxMagnitude) {
-            const std::string message = fmt::format(
-                "the {}mesh has a vertex at {}, beyond the largest coordinate allowed ({})",
-                transform ? "transformed " : "", json::format_vec3(p), json::kMaxMagnitude);
-            if (transform) transform->fail(message);
-            object.fail(message);
-        }
+    if (const std::optional<dvec3> p = vertex_beyond_limit(mesh)) {
+        const std::string message =
+            fmt::format("the {}mesh has a vertex at {}, beyond the largest coordinate allowed ({})",
+                        transform ? "transformed " : "", json::format_vec3(*p), json::kMaxMagnitude);
+        if (transform) transform->fail(message);
+        object.fail(message);
     }
     const std::size_t skipped = append_mesh(mesh, options, scene);
     if (skipped == mesh.faces.size()) {

@@ -59,6 +59,9 @@ struct MeshOptions {
     std::vector<std::uint32_t> face_materials;
 };
 
+// The first vertex beyond json::kMaxMagnitude on some axis, if any.
+std::optional<glm::dvec3> vertex_beyond_limit(const IndexedMesh& mesh);
+
 // Appends the mesh's triangles, as they are, to scene.triangles, skipping the
 // degenerate ones; returns how many it skipped.
 std::size_t append_mesh(const IndexedMesh& mesh, const MeshOptions& options, Scene& scene);

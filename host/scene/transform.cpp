@@ -6,6 +6,7 @@
 #include <utility>
 
 #include <fmt/format.h>
+#include <glm/geometric.hpp>
 
 namespace vkrt {
 namespace {
@@ -83,6 +84,27 @@ Transform read_transform(const json::Node& n) {
     t.normal_matrix = rotate * glm::dmat3(glm::dvec3(inverse.x, 0, 0), glm::dvec3(0, inverse.y, 0),
                                           glm::dvec3(0, 0, inverse.z));
     t.mirrors = scale.x * scale.y * scale.z < 0.0;
+    return t;
+}
+
+std::optional<Transform> affine_transform(const glm::dmat3& linear, const glm::dvec3& translate) {
+    // The cofactor matrix is det times the inverse transpose; its columns are the
+    // cross products of the map's columns, with no division.
+    glm::dmat3 cofactor(glm::cross(linear[1], linear[2]), glm::cross(linear[2], linear[0]),
+                        glm::cross(linear[0], linear[1]));
+    const double det = glm::dot(linear[0], cofactor[0]);
+    if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return std::nullopt;
+    // A positive multiple of the inverse transpose, scaled so no entry exceeds 1.
+    if (det < 0.0) cofactor = -cofactor;
+    double biggest = 0.0;
+    for (int c = 0; c < 3; ++c) {
+        for (int r = 0; r < 3; ++r) biggest = std::max(biggest, std::abs(cofactor[c][r]));
+    }
+    Transform t;
+    t.linear = linear;
+    t.translate = translate;
+    t.normal_matrix = cofactor / biggest;
+    t.mirrors = det < 0.0;
     return t;
 }
 

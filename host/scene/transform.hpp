@@ -3,6 +3,8 @@
 // rotate about an axis, then translate. Kept apart from any one object type so that
 // every kind of geometry placed from a file (meshes, generated surfaces) moves the
 // same way.
+#include <optional>
+
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
@@ -32,6 +34,11 @@ struct Transform {
 // [x, y, z]}, every field optional. Fails at the offending field on a zero scale
 // factor or a zero rotation axis.
 Transform read_transform(const json::Node& n);
+
+// Any invertible linear map and a translation (a glTF node's matrix), with the
+// normal matrix from its cofactors; nothing when the map flattens space
+// (determinant 0).
+std::optional<Transform> affine_transform(const glm::dmat3& linear, const glm::dvec3& translate);
 
 // The rotation by `degrees` about `axis` (any non-zero length), right-handed.
 // Multiples of 90 degrees are exact (cos 90 is 0, not 6e-17), so a model turned a

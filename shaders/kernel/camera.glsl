@@ -19,8 +19,14 @@ vec2 concentric_disc(vec2 u) {
 
 // The pinhole's ray through continuous image position (x, y), in pixels from the
 // top-left corner of the image (row 0 at the top): from the eye, or the lens's centre.
-Ray camera_ray(float x, float y) {
+// The direction through (x, y), one unit long along the view axis.
+vec3 camera_direction(float x, float y) {
     precise vec3 d = camera_corner() + x * camera_right() + y * camera_down();
+    return d;
+}
+
+Ray camera_ray(float x, float y) {
+    vec3 d = camera_direction(x, y);
     // unit_vector (ray.glsl), not normalize(): both backends then start every eye ray
     // bit-identical, which matters where mirrors amplify an ULP (a sphereflake's
     // crevices, reflection after reflection, flipped whole pixels at depth 5 before;
@@ -35,7 +41,7 @@ Ray camera_ray(float x, float y, vec2 lens) {
     if (!(HAS_LENS && lens_scale() > 0.0f)) {
         return camera_ray(x, y);
     }
-    precise vec3 d = camera_corner() + x * camera_right() + y * camera_down();
+    vec3 d = camera_direction(x, y);
     // camera_right() and camera_down() are a pixel long, lens_scale() is the lens
     // radius in pixels; d is 1 long along the view axis, so focus_distance() * d lies
     // on the plane in focus.
