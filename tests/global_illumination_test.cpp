@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -196,6 +197,57 @@ TEST(GlobalPointLight, LambertianPlaneShowsRhoOverPiTimesIrradiance) {
     }
 }
 
+// The metallic-roughness BSDF (shaders/kernel/bsdf.glsl, microfacet.glsl) in double:
+// Ashikhmin-Shirley's coupled diffuse lobe and the GGX lobe with Schlick's Fresnel.
+double metallic_roughness_bsdf(double base, double metallic, double roughness, glm::dvec3 n, glm::dvec3 wo,
+                               glm::dvec3 wi) {
+    const double co = glm::dot(n, wo), ci = glm::dot(n, wi);
+    const double f0 = 0.04 + (base - 0.04) * metallic, alpha = roughness * roughness, a2 = alpha * alpha;
+    const auto p5 = [](double x) { return x * x * x * x * x; };
+    const double diffuse = (1.0 - metallic) * base * (1.0 - f0) * 28.0 / (23.0 * M_PI) * (1.0 - p5(1.0 - ci / 2.0)) *
+                           (1.0 - p5(1.0 - co / 2.0));
+    const glm::dvec3 h = glm::normalize(wo + wi);
+    const double ch = glm::dot(n, h), k = (a2 - 1.0) * ch * ch + 1.0;
+    const double d = a2 / (M_PI * k * k);
+    const auto lambda = [&](double c) { return 0.5 * (std::sqrt(1.0 + a2 * (1.0 - c * c) / (c * c)) - 1.0); };
+    const double g2 = 1.0 / (1.0 + lambda(co) + lambda(ci));
+    const double fresnel = f0 + (1.0 - f0) * p5(1.0 - glm::dot(wo, h));
+    return diffuse + fresnel * d * g2 / (4.0 * co * ci);
+}
+
+TEST(GlobalPointLight, MetallicRoughnessPlaneShowsItsBsdfTimesIrradiance) {
+    constexpr double kIntensity = 3.0;
+    const glm::dvec3 light(0.3, 2.0, -0.2);
+    for (const auto& [base, metallic, roughness] : {std::tuple{0.6, 0.0, 0.5}, {0.9, 1.0, 0.3}, {0.7, 0.4, 0.8}}) {
+        SCOPED_TRACE(testing::Message() << "base " << base << " metallic " << metallic << " roughness " << roughness);
+        const Scene scene = test::scene_from_text("pbr_plane", fmt::format(R"({{
+          "camera": {{ "eye": [0, 3, 4], "look_at": [0, 0, 0], "fov": 50, "width": 32, "height": 24 }},
+          "render": {{ "mode": "global", "spp": 1, "jitter": false, "max_bounces": 2 }},
+          "materials": {{ "m": {{ "base_color": [{0}, {0}, {0}], "metallic": {1}, "roughness": {2} }} }},
+          "lights": [ {{ "type": "point", "position": [0.3, 2.0, -0.2], "intensity": 3 }} ],
+          "objects": [ {{ "type": "quad", "corner": [-50, 0, -50], "edge1": [0, 0, 100], "edge2": [100, 0, 0],
+                         "material": "m" }} ]
+        }})", base, metallic, roughness));
+        const FlatScene gpu = flatten_scene(scene);
+        kernel::Kernel k = make_kernel(gpu);
+        const RenderOutcome cpu = test::render_cpu(scene);
+        const RenderOutcome vulkan = test::render_vulkan(scene);
+        for (auto [x, y] : {std::pair{3u, 20u}, {16u, 12u}, {28u, 6u}, {0u, 23u}, {20u, 14u}, {17u, 11u}}) {
+            const kernel::Kernel::Ray ray = k.camera_ray(float(x) + 0.5f, float(y) + 0.5f);
+            const glm::dvec3 origin = glm::dvec3(ray.origin) + gpu.origin, dir(ray.dir);
+            const glm::dvec3 p = origin + (-origin.y / dir.y) * dir;
+            const glm::dvec3 to_light = light - p;
+            const double r2 = glm::dot(to_light, to_light);
+            const glm::dvec3 wi = to_light / std::sqrt(r2);
+            const double expected = metallic_roughness_bsdf(base, metallic, roughness, glm::dvec3(0, 1, 0), -dir, wi) *
+                                    kIntensity * wi.y / r2;
+            const std::size_t i = 3 * (std::size_t(y) * 32 + x);
+            EXPECT_NEAR(cpu.image.rgb[i], expected, 1e-4 * expected) << "cpu, pixel " << x << "," << y;
+            EXPECT_NEAR(vulkan.image.rgb[i], expected, 1e-4 * expected) << "vulkan, pixel " << x << "," << y;
+        }
+    }
+}
+
 // ------------------------------------------ estimators agree where they are unbiased
 
 // Per pixel, the mean radiance (over channels) of its samples and the variance of
@@ -263,6 +315,20 @@ TEST(GlobalEstimators, UnbiasedOnesAgreePixelByPixel) {
         EXPECT_GT(standard_error, 0.0);
         EXPECT_LT(std::abs(diff), 4.0 * standard_error) << "hemisphere " << int(h);
     }
+}
+
+// The same with the metallic-roughness material: its rough lobe's visible-normal
+// density is part of the mixture the MIS weights use.
+TEST(GlobalEstimators, UnbiasedOnesAgreeOnMetallicRoughness) {
+    Scene scene = test::load_at_size(test::source_dir() / "scenes" / "materials.json", 16, 12);
+    scene.render.spp = 2048;
+    scene.render.nee = true;
+    const PixelMeans nee = pixel_means(scene);
+    scene.render.nee = false;
+    const auto [diff, standard_error] = paired_difference(pixel_means(scene), nee);
+    EXPECT_GT(standard_error, 0.0);
+    EXPECT_LT(std::abs(diff), 4.0 * standard_error) << "difference " << diff;
+    std::printf("difference %.3g, standard error %.3g\n", diff, standard_error);
 }
 
 // Each scene of the error-against-time report: next-event estimation with Sobol

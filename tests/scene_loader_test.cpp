@@ -561,6 +561,49 @@ TEST_F(SceneLoaderTest, MaterialRanges) {
     expect_error(Parts{.materials = R"({"m": {"ior": 0}})"}, {": materials.m.ior: expected a number > 0, got 0"});
 }
 
+TEST_F(SceneLoaderTest, MetallicRoughnessMaterials) {
+    const Scene s = load(Parts{.render = R"({"mode": "global"})",
+                               .materials = R"({"gold": {"base_color": [1, 0.8, 0.3], "metallic": 1, "roughness": 0.25,
+                                                         "emission": [0, 0, 1]},
+                                                "plastic": {"roughness": 0.5}, "chalk": {}})"}
+                             .text());
+    ASSERT_EQ(s.materials.size(), 3u);
+    ASSERT_TRUE(s.materials[0].metallic_roughness.has_value());
+    expect_vec(s.materials[0].metallic_roughness->base_color, {1, 0.8, 0.3});
+    EXPECT_DOUBLE_EQ(s.materials[0].metallic_roughness->metallic, 1.0);
+    EXPECT_DOUBLE_EQ(s.materials[0].metallic_roughness->roughness, 0.25);
+    expect_vec(s.materials[0].emission, {0, 0, 1});
+    // The defaults: a white dielectric.
+    ASSERT_TRUE(s.materials[1].metallic_roughness.has_value());
+    expect_vec(s.materials[1].metallic_roughness->base_color, {1, 1, 1});
+    EXPECT_DOUBLE_EQ(s.materials[1].metallic_roughness->metallic, 0.0);
+    EXPECT_DOUBLE_EQ(s.materials[1].metallic_roughness->roughness, 0.5);
+    EXPECT_TRUE(s.warnings.empty());
+    EXPECT_FALSE(load(Parts{}.text()).materials[0].metallic_roughness.has_value()) << "Phong by default";
+
+    expect_error(Parts{.materials = R"({"m": {"metallic": 1, "diffuse": [1, 1, 1]}})"},
+                 {": materials.m.diffuse: a metallic-roughness material (base_color, metallic, roughness) has no Phong fields"});
+    expect_error(Parts{.materials = R"({"m": {"roughness": 1.5}})"},
+                 {": materials.m.roughness: expected a number between 0 and 1, got 1.5"});
+    expect_error(Parts{.materials = R"({"m": {"metallic": -0.1}})"},
+                 {": materials.m.metallic: expected a number between 0 and 1, got -0.1"});
+    expect_error(Parts{.materials = R"({"m": {"base_color": [1, 2, 0]}})"},
+                 {": materials.m.base_color[1]: expected a number between 0 and 1, got 2"});
+}
+
+// Local mode and the paper's estimator shade the diffuse lobe alone, and say so.
+TEST_F(SceneLoaderTest, MetallicRoughnessOutsideThePathEstimatorIsWarnedOf) {
+    const std::string materials = R"({"gold": {"metallic": 1}, "chalk": {"diffuse": [1, 1, 1]}, "plastic": {"roughness": 0}})";
+    const Scene local = load(Parts{.materials = materials}.text());
+    ASSERT_EQ(local.warnings.size(), 1u);
+    EXPECT_NE(local.warnings[0].find("materials 'gold', 'plastic' shaded by the diffuse lobe alone: local mode"),
+              std::string::npos)
+        << local.warnings[0];
+    const Scene paper = load(Parts{.render = R"({"mode": "global", "estimator": "paper"})", .materials = materials}.text());
+    ASSERT_EQ(paper.warnings.size(), 1u);
+    EXPECT_NE(paper.warnings[0].find("the paper estimator"), std::string::npos) << paper.warnings[0];
+}
+
 TEST_F(SceneLoaderTest, LightRanges) {
     expect_error(Parts{.lights = R"([{"type": "point", "position": [0, 0, 0], "intensity": -1}])"},
                  {": lights[0].intensity: expected a number >= 0, got -1"});

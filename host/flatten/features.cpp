@@ -61,6 +61,7 @@ FeatureSet analyze_features(const Scene& scene) {
     bool emission = false;
     bool reflection = false;
     bool refraction = false;
+    bool microfacet = false;
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         const Material& m = scene.materials[i];
         if (!used[i]) continue;
@@ -68,6 +69,7 @@ FeatureSet analyze_features(const Scene& scene) {
         emission = emission || is_nonzero(m.emission);
         reflection = reflection || is_nonzero(m.reflect);
         refraction = refraction || is_nonzero(m.transmit);
+        microfacet = microfacet || m.metallic_roughness.has_value();
     }
 
     f.set(Feature::HAS_SPHERES, !scene.spheres.empty());
@@ -104,6 +106,8 @@ FeatureSet analyze_features(const Scene& scene) {
     f.set(Feature::HAS_REFLECTION, secondary && reflection);
     f.set(Feature::HAS_REFRACTION, secondary && refraction);
     f.set(Feature::HAS_AREA_LIGHTS, area_lights);
+    // Local mode shades a metallic-roughness material by its diffuse lobe (scene.hpp).
+    f.set(Feature::HAS_MICROFACET, microfacet && global);
     return f;
 }
 

@@ -75,10 +75,24 @@ void set_camera(const Camera& cam, bool corners, const dvec3& origin, kernel::Pa
     kernel::set_focus_distance(p, static_cast<float>(cam.focus_distance.value_or(glm::length(cam.look_at - cam.eye))));
 }
 
+// The narrowest GGX lobe: alpha = roughness^2 down to this, so that a roughness of 0
+// (a polished metal) stays a lobe that next-event estimation and MIS can weigh. Its
+// peak, 1 / (pi alpha^2), is far inside float's range.
+constexpr double kMinGgxAlpha = 1e-3;
+
 kernel::Material flatten(const Material& m) {
+    if (const auto& pbr = m.metallic_roughness) {
+        // glTF 2.0 appendix B: dielectrics reflect 4% at normal incidence (ior 1.5),
+        // metals their base colour; metals have no diffuse lobe.
+        const dvec3 f0 = glm::mix(dvec3(0.04), pbr->base_color, pbr->metallic);
+        const double alpha = std::max(pbr->roughness * pbr->roughness, kMinGgxAlpha);
+        return kernel::Material(to_vec4((1.0 - pbr->metallic) * pbr->base_color, 1.0), vec4(0.0f),
+                                to_vec4(dvec3(0.0), m.shininess), to_vec4(dvec3(0.0), m.ior),
+                                to_vec4(m.emission, 1.0), to_vec4(f0, alpha));
+    }
     return kernel::Material(to_vec4(m.diffuse, m.kd), to_vec4(m.specular, m.ks),
                             to_vec4(m.reflect, m.shininess), to_vec4(m.transmit, m.ior),
-                            to_vec4(m.emission, m.fresnel ? 1.0 : 0.0));
+                            to_vec4(m.emission, m.fresnel ? 1.0 : 0.0), vec4(0.0f));
 }
 
 // Which shape a Triangle record holds (kernel::Triangle meta.z): a parallelogram with

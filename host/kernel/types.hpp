@@ -25,7 +25,7 @@ using uint = std::uint32_t;
 static_assert(sizeof(vec4) == 16 && sizeof(uvec4) == 16);
 static_assert(sizeof(Sphere) == 32);
 static_assert(sizeof(Triangle) == 112);
-static_assert(sizeof(Material) == 80);
+static_assert(sizeof(Material) == 96);
 static_assert(sizeof(PointLight) == 32);
 static_assert(sizeof(Ring) == 48);
 static_assert(sizeof(Cylinder) == 48);

@@ -140,16 +140,20 @@ private:
         }
     }
 
-    // Base colour as the diffuse colour, emission as emissive factor times strength.
-    // Until the metallic-roughness BSDF exists, everything else is listed as ignored.
+    // The metallic-roughness factors, emission as emissive factor times strength;
+    // textures are listed as ignored.
     void read_materials() {
         for (std::size_t i = 0; i < model_.materials.size(); ++i) {
             const tinygltf::Material& g = model_.materials[i];
             const std::string element = fmt::format("materials[{}]", i);
             Material m;
             m.name = g.name.empty() ? element : g.name;
-            const std::vector<double>& base = g.pbrMetallicRoughness.baseColorFactor;
-            if (base.size() == 4) m.diffuse = color(dvec3(base[0], base[1], base[2]), element + ".pbrMetallicRoughness.baseColorFactor");
+            const tinygltf::PbrMetallicRoughness& pbr = g.pbrMetallicRoughness;
+            Material::MetallicRoughness& mr = m.metallic_roughness.emplace();
+            const std::vector<double>& base = pbr.baseColorFactor;
+            if (base.size() == 4) mr.base_color = unit(dvec3(base[0], base[1], base[2]), element + ".pbrMetallicRoughness.baseColorFactor");
+            mr.metallic = unit(pbr.metallicFactor, element + ".pbrMetallicRoughness.metallicFactor");
+            mr.roughness = unit(pbr.roughnessFactor, element + ".pbrMetallicRoughness.roughnessFactor");
             if (base.size() == 4 && base[3] < 1.0) note_unsupported("materials with a base colour alpha below 1, rendered opaque");
             double strength = 1.0;
             if (auto e = g.extensions.find("KHR_materials_emissive_strength"); e != g.extensions.end()) {
@@ -164,7 +168,6 @@ private:
                 m.emission = strength * color(dvec3(g.emissiveFactor[0], g.emissiveFactor[1], g.emissiveFactor[2]),
                                               element + ".emissiveFactor");
             }
-            if (g.pbrMetallicRoughness.metallicFactor > 0.0) note_unsupported("metallic materials, rendered as diffuse base colour");
             if (g.pbrMetallicRoughness.baseColorTexture.index >= 0 || g.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 ||
                 g.emissiveTexture.index >= 0) {
                 note_unsupported("materials with textures, rendered with their factors");
@@ -177,6 +180,18 @@ private:
         }
     }
 
+    double unit(double v, const std::string& element) const {
+        if (!(v >= 0.0 && v <= 1.0)) fail_at(element, fmt::format("expected a number from 0 to 1, got {}", v));
+        return v;
+    }
+
+    dvec3 unit(dvec3 c, const std::string& element) const {
+        for (int k = 0; k < 3; ++k) {
+            if (!(c[k] >= 0.0 && c[k] <= 1.0)) fail_at(element, fmt::format("expected components from 0 to 1, got {}", c[k]));
+        }
+        return c;
+    }
+
     dvec3 color(dvec3 c, const std::string& element) const {
         for (int k = 0; k < 3; ++k) {
             if (!(c[k] >= 0.0 && c[k] <= 1e6)) fail_at(element, fmt::format("expected components from 0 to 1e6, got {}", c[k]));
@@ -184,13 +199,12 @@ private:
         return c;
     }
 
-    // The glTF default material (specification 3.9.6): white, rough; metallic too,
-    // which is listed as ignored when a primitive uses it.
+    // The glTF default material (specification 3.9.6): white, metallic and rough.
     std::uint32_t default_material() {
         if (!default_material_) {
             Material m;
             m.name = "glTF default";
-            m.diffuse = dvec3(1.0);
+            m.metallic_roughness = Material::MetallicRoughness{.base_color = dvec3(1.0), .metallic = 1.0, .roughness = 1.0};
             default_material_ = static_cast<std::uint32_t>(scene_.materials.size());
             scene_.materials.push_back(m);
         }
@@ -339,7 +353,6 @@ private:
             options.material = materials_[static_cast<std::size_t>(prim.material)];
         } else {
             options.material = default_material();
-            note_unsupported("primitives without a material: the glTF default material, metallic, rendered as white diffuse");
         }
         triangles_read_ += mesh.faces.size();
         degenerate_ += append_mesh(mesh, options, scene_);

@@ -111,6 +111,12 @@ double Node::number_above(double lo) const {
     return v;
 }
 
+double Node::number_between(double lo, double hi) const {
+    const double v = number();
+    if (!(v >= lo && v <= hi)) fail(fmt::format("expected a number between {} and {}, got {}", lo, hi, format_number()));
+    return v;
+}
+
 double Node::number_between_exclusive(double lo, double hi) const {
     const double v = number();
     if (!(v > lo && v < hi)) {
@@ -166,6 +172,10 @@ glm::dvec3 Node::vec3() const {
 
 glm::dvec3 Node::color() const {
     return triple([](const Node& n) { return n.number_at_least(0.0); });
+}
+
+glm::dvec3 Node::unit_color() const {
+    return triple([](const Node& n) { return n.number_between(0.0, 1.0); });
 }
 
 }  // namespace vkrt::json

@@ -85,6 +85,7 @@ public:
     double number() const;
     double number_at_least(double lo) const;
     double number_above(double lo) const;
+    double number_between(double lo, double hi) const;  // inclusive
     double number_between_exclusive(double lo, double hi) const;
 
     // A whole number in [lo, hi]. 400.0 counts as whole; 2.5 does not.
@@ -96,6 +97,7 @@ public:
 
     // A colour or any other non-negative triple.
     glm::dvec3 color() const;
+    glm::dvec3 unit_color() const;  // each component in [0, 1]
 
 private:
     const Document::Value& value() const { return doc_->at(index_); }

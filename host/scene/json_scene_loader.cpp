@@ -15,6 +15,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
@@ -184,17 +185,38 @@ RenderSettings read_render(const Node& n) {
 }
 
 
+// glTF's metallic-roughness model (scene.hpp): base_color, metallic and roughness,
+// which replace the Phong fields rather than add to them.
+Material::MetallicRoughness read_metallic_roughness(const Node& n) {
+    for (const char* phong : {"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit", "ior", "fresnel"}) {
+        if (n.find(phong)) {
+            n.fail_field(phong, "a metallic-roughness material (base_color, metallic, roughness) has no Phong fields; "
+                                "give one model or the other");
+        }
+    }
+    Material::MetallicRoughness pbr;
+    if (auto v = n.find("base_color")) pbr.base_color = v->unit_color();
+    if (auto v = n.find("metallic")) pbr.metallic = v->number_between(0.0, 1.0);
+    if (auto v = n.find("roughness")) pbr.roughness = v->number_between(0.0, 1.0);
+    return pbr;
+}
+
 Material read_material(const std::string& name, const Node& n) {
-    n.allow_only({"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit", "ior", "fresnel", "emission"});
+    n.allow_only({"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit", "ior", "fresnel", "emission",
+                  "base_color", "metallic", "roughness"});
     Material m;
     m.name = name;
+    if (auto v = n.find("emission")) m.emission = v->color();
+    if (n.find("base_color") || n.find("metallic") || n.find("roughness")) {
+        m.metallic_roughness = read_metallic_roughness(n);
+        return m;
+    }
     if (auto v = n.find("diffuse")) m.diffuse = v->color();
     if (auto v = n.find("kd")) m.kd = v->number_at_least(0.0);
     if (auto v = n.find("specular")) m.specular = v->color();
     if (auto v = n.find("ks")) m.ks = v->number_at_least(0.0);
     if (auto v = n.find("shininess")) m.shininess = v->number_at_least(0.0);
     if (auto v = n.find("ior")) m.ior = v->number_above(0.0);
-    if (auto v = n.find("emission")) m.emission = v->color();
     if (auto v = n.find("reflect")) m.reflect = v->color();
     if (auto v = n.find("transmit")) m.transmit = v->color();
     if (auto v = n.find("fresnel")) m.fresnel = v->boolean();
@@ -424,6 +446,24 @@ void read_objects(const Node& n, const MaterialIndex& materials, Scene& scene) {
     warn_tolerated(tolerated, n.file(), scene.warnings);
 }
 
+// Local mode and the paper's estimator have the paper's Phong model only: they shade
+// a metallic-roughness material by its diffuse lobe (scene.hpp), which the user is
+// told rather than left to find in the image.
+void warn_paper_models(Scene& scene) {
+    const bool paper = scene.render.mode == RenderMode::Local || scene.render.estimator == Estimator::Paper;
+    if (!paper) return;
+    std::vector<std::string> names;
+    for (const Material& m : scene.materials) {
+        if (m.metallic_roughness) names.push_back(json::quote_user(m.name));
+    }
+    if (names.empty()) return;
+    scene.warnings.push_back(fmt::format(
+        "{}: material{} {} shaded by the diffuse lobe alone: {} has the paper's Phong model only "
+        "(the path estimator of render.mode \"global\" renders metallic and roughness)",
+        scene.source.string(), names.size() == 1 ? "" : "s", fmt::join(names, ", "),
+        scene.render.mode == RenderMode::Local ? "local mode" : "the paper estimator"));
+}
+
 }  // namespace
 
 Scene load_json_scene(const std::filesystem::path& file) {
@@ -449,6 +489,7 @@ Scene parse_json_scene(const std::string& text, const std::filesystem::path& fil
     const MaterialIndex materials = read_materials(root.required("materials"), scene.materials);
     if (auto lights = root.find("lights")) read_lights(*lights, scene.lights);
     read_objects(root.required("objects"), materials, scene);
+    warn_paper_models(scene);
     return scene;
 }
 

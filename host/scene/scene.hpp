@@ -101,6 +101,16 @@ struct Material {
     double ior = 1.5;
     bool fresnel = true;  // glass splits transmit by the Fresnel reflectance (else constant weights)
     dvec3 emission{0.0};
+    // glTF's metallic-roughness model instead of the Phong fields above (which it
+    // leaves at their defaults, emission aside): a GGX lobe with reflectance
+    // mix(0.04, base_color, metallic) at normal incidence, over a diffuse lobe of
+    // (1 - metallic) base_color. Global mode only; local mode shades the diffuse lobe.
+    struct MetallicRoughness {
+        dvec3 base_color{1.0};
+        double metallic = 0.0;   // 0 to 1
+        double roughness = 1.0;  // 0 to 1; the GGX alpha is its square
+    };
+    std::optional<MetallicRoughness> metallic_roughness;
 };
 
 struct PointLight {

@@ -24,6 +24,7 @@
 #include "shade.glsl"
 #include "specular.glsl"
 #include "sample_result.glsl"
+#include "microfacet.glsl"
 #include "bsdf.glsl"
 #include "global.glsl"
 #include "sample.glsl"

@@ -2,6 +2,7 @@
 //
 //   diffuse  kd * diffuse / pi                                   Lambertian
 //   glossy   ks * specular * (n + 2) / (2 pi) * cos(alpha)^n     normalized Phong
+//   rough    GGX microfacet reflection (microfacet.glsl)          metallic-roughness
 //   mirror   reflect                                             a delta lobe
 //   glass    transmit, split by Fresnel (or all refracted with "fresnel": false),
 //            delta lobes
@@ -13,8 +14,21 @@
 // direction, so that a path's energy does not grow with the exponent, unlike the
 // paper's unnormalized highlight of local mode.
 //
+// A metallic-roughness material (HAS_MICROFACET) has the diffuse and the rough lobes
+// only. The rough lobe, of reflectance f0 at normal incidence, takes a share of the
+// light that grows toward grazing angles by Fresnel's law; the diffuse lobe, of
+// albedo (1 - metallic) base_color, gets what the rough lobe leaves, by Ashikhmin
+// and Shirley's coupling ("An Anisotropic Phong BRDF Model", 2000):
+//
+//   diffuse * (1 - f0) * 28 / (23 pi) * (1 - (1 - cos_i / 2)^5) (1 - (1 - cos_o / 2)^5)
+//
+// symmetric in wi and wo, and with the rough lobe reflecting at most
+// f0 + (1 - f0)(1 - cos_o)^5 from wo, never more than all the light in sum
+// (glTF's reference mix, (1 - F(wo.h)) diffuse / pi, exceeds 1 near grazing angles).
+
 // A scattering event picks one lobe group at random in proportion to its weight
-// (the mean of its colour): the smooth group (diffuse + glossy, sampled together as
+// (the mean of its colour; for the rough lobe, of its Fresnel reflectance toward wo):
+// the smooth group (diffuse + glossy + rough, sampled together as
 // a mixture), the mirror or the glass. Dividing by the chosen group's probability
 // keeps the estimate unbiased; next-event estimation and multiple importance
 // sampling (global.glsl) apply to the smooth group only, as no light sample can
@@ -24,12 +38,15 @@ struct Lobes {
     vec3 diffuse;     // kd * diffuse
     vec3 glossy;      // ks * specular (0 without HAS_SPECULAR)
     float shininess;
+    vec3 f0;          // the rough lobe's reflectance at normal incidence
+    float alpha;      // its GGX width; 0: no rough lobe (always without HAS_MICROFACET)
     vec3 mirror;      // reflect (0 without HAS_REFLECTION)
     vec3 glass;       // transmit (0 without HAS_REFRACTION)
     float ior;
     bool fresnel;
     float w_diffuse;  // the groups' selection weights: the means of their colours
     float w_glossy;
+    float w_rough;
     float w_mirror;
     float w_glass;
 };
@@ -38,30 +55,41 @@ float mean3(vec3 v) {
     return (v.x + v.y + v.z) * (1.0f / 3.0f);
 }
 
-Lobes material_lobes(Material m) {
+// The lobes of material m seen from a direction at cos(theta_o) = cos_o to the
+// shading normal, on which the rough lobe's selection weight depends.
+Lobes material_lobes(Material m, float cos_o) {
     Lobes l;
     l.diffuse = vec3(m.diffuse_kd) * m.diffuse_kd.w;
     l.glossy = HAS_SPECULAR ? vec3(m.specular_ks) * m.specular_ks.w : vec3(0.0f);
     l.shininess = m.reflect_shininess.w;
+    l.alpha = HAS_MICROFACET ? m.microfacet.w : 0.0f;
+    l.f0 = l.alpha > 0.0f ? vec3(m.microfacet) : vec3(0.0f);
     l.mirror = HAS_REFLECTION ? vec3(m.reflect_shininess) : vec3(0.0f);
     l.glass = HAS_REFRACTION ? vec3(m.transmit_ior) : vec3(0.0f);
     l.ior = m.transmit_ior.w;
     l.fresnel = m.emission_fresnel.w != 0.0f;
     l.w_diffuse = mean3(l.diffuse);
     l.w_glossy = mean3(l.glossy);
+    l.w_rough = 0.0f;
+    if (l.alpha > 0.0f) {
+        // The diffuse lobe's albedo seen from wo is its weight (the coupling's
+        // constant makes the cos_i factor integrate to 1).
+        bool above = cos_o > 0.0f;
+        l.w_diffuse = above ? mean3(l.diffuse * (vec3(1.0f) - l.f0)) * (1.0f - schlick_scalar(0.5f * cos_o)) : 0.0f;
+        l.w_rough = above ? mean3(fresnel_schlick(l.f0, cos_o)) : 0.0f;
+    }
     l.w_mirror = mean3(l.mirror);
     l.w_glass = mean3(l.glass);
     return l;
 }
 
 float lobes_total(Lobes l) {
-    return l.w_diffuse + l.w_glossy + l.w_mirror + l.w_glass;
+    return l.w_diffuse + l.w_glossy + l.w_rough + l.w_mirror + l.w_glass;
 }
 
-// The probability of picking the smooth group (diffuse + glossy).
-float smooth_probability(Lobes l) {
-    float total = lobes_total(l);
-    return total > 0.0f ? (l.w_diffuse + l.w_glossy) / total : 0.0f;
+// The smooth group's weight (diffuse + glossy + rough).
+float smooth_weight(Lobes l) {
+    return l.w_diffuse + l.w_glossy + l.w_rough;
 }
 
 // cos(alpha) for light arriving from wi and leaving toward wo: the cosine between wo
@@ -74,6 +102,11 @@ float phong_cos_alpha(vec3 n, vec3 wo, vec3 wi) {
 // pointing away from the surface; n the shading normal on their side).
 vec3 eval_smooth(Lobes l, vec3 n, vec3 wo, vec3 wi) {
     vec3 f = l.diffuse * (1.0f / PI);
+    if (HAS_MICROFACET && l.alpha > 0.0f) {
+        float coupling = (1.0f - schlick_scalar(0.5f * dot(n, wi))) * (1.0f - schlick_scalar(0.5f * dot(n, wo)));
+        f *= (vec3(1.0f) - l.f0) * (28.0f / 23.0f * coupling);
+        f += ggx_eval(l.f0, l.alpha, n, wo, wi);
+    }
     if (HAS_SPECULAR && l.w_glossy > 0.0f) {
         float c = phong_cos_alpha(n, wo, wi);
         if (c > 0.0f) {
@@ -84,10 +117,11 @@ vec3 eval_smooth(Lobes l, vec3 n, vec3 wo, vec3 wi) {
 }
 
 // The density over solid angle with which sample_smooth draws wi: the mixture of the
-// hemisphere density (diffuse) and the Phong lobe's (n + 1) / (2 pi) cos(alpha)^n
-// around the mirror direction (glossy), in proportion to their weights.
+// hemisphere density (diffuse), the Phong lobe's (n + 1) / (2 pi) cos(alpha)^n
+// around the mirror direction (glossy) and the visible normals' (rough), in
+// proportion to their weights.
 float pdf_smooth(Lobes l, Basis frame, vec3 wo, vec3 wi, uint hemisphere) {
-    float w = l.w_diffuse + l.w_glossy;
+    float w = smooth_weight(l);
     if (!(w > 0.0f)) {
         return 0.0f;
     }
@@ -99,16 +133,24 @@ float pdf_smooth(Lobes l, Basis frame, vec3 wo, vec3 wi, uint hemisphere) {
             pdf += l.w_glossy * ((l.shininess + 1.0f) / (2.0f * PI) * power(c, l.shininess));
         }
     }
+    if (HAS_MICROFACET && l.w_rough > 0.0f) {
+        pdf += l.w_rough * ggx_pdf(l.alpha, frame.n, wo, wi);
+    }
     return pdf / w;
 }
 
-// Draws wi from the smooth group: u0 picks diffuse or glossy, (u1, u2) the direction.
+// Draws wi from the smooth group: u0 picks diffuse, glossy or rough, (u1, u2) the
+// direction.
 // The glossy lobe is sampled exactly: cos(alpha) = u1^(1 / (n + 1)) around the mirror
 // direction of wo. The result may point below the surface (the caller ends the path
 // there: the lobes are zero on that side).
 vec3 sample_smooth(Lobes l, Basis frame, vec3 wo, uint hemisphere, float u0, float u1, float u2) {
-    float w = l.w_diffuse + l.w_glossy;
-    if (HAS_SPECULAR && l.w_glossy > 0.0f && u0 * w >= l.w_diffuse) {
+    float pick = u0 * smooth_weight(l);
+    if (HAS_MICROFACET && l.w_rough > 0.0f && pick >= l.w_diffuse + l.w_glossy) {
+        vec3 local = vec3(dot(wo, frame.t), dot(wo, frame.b), dot(wo, frame.n));
+        return from_basis(frame, ggx_sample(l.alpha, local, u1, u2));
+    }
+    if (HAS_SPECULAR && l.w_glossy > 0.0f && pick >= l.w_diffuse) {
         vec3 mirrored = (2.0f * dot(frame.n, wo)) * frame.n - wo;
         float c = power(u1, 1.0f / (l.shininess + 1.0f));
         float s = sqrt(max(0.0f, 1.0f - c * c));

@@ -51,3 +51,6 @@ FEATURE(26, GRID_SPLIT)
 FEATURE(27, HAS_TERMINATOR)
 // A thin lens instead of the pinhole (camera.glsl): the camera's lens_radius > 0.
 FEATURE(28, HAS_LENS)
+// The metallic-roughness material's GGX lobe (microfacet.glsl): global mode with a
+// material that has one.
+FEATURE(29, HAS_MICROFACET)

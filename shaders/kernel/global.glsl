@@ -106,7 +106,7 @@ Ray scatter_delta(Ray ray, Hit hit, vec3 p, Lobes lobes, float total, float pick
     Ray mirrored = Ray(offset_ray_origin(p, hit.geo_normal), mirror_direction(ray.dir, hit.normal));
     // Guarded so that a pick rounded up to `total` never lands on a group of weight 0.
     bool mirror = lobes.w_glass == 0.0f ||
-                  (lobes.w_mirror > 0.0f && pick < lobes.w_diffuse + lobes.w_glossy + lobes.w_mirror);
+                  (lobes.w_mirror > 0.0f && pick < smooth_weight(lobes) + lobes.w_mirror);
     if (mirror) {
         note_decision(13u);
         beta *= lobes.mirror * (total / lobes.w_mirror);
@@ -154,7 +154,7 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
         if (bounce >= max_bounces()) {
             return;
         }
-        Lobes lobes = material_lobes(m);
+        Lobes lobes = material_lobes(m, dot(hit.normal, -ray.dir));
         float total = lobes_total(lobes);
         if (!(total > 0.0f)) {
             return;
@@ -162,7 +162,7 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
         vec3 p = hit_point(ray, hit.t);
         vec3 wo = -ray.dir;
         Basis frame = basis_around(hit.normal);
-        float w_smooth = lobes.w_diffuse + lobes.w_glossy;
+        float w_smooth = smooth_weight(lobes);
         float p_smooth = w_smooth / total;
         uint slot = SLOT_PATH + bounce * BOUNCE_SLOTS;
         if ((HAS_POINT_LIGHTS || HAS_AREA_LIGHTS) && w_smooth > 0.0f) {
@@ -258,7 +258,7 @@ void paper_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
             s.radiance += beta * vec3(m.emission_fresnel);
             return;
         }
-        Lobes lobes = material_lobes(m);
+        Lobes lobes = material_lobes(m, dot(hit.normal, -ray.dir));
         float total = lobes_total(lobes);
         if (!(total > 0.0f)) {
             return;  // a black surface: its local term, and the sample, is 0
@@ -268,7 +268,7 @@ void paper_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
             return;
         }
         vec3 p = hit_point(ray, hit.t);
-        float w_smooth = lobes.w_diffuse + lobes.w_glossy;
+        float w_smooth = smooth_weight(lobes);
         // Drawn one statement each: C++ leaves the order of a call's arguments open.
         float pick = rng_1d(rng) * total;
         vec2 u = rng_2d(rng);

@@ -65,10 +65,12 @@ struct Material {
     vec4 transmit_ior;       // rgb transmittance, w = index of refraction
     vec4 emission_fresnel;   // rgb emitted radiance (front face only), w = 1: Fresnel-weighted
                              // reflection/refraction, 0: the constant weights reflect and transmit
+    vec4 microfacet;         // the metallic-roughness material's rough lobe (bsdf.glsl): rgb = its
+                             // reflectance at normal incidence, w = GGX alpha; w = 0: no such lobe
 };
 #define Material_FROM_TEXELS(b, i)                                                                   \
-    Material(fetch_vec4(b, 5u * (i)), fetch_vec4(b, 5u * (i) + 1u), fetch_vec4(b, 5u * (i) + 2u),     \
-             fetch_vec4(b, 5u * (i) + 3u), fetch_vec4(b, 5u * (i) + 4u))
+    Material(fetch_vec4(b, 6u * (i)), fetch_vec4(b, 6u * (i) + 1u), fetch_vec4(b, 6u * (i) + 2u),     \
+             fetch_vec4(b, 6u * (i) + 3u), fetch_vec4(b, 6u * (i) + 4u), fetch_vec4(b, 6u * (i) + 5u))
 
 // A point light: position in xyz; rgb = colour * intensity.
 struct PointLight {

@@ -1,0 +1,86 @@
+// The GGX microfacet reflection lobe of the metallic-roughness material (bsdf.glsl),
+// isotropic, in the local frame of the shading normal (z up):
+//
+//   f(wo, wi) = F(wo.h) D(h) G2(wo, wi) / (4 cos(theta_o) cos(theta_i)),  h = |wo + wi|
+//
+// D is the GGX (Trowbridge-Reitz) distribution of normals and G2 Smith's
+// height-correlated masking-shadowing (Walter et al., "Microfacet Models for
+// Refraction through Rough Surfaces", 2007; Heitz, "Understanding the
+// Masking-Shadowing Function in Microfacet-Based BRDFs", 2014); F is Schlick's
+// approximation of the Fresnel reflectance around the colour at normal incidence f0.
+// Light that scatters more than once between microfacets is not followed, so a
+// white rough lobe reflects less than all the light (tests/kernel_microfacet_test).
+//
+// Directions are drawn from the distribution of normals visible from wo (Heitz,
+// "Sampling the GGX Distribution of Visible Normals", JCGT 2018), whose density over
+// wi is D(h) G1(wo) / (4 cos(theta_o)): the sample's weight f cos(theta_i) / pdf is
+// then F G2 / G1(wo), never larger than F.
+
+// D(h) for cos(theta_h) = c: alpha^2 / (pi ((alpha^2 - 1) c^2 + 1)^2).
+float ggx_d(float c, float alpha) {
+    float a2 = alpha * alpha;
+    float k = (a2 - 1.0f) * (c * c) + 1.0f;
+    return a2 / (PI * k * k);
+}
+
+// Smith's Lambda for a direction at cos(theta) = c: (sqrt(1 + alpha^2 tan^2) - 1) / 2,
+// written without the difference of nearly equal numbers that loses it near the pole.
+float ggx_lambda(float c, float alpha) {
+    float c2 = c * c;
+    float a2t2 = alpha * alpha * max(0.0f, 1.0f - c2) / c2;
+    return a2t2 / (2.0f * (sqrt(1.0f + a2t2) + 1.0f));
+}
+
+float schlick_scalar(float cos_d) {
+    float m = clamp(1.0f - cos_d, 0.0f, 1.0f);
+    float m2 = m * m;
+    return m2 * m2 * m;
+}
+
+vec3 fresnel_schlick(vec3 f0, float cos_d) {
+    return f0 + (vec3(1.0f) - f0) * schlick_scalar(cos_d);
+}
+
+// The lobe's value f for unit directions wo, wi about the unit normal n (0 where
+// either lies below).
+vec3 ggx_eval(vec3 f0, float alpha, vec3 n, vec3 wo, vec3 wi) {
+    float co = dot(n, wo);
+    float ci = dot(n, wi);
+    if (!(co > 0.0f && ci > 0.0f)) {
+        return vec3(0.0f);
+    }
+    vec3 h = unit_vector(wo + wi);
+    float g2 = 1.0f / (1.0f + ggx_lambda(co, alpha) + ggx_lambda(ci, alpha));
+    return fresnel_schlick(f0, dot(wo, h)) * (ggx_d(dot(n, h), alpha) * g2 / (4.0f * co * ci));
+}
+
+// The density over solid angle with which ggx_sample draws wi.
+float ggx_pdf(float alpha, vec3 n, vec3 wo, vec3 wi) {
+    float co = dot(n, wo);
+    if (!(co > 0.0f && dot(n, wi) > 0.0f)) {
+        return 0.0f;
+    }
+    vec3 h = unit_vector(wo + wi);
+    float g1 = 1.0f / (1.0f + ggx_lambda(co, alpha));
+    return ggx_d(dot(n, h), alpha) * g1 / (4.0f * co);
+}
+
+// Draws local wi (z along the normal) for local wo (wo.z > 0) by a visible normal: the view is stretched to the
+// distribution of alpha = 1, where visible normals are a disc's projection onto the
+// hemisphere, the disc is warped by the fraction of it the view sees, and the
+// normal is unstretched. wi may lie below the surface (the caller ends the path).
+vec3 ggx_sample(float alpha, vec3 wo, float u1, float u2) {
+    vec3 v = unit_vector(vec3(alpha * wo.x, alpha * wo.y, wo.z));
+    float len2 = v.x * v.x + v.y * v.y;
+    vec3 t1 = len2 > 0.0f ? vec3(-v.y, v.x, 0.0f) / sqrt(len2) : vec3(1.0f, 0.0f, 0.0f);
+    vec3 t2 = cross(v, t1);
+    float r = sqrt(u1);
+    vec2 sc = sin_cos(2.0f * PI * u2);
+    float p1 = r * sc.y;
+    float p2 = r * sc.x;
+    float s = 0.5f * (1.0f + v.z);
+    p2 = (1.0f - s) * sqrt(max(0.0f, 1.0f - p1 * p1)) + s * p2;
+    vec3 n = p1 * t1 + p2 * t2 + sqrt(max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * v;
+    vec3 m = unit_vector(vec3(alpha * n.x, alpha * n.y, max(0.0f, n.z)));
+    return (2.0f * dot(wo, m)) * m - wo;
+}
