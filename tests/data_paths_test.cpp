@@ -24,7 +24,7 @@ const DeviceLimits& minimum() { return gpu::find_profile("minimum").limits; }
 
 FlatScene scene_with_arrays() {
     FlatScene scene;
-    scene.materials.resize(2);                   // 6 texels each
+    scene.materials.resize(2);                   // 9 texels each
     scene.spheres.resize(3);                     // 2 each
     scene.spheres[1].center_radius = glm::vec4(1.0f, 2.0f, 3.0f, 4.0f);
     scene.triangles.resize(1);                   // 7
@@ -38,19 +38,19 @@ TEST(ScenePack, ArraysFollowOneAnotherAndTheBasesSayWhere) {
     const gpu::ScenePack pack = gpu::pack_scene(scene, 16);
     // By id (kernel/arrays.glsl): materials, spheres, triangles, rings, ...
     EXPECT_EQ(pack.bases[0], 0u);
-    EXPECT_EQ(pack.bases[1], 12u);
-    EXPECT_EQ(pack.bases[2], 18u);
-    EXPECT_EQ(pack.bases[3], 25u);       // empty arrays take no room
-    EXPECT_EQ(pack.bases[6], 25u);
+    EXPECT_EQ(pack.bases[1], 18u);
+    EXPECT_EQ(pack.bases[2], 24u);
+    EXPECT_EQ(pack.bases[3], 31u);       // empty arrays take no room
+    EXPECT_EQ(pack.bases[6], 31u);
     // The uint arrays from the next multiple of 16 texels, counted in words.
     EXPECT_EQ(pack.words_start, 32u);
     EXPECT_EQ(pack.bases[gpu::kSceneArrays], 32u);
-    EXPECT_EQ(pack.bases[7], 0u);        // grid_nodes, in words
-    EXPECT_EQ(pack.bases[8], 3u);        // grid_refs
+    EXPECT_EQ(pack.bases[8], 0u);        // grid_nodes, in words
+    EXPECT_EQ(pack.bases[9], 3u);        // grid_refs
     EXPECT_EQ(pack.word_count, 8u);
     EXPECT_EQ(pack.texels.size(), 34u);
     // The element is where its base says, bit for bit.
-    EXPECT_EQ(std::memcmp(&pack.texels[12 + 2], &scene.spheres[1], sizeof(kernel::Sphere)), 0);
+    EXPECT_EQ(std::memcmp(&pack.texels[18 + 2], &scene.spheres[1], sizeof(kernel::Sphere)), 0);
     const auto* words = reinterpret_cast<const std::uint32_t*>(&pack.texels[32]);
     EXPECT_EQ(words[3 + 4], 11u);
 }
@@ -60,8 +60,8 @@ TEST(ScenePack, WithoutUintArraysNothingIsPadded) {
     scene.grid_nodes.clear();
     scene.grid_refs.clear();
     const gpu::ScenePack pack = gpu::pack_scene(scene, 16);
-    EXPECT_EQ(pack.words_start, 25u);
-    EXPECT_EQ(pack.texels.size(), 25u);
+    EXPECT_EQ(pack.words_start, 31u);
+    EXPECT_EQ(pack.texels.size(), 31u);
 }
 
 TEST(ScenePack, AnEmptySceneStillFillsOneTexel) {

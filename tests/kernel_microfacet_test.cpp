@@ -249,7 +249,7 @@ TEST(Ggx, WhiteFurnaceLosesOnlyTheMultipleScattering) {
 Kernel::Lobes lobes_of(Kernel& k, vec3 base_color, float metallic, float roughness, float cos_o) {
     const vec3 f0 = glm::mix(vec3(0.04f), base_color, metallic);
     const vkrt::kernel::Material m{vec4((1.0f - metallic) * base_color, 1.0f), vec4(0.0f), vec4(0.0f), vec4(0.0f, 0.0f, 0.0f, 1.5f),
-                             vec4(0.0f), vec4(f0, roughness * roughness)};
+                             vec4(0.0f), vec4(f0, roughness * roughness), vkrt::kernel::uvec4(0u), vec4(0.0f), vec4(0.0f)};
     return k.material_lobes(m, cos_o);
 }
 

@@ -62,6 +62,7 @@ FeatureSet analyze_features(const Scene& scene) {
     bool reflection = false;
     bool refraction = false;
     bool microfacet = false;
+    bool textures = false;
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         const Material& m = scene.materials[i];
         if (!used[i]) continue;
@@ -70,6 +71,7 @@ FeatureSet analyze_features(const Scene& scene) {
         reflection = reflection || is_nonzero(m.reflect);
         refraction = refraction || is_nonzero(m.transmit);
         microfacet = microfacet || m.metallic_roughness.has_value();
+        textures = textures || m.texture.has_value();
     }
 
     f.set(Feature::HAS_SPHERES, !scene.spheres.empty());
@@ -108,6 +110,8 @@ FeatureSet analyze_features(const Scene& scene) {
     f.set(Feature::HAS_AREA_LIGHTS, area_lights);
     // Local mode shades a metallic-roughness material by its diffuse lobe (scene.hpp).
     f.set(Feature::HAS_MICROFACET, microfacet && global);
+    // Only triangles and quads carry texture coordinates.
+    f.set(Feature::HAS_TEXTURES, textures && !scene.triangles.empty());
     return f;
 }
 

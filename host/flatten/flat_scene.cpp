@@ -14,6 +14,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/gtc/constants.hpp>
+#include <glm/packing.hpp>
 #include <glm/trigonometric.hpp>
 
 namespace vkrt {
@@ -80,19 +81,46 @@ void set_camera(const Camera& cam, bool corners, const dvec3& origin, kernel::Pa
 // peak, 1 / (pi alpha^2), is far inside float's range.
 constexpr double kMinGgxAlpha = 1e-3;
 
+// The texture fields every material carries: the colour texture (0: none), the
+// coordinates' transform, and the metallic share that texture.glsl needs to texture
+// the rough lobe's reflectance.
+void set_texture_fields(const Material& m, kernel::Material& out) {
+    const auto& a = m.uv_transform;
+    const double metallic = m.metallic_roughness ? m.metallic_roughness->metallic : 0.0;
+    out.maps = uvec4(m.texture ? *m.texture + 1u : 0u, 0u, 0u, 0u);
+    out.uv_u = vec4(float(a[0]), float(a[1]), float(a[2]), float(metallic));
+    out.uv_v = vec4(float(a[3]), float(a[4]), float(a[5]), 0.0f);
+}
+
 kernel::Material flatten(const Material& m) {
+    kernel::Material out;
     if (const auto& pbr = m.metallic_roughness) {
         // glTF 2.0 appendix B: dielectrics reflect 4% at normal incidence (ior 1.5),
         // metals their base colour; metals have no diffuse lobe.
         const dvec3 f0 = glm::mix(dvec3(0.04), pbr->base_color, pbr->metallic);
         const double alpha = std::max(pbr->roughness * pbr->roughness, kMinGgxAlpha);
-        return kernel::Material(to_vec4((1.0 - pbr->metallic) * pbr->base_color, 1.0), vec4(0.0f),
-                                to_vec4(dvec3(0.0), m.shininess), to_vec4(dvec3(0.0), m.ior),
-                                to_vec4(m.emission, 1.0), to_vec4(f0, alpha));
+        out = kernel::Material(to_vec4((1.0 - pbr->metallic) * pbr->base_color, 1.0), vec4(0.0f),
+                               to_vec4(dvec3(0.0), m.shininess), to_vec4(dvec3(0.0), m.ior), to_vec4(m.emission, 1.0),
+                               to_vec4(f0, alpha), uvec4(0u), vec4(0.0f), vec4(0.0f));
+    } else {
+        out = kernel::Material(to_vec4(m.diffuse, m.kd), to_vec4(m.specular, m.ks), to_vec4(m.reflect, m.shininess),
+                               to_vec4(m.transmit, m.ior), to_vec4(m.emission, m.fresnel ? 1.0 : 0.0), vec4(0.0f),
+                               uvec4(0u), vec4(0.0f), vec4(0.0f));
     }
-    return kernel::Material(to_vec4(m.diffuse, m.kd), to_vec4(m.specular, m.ks),
-                            to_vec4(m.reflect, m.shininess), to_vec4(m.transmit, m.ior),
-                            to_vec4(m.emission, m.fresnel ? 1.0 : 0.0), vec4(0.0f));
+    set_texture_fields(m, out);
+    return out;
+}
+
+// The textures' records and their texels, two words each (kernel::Texture).
+void add_textures(const Scene& scene, FlatScene& g) {
+    for (const TextureImage& t : scene.textures) {
+        const std::uint32_t wrap = std::uint32_t(t.wrap_s) | (std::uint32_t(t.wrap_t) << 2u);
+        g.textures.push_back(kernel::Texture(uvec4(std::uint32_t(g.texture_words.size()), t.width, t.height, wrap)));
+        for (const glm::vec4& c : t.texels) {
+            g.texture_words.push_back(glm::packHalf2x16(glm::vec2(c.r, c.g)));
+            g.texture_words.push_back(glm::packHalf2x16(glm::vec2(c.b, c.a)));
+        }
+    }
 }
 
 // Which shape a Triangle record holds (kernel::Triangle meta.z): a parallelogram with
@@ -116,6 +144,16 @@ kernel::Triangle flatten(const Triangle& t, const dvec3& origin) {
         out.n1 = to_vec4((*t.normals)[1]);
         out.n2 = to_vec4((*t.normals)[2]);
     }
+    // Texture coordinates in the w lanes (kernel::Triangle).
+    const std::array<glm::dvec2, 3> corners = {glm::dvec2(0, 0), glm::dvec2(1, 0),
+                                               t.parallelogram ? glm::dvec2(1, 1) : glm::dvec2(0, 1)};
+    const std::array<glm::dvec2, 3>& uv = t.uvs ? *t.uvs : corners;
+    out.p0.w = float(uv[0].x);
+    out.p1.w = float(uv[0].y);
+    out.p2.w = float(uv[1].x);
+    out.n0.w = float(uv[1].y);
+    out.n1.w = float(uv[2].x);
+    out.n2.w = float(uv[2].y);
     out.meta = uvec4(t.material, t.normals ? 1u : 0u, shape_of(t), 0u);
     return out;
 }
@@ -389,6 +427,7 @@ FlatScene flatten_scene(const Scene& scene, const AccelPolicy& policy) {
     kernel::set_cylinder_count(p, static_cast<std::uint32_t>(g.cylinders.size()));
     kernel::set_light_count(p, static_cast<std::uint32_t>(g.lights.size()));
     kernel::set_material_count(p, static_cast<std::uint32_t>(g.materials.size()));
+    if (g.features.has(Feature::HAS_TEXTURES)) add_textures(scene, g);
     if (g.features.has(Feature::HAS_AREA_LIGHTS)) add_emitters(scene, g);
     // Every emissive primitive kind has its sampler, so the list is empty only if no
     // primitive emits; the kernel's search must never see an empty list.

@@ -13,7 +13,7 @@
 
 namespace vkrt {
 
-enum class ChannelType : std::uint8_t { UInt8, UInt32, Float, Other };
+enum class ChannelType : std::uint8_t { UInt8, UInt32, Float, Half, Other };
 
 // An image file's layout and attributes.
 struct FileSpec {
@@ -34,7 +34,9 @@ struct FileSpec {
     }
 };
 
-inline std::size_t channel_bytes(ChannelType type) { return type == ChannelType::UInt8 ? 1 : 4; }
+inline std::size_t channel_bytes(ChannelType type) {
+    return type == ChannelType::UInt8 ? 1 : type == ChannelType::Half ? 2 : 4;
+}
 
 class ImageFileReader {
 public:
@@ -52,6 +54,10 @@ public:
 struct ImageFiles {
     bool (*can_write)(const std::string& file);
     std::unique_ptr<ImageFileReader> (*open)(const std::string& file, std::string& error);
+    // An image file's bytes held in memory (`data` must outlive the reader); `name`'s
+    // extension tells the format.
+    std::unique_ptr<ImageFileReader> (*open_memory)(const void* data, std::size_t size, const std::string& name,
+                                                    std::string& error);
     // `pixels` in the spec's channel types, pixel after pixel.
     bool (*write)(const std::string& file, const FileSpec& spec, const void* pixels, std::string& error);
 };

@@ -1,5 +1,6 @@
 // libvkrt_oiio.so: image files through OpenImageIO, behind image/image_files.hpp.
 // Built as a plug-in that vkrt loads on first use; nothing else links OpenImageIO.
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include "image/image_files.hpp"
@@ -11,6 +12,7 @@ OIIO::TypeDesc oiio_type(ChannelType type) {
     switch (type) {
     case ChannelType::UInt8: return OIIO::TypeDesc::UINT8;
     case ChannelType::UInt32: return OIIO::TypeDesc::UINT32;
+    case ChannelType::Half: return OIIO::TypeDesc::HALF;
     default: return OIIO::TypeDesc::FLOAT;
     }
 }
@@ -19,12 +21,14 @@ ChannelType channel_type(OIIO::TypeDesc type) {
     if (type == OIIO::TypeDesc::UINT8) return ChannelType::UInt8;
     if (type == OIIO::TypeDesc::UINT32) return ChannelType::UInt32;
     if (type == OIIO::TypeDesc::FLOAT) return ChannelType::Float;
+    if (type == OIIO::TypeDesc::HALF) return ChannelType::Half;
     return ChannelType::Other;
 }
 
 class OiioReader final : public ImageFileReader {
 public:
-    explicit OiioReader(std::unique_ptr<OIIO::ImageInput> in) : in_(std::move(in)) {
+    explicit OiioReader(std::unique_ptr<OIIO::ImageInput> in, std::unique_ptr<OIIO::Filesystem::IOProxy> proxy = nullptr)
+        : proxy_(std::move(proxy)), in_(std::move(in)) {
         const OIIO::ImageSpec& s = in_->spec();
         spec_.width = std::uint32_t(s.width);
         spec_.height = std::uint32_t(s.height);
@@ -49,6 +53,7 @@ public:
     std::string error() const override { return in_->geterror(); }
 
 private:
+    std::unique_ptr<OIIO::Filesystem::IOProxy> proxy_;  // the bytes of an image read from memory; outlives in_
     std::unique_ptr<OIIO::ImageInput> in_;
     FileSpec spec_;
 };
@@ -62,6 +67,17 @@ std::unique_ptr<ImageFileReader> open(const std::string& file, std::string& erro
         return nullptr;
     }
     return std::make_unique<OiioReader>(std::move(in));
+}
+
+std::unique_ptr<ImageFileReader> open_memory(const void* data, std::size_t size, const std::string& name,
+                                             std::string& error) {
+    auto proxy = std::make_unique<OIIO::Filesystem::IOMemReader>(const_cast<void*>(data), size);
+    auto in = OIIO::ImageInput::open(name, nullptr, proxy.get());
+    if (!in) {
+        error = OIIO::geterror();
+        return nullptr;
+    }
+    return std::make_unique<OiioReader>(std::move(in), std::move(proxy));
 }
 
 bool write(const std::string& file, const FileSpec& spec, const void* pixels, std::string& error) {
@@ -92,7 +108,7 @@ bool write(const std::string& file, const FileSpec& spec, const void* pixels, st
     return true;
 }
 
-const ImageFiles kFiles{&can_write, &open, &write};
+const ImageFiles kFiles{&can_write, &open, &open_memory, &write};
 
 }  // namespace
 }  // namespace vkrt

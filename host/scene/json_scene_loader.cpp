@@ -10,8 +10,10 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
@@ -201,11 +203,42 @@ Material::MetallicRoughness read_metallic_roughness(const Node& n) {
     return pbr;
 }
 
-Material read_material(const std::string& name, const Node& n) {
+// A material's colour texture: the image file (relative to the scene file) and the
+// optional transform of its coordinates, as glTF's KHR_texture_transform (rotation
+// in degrees here, like every angle of the format).
+void read_texture(const Node& n, Material& m, Scene& scene) {
+    if (auto t = n.find("texture_transform")) {
+        if (!n.find("texture")) n.fail_field("texture_transform", "a texture transform needs a \"texture\"");
+        t->allow_only({"offset", "rotation", "scale"});
+        double offset[2] = {0.0, 0.0}, scale[2] = {1.0, 1.0}, rotation = 0.0;
+        for (const char* key : {"offset", "scale"}) {
+            if (auto v = t->find(key)) {
+                const std::vector<Node> pair = v->elements(2, "an array of 2 numbers");
+                double* out = std::string_view(key) == "offset" ? offset : scale;
+                out[0] = pair[0].number();
+                out[1] = pair[1].number();
+            }
+        }
+        if (auto v = t->find("rotation")) rotation = v->number() * (std::numbers::pi / 180.0);
+        m.uv_transform = texture_transform(offset[0], offset[1], rotation, scale[0], scale[1]);
+    }
+    auto file = n.find("texture");
+    if (!file) return;
+    const std::string relative = file->string();
+    if (relative.empty()) file->fail("expected a file name, got an empty string");
+    const std::string element = fmt::format("{}: {}", n.file(), file->path());
+    add_texture(scene, load_texture_file(std::filesystem::path(n.file()).parent_path() / relative,
+                                         Encoding::SrgbUnlessFloat, element),
+                element);
+    m.texture = static_cast<std::uint32_t>(scene.textures.size() - 1);
+}
+
+Material read_material(const std::string& name, const Node& n, Scene& scene) {
     n.allow_only({"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit", "ior", "fresnel", "emission",
-                  "base_color", "metallic", "roughness"});
+                  "base_color", "metallic", "roughness", "texture", "texture_transform"});
     Material m;
     m.name = name;
+    read_texture(n, m, scene);
     if (auto v = n.find("emission")) m.emission = v->color();
     if (n.find("base_color") || n.find("metallic") || n.find("roughness")) {
         m.metallic_roughness = read_metallic_roughness(n);
@@ -226,11 +259,12 @@ Material read_material(const std::string& name, const Node& n) {
 // Material name -> index into Scene::materials (definition order).
 using MaterialIndex = std::map<std::string, std::uint32_t, std::less<>>;
 
-MaterialIndex read_materials(const Node& n, std::vector<Material>& out) {
+MaterialIndex read_materials(const Node& n, Scene& scene) {
     MaterialIndex index;
     for (const auto& [name, node] : n.members()) {
-        out.push_back(read_material(name, node));
-        index.emplace(name, static_cast<std::uint32_t>(out.size() - 1));
+        Material m = read_material(name, node, scene);
+        scene.materials.push_back(std::move(m));
+        index.emplace(name, static_cast<std::uint32_t>(scene.materials.size() - 1));
     }
     return index;
 }
@@ -486,7 +520,7 @@ Scene parse_json_scene(const std::string& text, const std::filesystem::path& fil
             limits::image_size_problem(scene.camera.width, scene.camera.height, scene.render.corners);
         if (!problem.empty()) render->fail_field("corners", problem);
     }
-    const MaterialIndex materials = read_materials(root.required("materials"), scene.materials);
+    const MaterialIndex materials = read_materials(root.required("materials"), scene);
     if (auto lights = root.find("lights")) read_lights(*lights, scene.lights);
     read_objects(root.required("objects"), materials, scene);
     warn_paper_models(scene);

@@ -10,9 +10,11 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "image/display.hpp"
+#include "scene/texture_image.hpp"
 
 namespace vkrt {
 
@@ -111,6 +113,11 @@ struct Material {
         double roughness = 1.0;  // 0 to 1; the GGX alpha is its square
     };
     std::optional<MetallicRoughness> metallic_roughness;
+    // A colour texture (an index into Scene::textures) multiplying `diffuse`, or the
+    // base colour; read at the texture coordinates (u, v) taken through
+    // uv_transform: u' = [0] u + [1] v + [2], v' = [3] u + [4] v + [5].
+    std::optional<std::uint32_t> texture;
+    std::array<double, 6> uv_transform{1.0, 0.0, 0.0, 0.0, 1.0, 0.0};
 };
 
 struct PointLight {
@@ -133,6 +140,9 @@ struct Triangle {
     std::optional<std::array<dvec3, 3>> normals;  // interpolated when present (triangles only)
     std::uint32_t material = 0;
     bool parallelogram = false;
+    // Texture coordinates of the three vertices; without them a triangle has (0, 0),
+    // (1, 0), (0, 1) and a parallelogram (0, 0), (1, 0), (1, 1): its corners.
+    std::optional<std::array<glm::dvec2, 3>> uvs{};
 };
 
 // The quad corner, corner + e1, corner + e1 + e2, corner + e2, facing cross(e1, e2):
@@ -172,6 +182,7 @@ struct Scene {
     std::vector<Triangle> triangles;
     std::vector<Ring> rings;
     std::vector<Cylinder> cylinders;
+    std::vector<TextureImage> textures;  // Material::texture indexes them
     // What the loader accepted but the renderer will not show as the file means it
     // (e.g. an NFF mirror before mirrors exist); printed as warnings before rendering.
     std::vector<std::string> warnings;

@@ -11,6 +11,7 @@
 #include "ray.glsl"
 #include "intersect.glsl"
 #include "terminator.glsl"
+#include "texture.glsl"
 #include "budget.glsl"
 #include "camera.glsl"
 #include "grid.glsl"

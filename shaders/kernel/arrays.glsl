@@ -19,7 +19,9 @@ SCENE_ARRAY(3, rings, Ring, load_ring, rgba32ui)
 SCENE_ARRAY(4, cylinders, Cylinder, load_cylinder, rgba32ui)
 SCENE_ARRAY(5, lights, PointLight, load_light, rgba32ui)
 SCENE_ARRAY(6, emitters, Emitter, load_emitter, rgba32ui)          // empty without area lights
-SCENE_ARRAY(7, grid_nodes, uint, load_grid_node, r32ui)           // cells + 1 offsets into grid_refs;
-SCENE_ARRAY(8, grid_refs, uint, load_ref, r32ui)                   // both empty without the grid
+SCENE_ARRAY(7, textures, Texture, load_texture, rgba32ui)         // empty without textures
+SCENE_ARRAY(8, grid_nodes, uint, load_grid_node, r32ui)           // cells + 1 offsets into grid_refs;
+SCENE_ARRAY(9, grid_refs, uint, load_ref, r32ui)                   // both empty without the grid
+SCENE_ARRAY(10, texture_words, uint, load_texture_word, r32ui)     // the textures' texels
 
 #undef SCENE_ARRAY

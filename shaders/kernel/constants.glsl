@@ -67,6 +67,11 @@ const uint SHAPE_TRIANGLE = 0u;
 const uint SHAPE_PARALLELOGRAM = 1u;
 const uint SHAPE_RECTANGLE = 2u;
 
+// How a texture continues beyond [0, 1] (Texture.info.w, two bits per axis).
+const uint WRAP_REPEAT = 0u;
+const uint WRAP_CLAMP = 1u;
+const uint WRAP_MIRROR = 2u;
+
 // Mesa's lavapipe stops an invocation's loops silently after 65,535 iterations in
 // total (docs/architecture.md). The kernel counts its own iterations the way lavapipe does
 // (budget.glsl) against a budget below that cap, with room to spare.

@@ -54,3 +54,5 @@ FEATURE(28, HAS_LENS)
 // The metallic-roughness material's GGX lobe (microfacet.glsl): global mode with a
 // material that has one.
 FEATURE(29, HAS_MICROFACET)
+// Colour textures (texture.glsl): a material that the scene uses has one.
+FEATURE(30, HAS_TEXTURES)

@@ -143,7 +143,7 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
         if (!path_hit(ray, bounce, beta, s, hit)) {
             return;
         }
-        Material m = load_material(hit.material);
+        Material m = surface_material(hit);
         if (HAS_EMISSION && hit.front_face) {
             float w = 1.0f;
             if (HAS_AREA_LIGHTS && pdf_prev > 0.0f) {
@@ -220,7 +220,7 @@ vec3 paper_gl(Ray start, uint bounces, INOUT(Rng) rng, INOUT(SampleResult) s) {
         if (!(hit.t < INFINITY_T)) {
             return attenuation * background();
         }
-        Material m = load_material(hit.material);
+        Material m = surface_material(hit);
         if (HAS_EMISSION && hit.front_face && any(greaterThan(vec3(m.emission_fresnel), vec3(0.0f)))) {
             return attenuation * vec3(m.emission_fresnel);
         }
@@ -253,7 +253,7 @@ void paper_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
         if (!path_hit(ray, bounce, beta, s, hit)) {
             return;
         }
-        Material m = load_material(hit.material);
+        Material m = surface_material(hit);
         if (HAS_EMISSION && hit.front_face && any(greaterThan(vec3(m.emission_fresnel), vec3(0.0f)))) {
             s.radiance += beta * vec3(m.emission_fresnel);
             return;

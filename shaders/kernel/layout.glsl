@@ -18,7 +18,8 @@ struct Sphere {
 // Vertex normals are used only when meta.y != 0 (the scene gave normals); the front
 // face is the side of cross(p1 - p0, p2 - p0). meta.x = material index; meta.z =
 // SHAPE_TRIANGLE, or SHAPE_PARALLELOGRAM / SHAPE_RECTANGLE for the parallelogram p0,
-// p1, p2, p0 + p2 - p1 (constants.glsl), which has no vertex normals.
+// p1, p2, p0 + p2 - p1 (constants.glsl), which has no vertex normals. The texture
+// coordinates of p0, p1, p2 ride in the w lanes: (p0.w, p1.w), (p2.w, n0.w), (n1.w, n2.w).
 struct Triangle {
     vec4 p0;
     vec4 p1;
@@ -67,10 +68,24 @@ struct Material {
                              // reflection/refraction, 0: the constant weights reflect and transmit
     vec4 microfacet;         // the metallic-roughness material's rough lobe (bsdf.glsl): rgb = its
                              // reflectance at normal incidence, w = GGX alpha; w = 0: no such lobe
+    uvec4 maps;              // x = 1 + the colour texture's index (texture.glsl), 0: none; y, z, w: 0
+    vec4 uv_u;               // the texture coordinates' transform: u' = dot(xy, uv) + z;
+                             // w = metallic (the textured colour's share of the rough lobe's reflectance)
+    vec4 uv_v;               // v' = dot(xy, uv) + z; w unused
 };
 #define Material_FROM_TEXELS(b, i)                                                                   \
-    Material(fetch_vec4(b, 6u * (i)), fetch_vec4(b, 6u * (i) + 1u), fetch_vec4(b, 6u * (i) + 2u),     \
-             fetch_vec4(b, 6u * (i) + 3u), fetch_vec4(b, 6u * (i) + 4u), fetch_vec4(b, 6u * (i) + 5u))
+    Material(fetch_vec4(b, 9u * (i)), fetch_vec4(b, 9u * (i) + 1u), fetch_vec4(b, 9u * (i) + 2u),     \
+             fetch_vec4(b, 9u * (i) + 3u), fetch_vec4(b, 9u * (i) + 4u), fetch_vec4(b, 9u * (i) + 5u),  \
+             fetch_texel(b, 9u * (i) + 6u), fetch_vec4(b, 9u * (i) + 7u), fetch_vec4(b, 9u * (i) + 8u))
+
+// A texture image (texture.glsl): its texels are 2 words each in texture_words from
+// info.x on, row after row from the top (packHalf2x16 of red and green, of blue and
+// alpha, linear values); info.y = width, info.z = height, info.w = the wrap modes,
+// horizontal in bits 0-1 and vertical in bits 2-3 (WRAP_REPEAT, _CLAMP, _MIRROR).
+struct Texture {
+    uvec4 info;
+};
+#define Texture_FROM_TEXELS(b, i) Texture(fetch_texel(b, i))
 
 // A point light: position in xyz; rgb = colour * intensity.
 struct PointLight {

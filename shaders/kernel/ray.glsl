@@ -13,6 +13,7 @@ struct Hit {
     uint material;
     bool front_face;  // the ray arrived on the side the primitive calls its front
     uint prim;        // what was hit, as a grid reference (kind << REF_KIND_SHIFT | index); REF_NONE for nothing
+    vec2 uv;          // texture coordinates (triangles and quads with HAS_TEXTURES; 0 elsewhere)
 };
 
 // v / |v|, by a correctly rounded sqrt and division. Not normalize(): lavapipe
@@ -32,7 +33,7 @@ bool is_finite_bits(float x) {
 }
 
 Hit no_hit() {
-    return Hit(INFINITY_T, vec3(0.0f), vec3(0.0f), vec3(0.0f), 0u, false, REF_NONE);
+    return Hit(INFINITY_T, vec3(0.0f), vec3(0.0f), vec3(0.0f), 0u, false, REF_NONE, vec2(0.0f));
 }
 
 // Moves a point off a surface along its geometric normal by an amount proportional to

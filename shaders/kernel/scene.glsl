@@ -309,7 +309,20 @@ Hit sphere_hit(Ray ray, uint index, float t) {
     vec3 n = unit_vector(p - center);
     bool front = dot(n, ray.dir) < 0.0f;
     vec3 facing = front ? n : -n;
-    return Hit(t, facing, facing, vec3(0.0f), s.meta.x, front, (REF_SPHERE << REF_KIND_SHIFT) | index);
+    return Hit(t, facing, facing, vec3(0.0f), s.meta.x, front, (REF_SPHERE << REF_KIND_SHIFT) | index, vec2(0.0f));
+}
+
+// The texture coordinates at a hit of weights u (of p1) and v (of p2). A
+// parallelogram's weights are half its coordinates along its edges
+// (intersect_quad), at which its corners' coordinates are extended.
+vec2 triangle_uv(Triangle tri, float u, float v) {
+    vec2 t0 = vec2(tri.p0.w, tri.p1.w);
+    vec2 t1 = vec2(tri.p2.w, tri.n0.w);
+    vec2 t2 = vec2(tri.n1.w, tri.n2.w);
+    if (HAS_QUADS && tri.meta.z != SHAPE_TRIANGLE) {
+        return t0 + (2.0f * u) * (t1 - t0) + (2.0f * v) * (t2 - t1);
+    }
+    return t0 + u * (t1 - t0) + v * (t2 - t0);
 }
 
 Hit triangle_hit(Ray ray, uint index, TriangleHit th) {
@@ -329,7 +342,11 @@ Hit triangle_hit(Ray ray, uint index, TriangleHit th) {
     if (HAS_TERMINATOR && tri.meta.y != 0u) {
         lift = terminator_lift(tri, th.u, th.v, flip ? -1.0f : 1.0f, g);
     }
-    return Hit(th.t, s, g, lift, tri.meta.x, front, (REF_TRIANGLE << REF_KIND_SHIFT) | index);
+    vec2 uv = vec2(0.0f);
+    if (HAS_TEXTURES) {
+        uv = triangle_uv(tri, th.u, th.v);
+    }
+    return Hit(th.t, s, g, lift, tri.meta.x, front, (REF_TRIANGLE << REF_KIND_SHIFT) | index, uv);
 }
 
 // Rings and cylinders have no shading normals of their own: both normals are the
@@ -340,7 +357,7 @@ Hit ring_hit(Ray ray, uint index, float t) {
     vec3 n = vec3(r.normal_outer);
     bool front = dot(n, ray.dir) < 0.0f;
     vec3 facing = front ? n : -n;
-    return Hit(t, facing, facing, vec3(0.0f), r.meta.x, front, (REF_RING << REF_KIND_SHIFT) | index);
+    return Hit(t, facing, facing, vec3(0.0f), r.meta.x, front, (REF_RING << REF_KIND_SHIFT) | index, vec2(0.0f));
 }
 
 Hit cylinder_hit(Ray ray, uint index, float t, uint part) {
@@ -349,7 +366,7 @@ Hit cylinder_hit(Ray ray, uint index, float t, uint part) {
     vec3 n = cylinder_normal(vec3(c.base_radius), vec3(c.top_capped), p, part);
     bool front = dot(n, ray.dir) < 0.0f;
     vec3 facing = front ? n : -n;
-    return Hit(t, facing, facing, vec3(0.0f), c.meta.x, front, (REF_CYLINDER << REF_KIND_SHIFT) | index);
+    return Hit(t, facing, facing, vec3(0.0f), c.meta.x, front, (REF_CYLINDER << REF_KIND_SHIFT) | index, vec2(0.0f));
 }
 
 Hit make_hit(Ray ray, Nearest nearest) {

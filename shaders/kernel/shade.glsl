@@ -6,7 +6,7 @@
 // below the surface get no shadow ray (the SPD rule; visibility.glsl).
 
 vec3 shade_local(Ray ray, Hit hit, INOUT(Rng) rng, INOUT(uint) shadow_rays) {
-    Material m = load_material(hit.material);
+    Material m = surface_material(hit);
     vec3 diffuse = vec3(m.diffuse_kd) * m.diffuse_kd.w;
     vec3 color = vec3(0.0f);
     if (HAS_EMISSION && hit.front_face) {

@@ -1,0 +1,75 @@
+// Colour textures (HAS_TEXTURES): a material's colour times the texture's value at
+// the hit's texture coordinates, by bilinear filtering of linear texels. Both
+// backends read the same half-float texels and do the same float arithmetic, so a
+// textured image is the same on both. No mipmaps: a pixel's samples are jittered
+// over its area, so the average over many samples filters the texture as it
+// filters edges (tests/texture_test.cpp shows a checkerboard at a distance).
+
+// Texel (x, y) of texture t, x and y already wrapped.
+vec4 texel_at(Texture t, uint x, uint y) {
+    uint w = t.info.x + 2u * (y * t.info.y + x);
+    return vec4(unpackHalf2x16(load_texture_word(w)), unpackHalf2x16(load_texture_word(w + 1u)));
+}
+
+// Texel index i, from -1 to 2n, on an axis of n texels, by the wrap mode. (GLSL
+// leaves % of negative numbers undefined: a period is added first.)
+uint wrap_index(int i, uint n, uint mode) {
+    int size = int(n);
+    if (mode == WRAP_CLAMP) {
+        return uint(clamp(i, 0, size - 1));
+    }
+    if (mode == WRAP_MIRROR) {
+        int m = (i + 2 * size) % (2 * size);
+        return uint(m < size ? m : 2 * size - 1 - m);
+    }
+    return uint((i + size) % size);
+}
+
+// A texture coordinate brought into [0, 2], where repeat and mirror (both periodic
+// with 2) and clamp give what they give at the coordinate itself; not finite or
+// beyond 1e30 (where floats have no fraction left): 0.
+float wrap_coordinate(float c, uint mode) {
+    if (!(abs(c) < 1.0e30f)) {
+        return 0.0f;
+    }
+    if (mode == WRAP_CLAMP) {
+        return clamp(c, 0.0f, 1.0f);
+    }
+    return clamp(c - 2.0f * floor(c * 0.5f), 0.0f, 2.0f);
+}
+
+// The texture's value at (u, v): (0, 0) is the top left corner of the image, (1, 1)
+// the bottom right; the four texels around the point weighed by its distance from
+// their centres.
+vec4 texture_bilinear(Texture t, vec2 uv) {
+    uint wrap_s = t.info.w & 3u;
+    uint wrap_t = (t.info.w >> 2u) & 3u;
+    vec2 x = vec2(wrap_coordinate(uv.x, wrap_s) * float(t.info.y), wrap_coordinate(uv.y, wrap_t) * float(t.info.z)) -
+             vec2(0.5f);
+    vec2 f0 = floor(x);
+    vec2 f = x - f0;
+    int x0 = int(f0.x);
+    int y0 = int(f0.y);
+    uint xa = wrap_index(x0, t.info.y, wrap_s);
+    uint xb = wrap_index(x0 + 1, t.info.y, wrap_s);
+    uint ya = wrap_index(y0, t.info.z, wrap_t);
+    uint yb = wrap_index(y0 + 1, t.info.z, wrap_t);
+    vec4 top = mix(texel_at(t, xa, ya), texel_at(t, xb, ya), f.x);
+    vec4 bottom = mix(texel_at(t, xa, yb), texel_at(t, xb, yb), f.x);
+    return mix(top, bottom, f.y);
+}
+
+// The material at a hit, its colour textured: the diffuse colour, and for a
+// metallic-roughness material the metallic share of the rough lobe's reflectance,
+// f0 = 0.04 (1 - metallic) + metallic base_color, both times the texture.
+Material surface_material(Hit hit) {
+    Material m = load_material(hit.material);
+    if (HAS_TEXTURES && m.maps.x != 0u) {
+        vec2 uv = vec2(dot(vec2(m.uv_u), hit.uv) + m.uv_u.z, dot(vec2(m.uv_v), hit.uv) + m.uv_v.z);
+        vec3 c = vec3(texture_bilinear(load_texture(m.maps.x - 1u), uv));
+        m.diffuse_kd = vec4(vec3(m.diffuse_kd) * c, m.diffuse_kd.w);
+        vec3 dielectric = vec3(0.04f * (1.0f - m.uv_u.w));
+        m.microfacet = vec4(dielectric + (vec3(m.microfacet) - dielectric) * c, m.microfacet.w);
+    }
+    return m;
+}

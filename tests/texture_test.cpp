@@ -1,0 +1,218 @@
+// Colour textures (shaders/kernel/texture.glsl, host/scene/texture_image.cpp): the
+// sRGB decoding, bilinear filtering and wrap modes with exact values through the
+// reference kernel, the coordinate transform, a textured quad on both backends,
+// a distant fine checkerboard, and bad texture input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/packing.hpp>
+
+#include "flatten/flat_scene.hpp"
+#include "image/image.hpp"
+#include "kernel/kernel.hpp"
+#include "scene/scene_error.hpp"
+#include "scene/texture_image.hpp"
+#include "test_support.hpp"
+
+namespace vkrt {
+namespace {
+
+using kernel::Kernel;
+using kernel::uvec4;
+using kernel::vec2;
+using kernel::vec4;
+
+TEST(Texture, SrgbDecodesByTheStandardsCurve) {
+    EXPECT_EQ(srgb_to_linear(0.0), 0.0);
+    EXPECT_DOUBLE_EQ(srgb_to_linear(1.0), 1.0);
+    EXPECT_DOUBLE_EQ(srgb_to_linear(0.04045), 0.04045 / 12.92);
+    EXPECT_NEAR(srgb_to_linear(0.5), 0.214041140, 1e-9);
+    // The two pieces meet at the knee.
+    EXPECT_NEAR(srgb_to_linear(0.04045 + 1e-12), srgb_to_linear(0.04045), 1e-7);
+}
+
+// A kernel reading one texture of the given texels (row-major from the top).
+struct OneTexture {
+    std::vector<kernel::Texture> records;
+    std::vector<std::uint32_t> words;
+    Kernel k;
+
+    OneTexture(std::uint32_t w, std::uint32_t h, const std::vector<vec4>& texels, std::uint32_t wrap) {
+        records.push_back(kernel::Texture(uvec4(0u, w, h, wrap)));
+        for (const vec4& c : texels) {
+            words.push_back(glm::packHalf2x16(vec2(c.r, c.g)));
+            words.push_back(glm::packHalf2x16(vec2(c.b, c.a)));
+        }
+        k.textures = records;
+        k.texture_words = words;
+    }
+    float at(float u, float v) { return k.texture_bilinear(k.load_texture(0), vec2(u, v)).r; }
+};
+
+// A 2 x 2 texture of 0, 1 / 2, 3 (red channel): texel centres at 1/4 and 3/4.
+std::vector<vec4> two_by_two() { return {vec4(0, 0, 0, 1), vec4(1, 0, 0, 1), vec4(2, 0, 0, 1), vec4(3, 0, 0, 1)}; }
+
+TEST(Texture, BilinearIsExactAtCentresAndBetweenThem) {
+    OneTexture t(2, 2, two_by_two(), kernel::WRAP_CLAMP | (kernel::WRAP_CLAMP << 2u));
+    EXPECT_EQ(t.at(0.25f, 0.25f), 0.0f);
+    EXPECT_EQ(t.at(0.75f, 0.25f), 1.0f);
+    EXPECT_EQ(t.at(0.25f, 0.75f), 2.0f);
+    EXPECT_EQ(t.at(0.75f, 0.75f), 3.0f);
+    EXPECT_EQ(t.at(0.5f, 0.5f), 1.5f);
+    EXPECT_EQ(t.at(0.5f, 0.25f), 0.5f);
+    EXPECT_EQ(t.at(0.375f, 0.25f), 0.25f);
+    // Clamped: beyond the edge the edge texels continue.
+    EXPECT_EQ(t.at(0.0f, 0.25f), 0.0f);
+    EXPECT_EQ(t.at(-3.0f, 0.75f), 2.0f);
+    EXPECT_EQ(t.at(7.0f, 7.0f), 3.0f);
+}
+
+TEST(Texture, RepeatAndMirrorWrapAsTheirNamesSay) {
+    OneTexture repeat(2, 2, two_by_two(), kernel::WRAP_REPEAT | (kernel::WRAP_REPEAT << 2u));
+    // Half way between the last texel and the first again.
+    EXPECT_EQ(repeat.at(1.0f, 0.25f), 0.5f);
+    EXPECT_EQ(repeat.at(0.0f, 0.25f), 0.5f);
+    EXPECT_EQ(repeat.at(1.25f, 0.25f), 0.0f);
+    EXPECT_EQ(repeat.at(-0.25f, 0.25f), 1.0f);
+    EXPECT_EQ(repeat.at(-100.75f, 1000.25f), 0.0f);
+    OneTexture mirror(2, 2, two_by_two(), kernel::WRAP_MIRROR | (kernel::WRAP_MIRROR << 2u));
+    // Across the edge the image continues reflected: the edge texel twice.
+    EXPECT_EQ(mirror.at(1.0f, 0.25f), 1.0f);
+    EXPECT_EQ(mirror.at(1.25f, 0.25f), 1.0f);
+    EXPECT_EQ(mirror.at(1.75f, 0.25f), 0.0f);
+    EXPECT_EQ(mirror.at(-0.25f, 0.25f), 0.0f);
+    EXPECT_EQ(mirror.at(2.25f, 0.25f), 0.0f);
+    // Coordinates that are not finite read a texel, never outside the texture.
+    EXPECT_TRUE(std::isfinite(repeat.at(NAN, INFINITY)));
+    EXPECT_TRUE(std::isfinite(mirror.at(-INFINITY, 1e38f)));
+}
+
+TEST(Texture, TransformFollowsKhrTextureTransform) {
+    // The extension's example: offset (0, 1), a quarter turn, scale 1/2 shows the
+    // image's lower left quadrant (v runs down), turned clockwise.
+    const auto m = texture_transform(0.0, 1.0, std::numbers::pi / 2.0, 0.5, 0.5);
+    const auto apply = [&](double u, double v) { return glm::dvec2(m[0] * u + m[1] * v + m[2], m[3] * u + m[4] * v + m[5]); };
+    const glm::dvec2 a = apply(0, 0), b = apply(1, 0), c = apply(1, 1);
+    EXPECT_NEAR(a.x, 0.0, 1e-12);
+    EXPECT_NEAR(a.y, 1.0, 1e-12);
+    EXPECT_NEAR(b.x, 0.0, 1e-12);
+    EXPECT_NEAR(b.y, 0.5, 1e-12);
+    EXPECT_NEAR(c.x, 0.5, 1e-12);
+    EXPECT_NEAR(c.y, 0.5, 1e-12);
+}
+
+// Writes a linear float texture of four quadrants, each 4 x 4 texels: red, green
+// / blue, grey (top left, top right / bottom left, bottom right).
+std::filesystem::path quadrant_texture(const std::string& name) {
+    Image img(8, 8);
+    const float colours[4][3] = {{0.8f, 0.1f, 0.1f}, {0.1f, 0.7f, 0.2f}, {0.2f, 0.3f, 0.9f}, {0.5f, 0.5f, 0.5f}};
+    for (std::uint32_t y = 0; y < 8; ++y) {
+        for (std::uint32_t x = 0; x < 8; ++x) {
+            const float* c = colours[(y / 4) * 2 + x / 4];
+            std::copy(c, c + 3, img.pixel(x, y));
+        }
+    }
+    const std::filesystem::path file = test::temp_dir("texture") / (name + ".exr");
+    write_image(img, file);
+    return file;
+}
+
+// Under a white sky a Lambertian quad, alone, shows its albedo: here the texture's
+// colour, exactly, wherever a pixel's samples stay inside one quadrant (bilinear
+// filtering of equal texels), on both backends.
+TEST(TextureRender, ATexturedQuadUnderAWhiteSkyShowsTheTexture) {
+    const std::filesystem::path texture = quadrant_texture("quadrants");
+    const Scene scene = test::scene_from_text("textured_quad", R"({
+      "camera": { "eye": [0, 0, 3], "look_at": [0, 0, 0], "fov": 30, "width": 32, "height": 32 },
+      "render": { "mode": "global", "spp": 4, "max_bounces": 2, "background": [1, 1, 1] },
+      "materials": { "m": { "diffuse": [1, 1, 1], "texture": ")" + texture.string() + R"(" } },
+      "objects": [ { "type": "quad", "corner": [-1, 1, 0], "edge1": [2, 0, 0], "edge2": [0, -2, 0], "material": "m" } ]
+    })");
+    ASSERT_EQ(scene.textures.size(), 1u);
+    EXPECT_TRUE(flatten_scene(scene).features.has(Feature::HAS_TEXTURES));
+    // The quad spans 2 / (2 tan 15 deg 3) = 1.24 of the view: pixel 4 from each edge
+    // is a quadrant's middle.
+    const struct {
+        std::uint32_t x, y;
+        float r, g, b;
+    } probes[] = {{8, 8, 0.8f, 0.1f, 0.1f}, {23, 8, 0.1f, 0.7f, 0.2f}, {8, 23, 0.2f, 0.3f, 0.9f}, {23, 23, 0.5f, 0.5f, 0.5f}};
+    for (const bool vulkan : {false, true}) {
+        const RenderOutcome out = vulkan ? test::render_vulkan(scene) : test::render_cpu(scene);
+        for (const auto& p : probes) {
+            const float* v = out.image.pixel(p.x, p.y);
+            // The texels are half floats.
+            EXPECT_NEAR(v[0], p.r, 1e-3f) << (vulkan ? "vulkan" : "cpu") << " pixel " << p.x << "," << p.y;
+            EXPECT_NEAR(v[1], p.g, 1e-3f) << (vulkan ? "vulkan" : "cpu") << " pixel " << p.x << "," << p.y;
+            EXPECT_NEAR(v[2], p.b, 1e-3f) << (vulkan ? "vulkan" : "cpu") << " pixel " << p.x << "," << p.y;
+        }
+    }
+}
+
+// No mipmaps: a pixel's jittered samples spread over its footprint, so a checkerboard
+// far finer than the pixels averages to its mean rather than aliasing into patterns.
+TEST(TextureRender, AFineCheckerboardFarAwayAveragesToGrey) {
+    Image img(256, 256);
+    for (std::uint32_t y = 0; y < 256; ++y) {
+        for (std::uint32_t x = 0; x < 256; ++x) std::fill_n(img.pixel(x, y), 3, ((x + y) & 1u) ? 1.0f : 0.0f);
+    }
+    const std::filesystem::path file = test::temp_dir("texture") / "checker.exr";
+    write_image(img, file);
+    Scene scene = test::scene_from_text("fine_checker", R"({
+      "camera": { "eye": [0, 0, 3], "look_at": [0, 0, 0], "fov": 30, "width": 16, "height": 16 },
+      "render": { "mode": "global", "spp": 256, "max_bounces": 1, "background": [1, 1, 1] },
+      "materials": { "m": { "diffuse": [1, 1, 1], "texture": ")" + file.string() + R"(" } },
+      "objects": [ { "type": "quad", "corner": [-1, 1, 0], "edge1": [2, 0, 0], "edge2": [0, -2, 0], "material": "m" } ]
+    })");
+    const RenderOutcome out = test::render_cpu(scene);
+    for (std::uint32_t y = 4; y < 12; ++y) {
+        for (std::uint32_t x = 4; x < 12; ++x) EXPECT_NEAR(out.image.pixel(x, y)[0], 0.5f, 0.06f) << x << "," << y;
+    }
+    // One sample at each pixel's centre aliases: the pixels disagree wildly.
+    scene.render.spp = 1;
+    scene.render.jitter = false;
+    const RenderOutcome aliased = test::render_cpu(scene);
+    float lo = 1.0f, hi = 0.0f;
+    for (std::uint32_t y = 4; y < 12; ++y) {
+        for (std::uint32_t x = 4; x < 12; ++x) {
+            lo = std::min(lo, aliased.image.pixel(x, y)[0]);
+            hi = std::max(hi, aliased.image.pixel(x, y)[0]);
+        }
+    }
+    EXPECT_GT(hi - lo, 0.3f);
+}
+
+TEST(TextureErrors, EachNamesTheMaterialAndTheFile) {
+    const std::filesystem::path dir = test::temp_dir("texture_errors");
+    const auto error_of = [&](const std::string& material) {
+        try {
+            test::scene_from_text("bad_texture", R"({
+              "camera": { "eye": [0, 0, 3], "look_at": [0, 0, 0] },
+              "materials": { "m": )" + material + R"( },
+              "objects": [ { "type": "quad", "corner": [-1, 1, 0], "edge1": [2, 0, 0], "edge2": [0, -2, 0], "material": "m" } ]
+            })");
+        } catch (const SceneError& e) {
+            return std::string(e.what());
+        }
+        ADD_FAILURE() << "no error for " << material;
+        return std::string();
+    };
+    const std::string absent = (dir / "absent.png").string();
+    test::expect_error_message(error_of(R"({"texture": ")" + absent + R"("})"), "",
+                               {"materials.m.texture", "absent.png", "no such file"});
+    std::ofstream(dir / "garbage.png") << "not a PNG at all";
+    test::expect_error_message(error_of(R"({"texture": ")" + (dir / "garbage.png").string() + R"("})"), "",
+                               {"materials.m.texture", "garbage.png", "cannot read it as an image"});
+    test::expect_error_message(error_of(R"({"texture_transform": {"scale": [2, 2]}})"), "",
+                               {"materials.m.texture_transform", "needs a \"texture\""});
+    test::expect_error_message(error_of(R"({"texture": "", "diffuse": [1, 1, 1]})"), "",
+                               {"materials.m.texture", "expected a file name"});
+}
+
+}  // namespace
+}  // namespace vkrt
