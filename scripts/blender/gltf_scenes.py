@@ -6,10 +6,12 @@
 #   blender -b --factory-startup --python-exit-code 1 -P scripts/blender/gltf_scenes.py -- \
 #       --scene still_life --out scenes/gltf/still_life.glb [--render cycles.exr --spp 1024]
 #
-# Materials are diffuse (Principled BSDF with specular 0, roughness 1, metallic 0)
-# and Cycles renders them as Lambertian (lambertian_for_cycles), as vkrt reads a
-# base colour; the world is the uniform grey of radiance 0.05 that vkrt puts behind
-# a glTF file with lights of its own.
+# Materials are Principled BSDFs set only through what glTF carries (base colour,
+# metallic, roughness, emission; Specular stays 0.5, glTF's 4% reflectance), and
+# Cycles renders them as they are, with single-scattering GGX (vkrt's model; the
+# diffuse lobes still differ, docs/decisions/0029-metallic-roughness.md); the
+# world is the uniform grey of radiance 0.05 that vkrt puts behind a glTF file
+# with lights of its own.
 import argparse
 import math
 import sys
@@ -20,7 +22,7 @@ import bpy
 def arguments():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     p = argparse.ArgumentParser()
-    p.add_argument("--scene", default="still_life", choices=["still_life"])
+    p.add_argument("--scene", default="still_life", choices=["still_life", "metals"])
     p.add_argument("--out", required=True)
     p.add_argument("--render", help="also render with Cycles to this .exr")
     p.add_argument("--spp", type=int, default=256)
@@ -30,14 +32,14 @@ def arguments():
     return p.parse_args(argv)
 
 
-def diffuse(name, rgb, emission=None, strength=0.0):
+def principled(name, rgb, metallic=0.0, roughness=1.0, emission=None, strength=0.0):
     m = bpy.data.materials.new(name)
     m.use_nodes = True
     bsdf = m.node_tree.nodes["Principled BSDF"]
+    bsdf.distribution = "GGX"
     bsdf.inputs["Base Color"].default_value = (*rgb, 1.0)
-    bsdf.inputs["Metallic"].default_value = 0.0
-    bsdf.inputs["Roughness"].default_value = 1.0
-    bsdf.inputs["Specular"].default_value = 0.0
+    bsdf.inputs["Metallic"].default_value = metallic
+    bsdf.inputs["Roughness"].default_value = roughness
     bsdf.inputs["Sheen Tint"].default_value = 0.0
     if emission:
         bsdf.inputs["Emission"].default_value = (*emission, 1.0)
@@ -50,18 +52,10 @@ def give(obj, material):
     obj.data.materials.append(material)
 
 
-def still_life():
-    # Blender is z-up; the exporter turns it into glTF's y-up.
-    bpy.ops.mesh.primitive_plane_add(size=8, location=(0, 0, 0))
-    give(bpy.context.object, diffuse("ground", (0.7, 0.7, 0.7)))
-    bpy.ops.mesh.primitive_uv_sphere_add(segments=32, ring_count=16, radius=0.6, location=(-0.5, 0.2, 0.6))
-    bpy.ops.object.shade_smooth()
-    give(bpy.context.object, diffuse("orange", (0.8, 0.35, 0.1)))
-    bpy.ops.mesh.primitive_cube_add(size=0.8, location=(0.8, -0.3, 0.4), rotation=(0, 0, math.radians(30)))
-    give(bpy.context.object, diffuse("blue", (0.15, 0.3, 0.75)))
+def lamp_and_camera():
     # A square lamp facing down: an emissive mesh, exported with its strength.
     bpy.ops.mesh.primitive_plane_add(size=1.2, location=(0, 0, 3), rotation=(math.pi, 0, 0))
-    give(bpy.context.object, diffuse("lamp", (0, 0, 0), emission=(1, 1, 1), strength=12.0))
+    give(bpy.context.object, principled("lamp", (0, 0, 0), emission=(1, 1, 1), strength=12.0))
     bpy.ops.object.camera_add(location=(0, -5, 2.4))
     cam = bpy.context.object
     direction = (0, 5, -1.9)
@@ -71,29 +65,29 @@ def still_life():
     bpy.context.scene.camera = cam
 
 
-def lambertian_for_cycles():
-    # The Principled BSDF's diffuse part is Burley's, brighter toward grazing angles
-    # than Lambert's; for the comparison each material becomes a Diffuse BSDF of
-    # roughness 0 (Lambertian) plus its emission, which is what vkrt renders.
-    for m in bpy.data.materials:
-        if not m.use_nodes or "Principled BSDF" not in m.node_tree.nodes:
-            continue
-        nodes, links = m.node_tree.nodes, m.node_tree.links
-        p = nodes["Principled BSDF"]
-        base = tuple(p.inputs["Base Color"].default_value)
-        emission = tuple(p.inputs["Emission"].default_value)
-        strength = p.inputs["Emission Strength"].default_value
-        out = nodes["Material Output"]
-        diffuse = nodes.new("ShaderNodeBsdfDiffuse")
-        diffuse.inputs["Color"].default_value = base
-        diffuse.inputs["Roughness"].default_value = 0.0
-        glow = nodes.new("ShaderNodeEmission")
-        glow.inputs["Color"].default_value = emission
-        glow.inputs["Strength"].default_value = strength
-        add = nodes.new("ShaderNodeAddShader")
-        links.new(diffuse.outputs["BSDF"], add.inputs[0])
-        links.new(glow.outputs["Emission"], add.inputs[1])
-        links.new(add.outputs["Shader"], out.inputs["Surface"])
+def still_life():
+    # Blender is z-up; the exporter turns it into glTF's y-up.
+    bpy.ops.mesh.primitive_plane_add(size=8, location=(0, 0, 0))
+    give(bpy.context.object, principled("ground", (0.7, 0.7, 0.7)))
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=32, ring_count=16, radius=0.6, location=(-0.5, 0.2, 0.6))
+    bpy.ops.object.shade_smooth()
+    give(bpy.context.object, principled("orange", (0.8, 0.35, 0.1)))
+    bpy.ops.mesh.primitive_cube_add(size=0.8, location=(0.8, -0.3, 0.4), rotation=(0, 0, math.radians(30)))
+    give(bpy.context.object, principled("blue", (0.15, 0.3, 0.75)))
+    lamp_and_camera()
+
+
+def metals():
+    # Gold, steel and red plastic spheres of three roughnesses on a rough grey floor.
+    bpy.ops.mesh.primitive_plane_add(size=8, location=(0, 0, 0))
+    give(bpy.context.object, principled("floor", (0.5, 0.5, 0.5), roughness=0.8))
+    for x, name, rgb, metallic, roughness in [(-1.3, "gold", (1.0, 0.78, 0.34), 1.0, 0.3),
+                                              (0.0, "steel", (0.8, 0.8, 0.8), 1.0, 0.6),
+                                              (1.3, "plastic", (0.7, 0.1, 0.1), 0.0, 0.4)]:
+        bpy.ops.mesh.primitive_uv_sphere_add(segments=32, ring_count=16, radius=0.55, location=(x, 0.2, 0.55))
+        bpy.ops.object.shade_smooth()
+        give(bpy.context.object, principled(name, rgb, metallic=metallic, roughness=roughness))
+    lamp_and_camera()
 
 
 def main():
@@ -107,11 +101,10 @@ def main():
     world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.05, 0.05, 0.05, 1)
     world.node_tree.nodes["Background"].inputs["Strength"].default_value = 1.0
     scene.world = world
-    {"still_life": still_life}[args.scene]()
+    {"still_life": still_life, "metals": metals}[args.scene]()
     bpy.ops.export_scene.gltf(filepath=args.out, export_format="GLB", export_cameras=True, export_lights=True,
                               export_apply=True, export_yup=True)
     if args.render:
-        lambertian_for_cycles()
         scene.render.engine = "CYCLES"
         scene.cycles.device = "CPU"
         scene.cycles.samples = args.spp
