@@ -388,7 +388,7 @@ private:
             note_unsupported(fmt::format("{} lights", l.type));
             return;
         }
-        PointLight p;
+        Light p;
         p.position = dvec3(world * glm::dvec4(0, 0, 0, 1));
         if (l.color.size() == 3) p.color = color(dvec3(l.color[0], l.color[1], l.color[2]), fmt::format("extensions.KHR_lights_punctual.lights[{}].color", i));
         if (!(l.intensity >= 0.0 && std::isfinite(l.intensity))) {

@@ -213,7 +213,7 @@ MaterialIndex read_materials(const Node& n, std::vector<Material>& out) {
     return index;
 }
 
-void read_lights(const Node& n, std::vector<PointLight>& out) {
+void read_lights(const Node& n, std::vector<Light>& out) {
     for (const Node& light : n.elements()) {
         const Node type = light.required("type");
         const std::string t = type.string();
@@ -224,7 +224,7 @@ void read_lights(const Node& n, std::vector<PointLight>& out) {
         }
         if (t != "point") type.fail(fmt::format("unknown light type {} (expected one of: point)", json::quote_user(t)));
         light.allow_only({"type", "position", "color", "intensity"});
-        PointLight p;
+        Light p;
         p.position = light.required("position").vec3();
         if (auto c = light.find("color")) p.color = c->color();
         if (auto i = light.find("intensity")) p.intensity = i->number_at_least(0.0);

@@ -9,7 +9,7 @@
 FEATURE(0, HAS_SPHERES)
 FEATURE(1, HAS_TRIANGLES)
 FEATURE(2, HAS_SMOOTH_NORMALS)
-FEATURE(3, HAS_POINT_LIGHTS)
+FEATURE(3, HAS_POINT_LIGHTS)   // the scene's `lights`, of any kind: the loop over them (lights.glsl)
 FEATURE(4, HAS_SHADOWS)
 FEATURE(5, HAS_SPECULAR)
 FEATURE(6, HAS_AMBIENT)
@@ -51,3 +51,6 @@ FEATURE(26, GRID_SPLIT)
 FEATURE(27, HAS_TERMINATOR)
 // A thin lens instead of the pinhole (camera.glsl): the camera's lens_radius > 0.
 FEATURE(28, HAS_LENS)
+// Spot or directional lights among the `lights`: their cone and direction (lights.glsl).
+// Without it every light is a point light, read and shaded as such, at no extra cost.
+FEATURE(29, HAS_DIRECTED_LIGHTS)
