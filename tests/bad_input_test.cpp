@@ -49,6 +49,12 @@ std::string scene_with_render(const std::string& render) {
                          "objects": {}}})", kCamera, render, kSphere);
 }
 
+// The valid scene with a "lights" array.
+std::string with_lights(const std::string& lights) {
+    return fmt::format(R"({{"camera": {}, "materials": {{"chalk": {{"diffuse": [0.8, 0.8, 0.8]}}}}, "lights": {},
+                         "objects": {}}})", kCamera, lights, kSphere);
+}
+
 std::string sphere_with_radius(const std::string& radius) {
     return fmt::format(R"([{{"type": "sphere", "center": [0, 1, 0], "radius": {}, "material": "chalk"}}])", radius);
 }
@@ -98,6 +104,17 @@ std::vector<BadInput> cases() {
         {"fresnel_not_boolean",
          scene(kCamera, kSphere, R"({"chalk": {"transmit": [1, 1, 1], "fresnel": "yes"}})"),
          {"materials.chalk.fresnel", "expected true or false"}},
+        {"spot_outer_not_beyond_inner",
+         with_lights(R"([{"type": "spot", "position": [0, 3, 0], "direction": [0, -1, 0], "inner_angle": 30,
+                          "outer_angle": 20}])"),
+         {"lights[0].inner_angle", "below outer_angle (20)", "got 30"}},
+        {"spot_outer_beyond_90",
+         with_lights(R"([{"type": "spot", "position": [0, 3, 0], "direction": [0, -1, 0], "outer_angle": 120}])"),
+         {"lights[0].outer_angle", "at most 90", "got 120"}},
+        {"directional_zero_direction", with_lights(R"([{"type": "directional", "direction": [0, 0, 0]}])"),
+         {"lights[0].direction", "non-zero"}},
+        {"directional_without_direction", with_lights(R"([{"type": "directional", "intensity": 2}])"),
+         {"lights[0].direction", "missing"}},
         {"file_does_not_exist", "", {"cannot open scene file"}},
         {"unknown_object_type", scene(kCamera, R"([{"type": "cube", "material": "chalk"}])"),
          {"objects[0].type", "unknown object type 'cube'", "torus_knot"}},

@@ -26,7 +26,7 @@ Scene spheres_only() {
     Material m;
     m.diffuse = {0.5, 0.5, 0.5};
     s.materials.push_back(m);
-    s.lights.push_back(PointLight{{1, 2, 3}, {1, 1, 1}, 1});
+    s.lights.push_back(Light{{1, 2, 3}, {1, 1, 1}, 1});
     s.spheres.push_back(Sphere{{0, 0, 0}, 1, 0});
     return s;
 }
@@ -54,6 +54,49 @@ TEST(Features, ShadowsOffLeavesShadowCodeOut) {
     EXPECT_FALSE(g.features.has(Feature::HAS_SHADOWS));
     EXPECT_FALSE(g.features.has(Feature::HAS_POINT_LIGHTS));
     EXPECT_TRUE(g.lights.empty());
+}
+
+// Point lights alone leave the spot and directional code out; one of either kind
+// brings it in.
+TEST(Features, DirectedLightsOnlyWithASpotOrDirectionalLight) {
+    Scene s = spheres_only();
+    EXPECT_FALSE(flatten_scene(s).features.has(Feature::HAS_DIRECTED_LIGHTS));
+    EXPECT_TRUE(contains(flatten_scene(s).features.left_out(), "directed_lights"));
+    for (const LightType type : {LightType::Spot, LightType::Directional}) {
+        Scene t = s;
+        t.lights.push_back(Light{{0, 3, 0}, {1, 1, 1}, 1, type});
+        const FlatScene g = flatten_scene(t);
+        EXPECT_TRUE(g.features.has(Feature::HAS_DIRECTED_LIGHTS));
+        EXPECT_TRUE(g.features.has(Feature::HAS_POINT_LIGHTS)) << "the loop over the lights";
+        EXPECT_EQ(g.lights.size(), 2u);
+    }
+}
+
+// The records the kernel reads (kernel/layout.glsl, Light): a point light at w = 1
+// with the cone that passes everything, a directional light as the point at infinity
+// toward it, a spot light's cone as the ramp (cos - cos(outer)) / (cos(inner) - cos(outer)).
+TEST(Features, LightRecordsFoldEachKindIntoOneLayout) {
+    Scene s = spheres_only();
+    s.camera.eye = {100, 0, 4};  // the kernel's origin moves to (128, 0, 0)
+    s.lights = {Light{{1, 2, 3}, {1, 0.5, 0.25}, 2},
+                Light{{0, 0, 0}, {1, 1, 1}, 3, LightType::Directional, {0.6, -0.8, 0}},
+                Light{{0, 5, 0}, {1, 1, 1}, 1, LightType::Spot, {0, -1, 0}, glm::radians(10.0), glm::radians(30.0)}};
+    const FlatScene g = flatten_scene(s);
+    ASSERT_EQ(g.lights.size(), 3u);
+    EXPECT_EQ(g.lights[0].position, glm::vec4(-127, 2, 3, 1));
+    EXPECT_EQ(g.lights[0].radiance, glm::vec4(2, 1, 0.5, 0));
+    EXPECT_EQ(g.lights[0].cone, glm::vec4(0, 0, 0, 1));
+    EXPECT_EQ(g.lights[1].position, glm::vec4(-0.6f, 0.8f, 0, 0));
+    EXPECT_EQ(g.lights[1].radiance, glm::vec4(3, 3, 3, 0));
+    EXPECT_EQ(g.lights[1].cone, glm::vec4(0, 0, 0, 1));
+    EXPECT_EQ(g.lights[2].position, glm::vec4(-128, 5, 0, 1));
+    const double ci = std::cos(glm::radians(10.0)), co = std::cos(glm::radians(30.0));
+    const glm::vec4 cone = g.lights[2].cone;
+    EXPECT_FLOAT_EQ(cone.y, float(-1.0 / (ci - co)));
+    EXPECT_FLOAT_EQ(cone.w, float(-co / (ci - co)));
+    // Along the inner and outer edges the ramp is 1 and 0.
+    EXPECT_NEAR(cone.y * -ci + cone.w, 1.0, 1e-5);
+    EXPECT_NEAR(cone.y * -co + cone.w, 0.0, 1e-5);
 }
 
 TEST(Features, TrianglesWithNormalsKeepSmoothNormals) {

@@ -184,12 +184,65 @@ TEST(Gltf, PointLightsAndEmissionAreRead) {
         "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "color": [1, 0.5, 0.25], "intensity": 20},
                                                          {"type": "spot", "intensity": 5, "spot": {}}]}})";
     const Scene s = vkrt::load_scene(write_gltf("lights", gltf_json("mesh.bin", nodes, extra)));
-    ASSERT_EQ(s.lights.size(), 1u);
+    ASSERT_EQ(s.lights.size(), 2u);
+    EXPECT_EQ(s.lights[0].type, vkrt::LightType::Point);
     EXPECT_EQ(s.lights[0].position, dvec3(0, 3, 0));
     EXPECT_EQ(s.lights[0].color, dvec3(1, 0.5, 0.25));
     EXPECT_EQ(s.lights[0].intensity, 20.0);
-    EXPECT_TRUE(has_warning(s, "spot lights (1): ignored"));
+    EXPECT_EQ(s.lights[1].type, vkrt::LightType::Spot);
+    EXPECT_EQ(s.lights[1].intensity, 5.0);
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
     EXPECT_EQ(s.render.background, dvec3(0.05)) << "a dim sky beside the file's own lights";
+}
+
+// Spot and directional lights shine down their node's -z axis, turned by the node
+// and its parents but neither scaled nor moved by them; a spot light stands at its
+// node's origin; the cone keeps glTF's radians and defaults.
+TEST(Gltf, SpotAndDirectionalLightsShineDownTheirNodesMinusZ) {
+    const double h = std::sqrt(0.5);  // sin and cos of 45 degrees
+    const std::string nodes = fmt::format(R"([{{"mesh": 0, "translation": [1, 0, 0], "children": [1, 2, 3]}},
+        {{"translation": [0, 4, 0], "rotation": [{0}, 0, 0, {1}], "scale": [2, 2, 2],
+          "extensions": {{"KHR_lights_punctual": {{"light": 0}}}}}},
+        {{"translation": [5, 6, 7], "rotation": [0, {1}, 0, {1}], "extensions": {{"KHR_lights_punctual": {{"light": 1}}}}}},
+        {{"matrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 3, 0, 0, 0, 0, 1], "extensions": {{"KHR_lights_punctual": {{"light": 2}}}}}}])",
+                                          -h, h);
+    const std::string extra = R"(, "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": {"KHR_lights_punctual": {"lights": [
+            {"type": "spot", "intensity": 7, "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.5}},
+            {"type": "directional", "color": [1, 0.9, 0.8], "intensity": 3},
+            {"type": "spot", "spot": {"outerConeAngle": 1.5708}}]}})";
+    const Scene s = vkrt::load_scene(write_gltf("directed", gltf_json("mesh.bin", nodes, extra)));
+    ASSERT_EQ(s.lights.size(), 3u);
+    const vkrt::Light& spot = s.lights[0];
+    EXPECT_EQ(spot.type, vkrt::LightType::Spot);
+    // Turned -90 degrees about x: -z becomes -y.
+    EXPECT_NEAR(glm::length(spot.direction - dvec3(0, -1, 0)), 0.0, 1e-15);
+    EXPECT_NEAR(glm::length(spot.position - dvec3(1, 4, 0)), 0.0, 1e-15);
+    EXPECT_EQ(spot.inner_angle, 0.2);
+    EXPECT_EQ(spot.outer_angle, 0.5);
+    EXPECT_EQ(spot.intensity, 7.0);
+    const vkrt::Light& sun = s.lights[1];
+    EXPECT_EQ(sun.type, vkrt::LightType::Directional);
+    // Turned 90 degrees about y: -z becomes -x.
+    EXPECT_NEAR(glm::length(sun.direction - dvec3(-1, 0, 0)), 0.0, 1e-15);
+    EXPECT_EQ(sun.color, dvec3(1, 0.9, 0.8));
+    EXPECT_EQ(sun.intensity, 3.0);
+    // A matrix that stretches z: the direction stays unit. The inner angle's
+    // default is 0; 1.5708 is pi/2 written short.
+    EXPECT_EQ(s.lights[2].direction, dvec3(0, 0, -1));
+    EXPECT_EQ(s.lights[2].inner_angle, 0.0);
+    EXPECT_EQ(s.lights[2].outer_angle, M_PI / 2.0);
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+}
+
+// What is still not read: a light's range.
+TEST(Gltf, LightRangesAreNamedAsIgnored) {
+    const std::string nodes = R"([{"mesh": 0, "children": [1]}, {"extensions": {"KHR_lights_punctual": {"light": 0}}}])";
+    const std::string extra = R"(, "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": {"KHR_lights_punctual": {"lights": [{"type": "spot", "range": 10, "spot": {}}]}})";
+    const Scene s = vkrt::load_scene(write_gltf("range", gltf_json("mesh.bin", nodes, extra)));
+    EXPECT_EQ(s.lights.size(), 1u);
+    EXPECT_TRUE(has_warning(s, "light ranges (lights reach everywhere) (1): ignored"));
 }
 
 TEST(Gltf, EmissiveStrengthScalesTheEmission) {
@@ -302,6 +355,33 @@ TEST(Gltf, ABinaryFileUnderAnotherNameStillLoads) {
     const std::filesystem::path glb = write_glb("renamed", gltf_json("", kOneNode), octahedron_bytes());
     std::filesystem::copy_file(glb, glb.parent_path() / "model.gltf");
     EXPECT_EQ(vkrt::load_scene(glb.parent_path() / "model.gltf").triangles.size(), 8u);
+}
+
+// A glTF with one light, of the given JSON, on a child of the mesh's node, which has
+// the given extra members (a transform).
+std::string one_light(const std::string& light, const std::string& node = "") {
+    const std::string nodes = R"([{"mesh": 0, "children": [1]}, {)" + node + (node.empty() ? "" : ", ") +
+                              R"("extensions": {"KHR_lights_punctual": {"light": 0}}}])";
+    return gltf_json("mesh.bin", nodes, R"(, "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": {"KHR_lights_punctual": {"lights": [)" + light + "]}}");
+}
+
+TEST(GltfErrors, BadSpotAndDirectionalLightsAreNamed) {
+    using vkrt::test::expect_error_message;
+    expect_error_message(load_error(write_gltf("wide", one_light(R"({"type": "spot", "spot": {"outerConeAngle": 2}})"))), "",
+                         {"extensions.KHR_lights_punctual.lights[0].spot.outerConeAngle", "at most pi/2", "got 2"});
+    expect_error_message(load_error(write_gltf("shut", one_light(R"({"type": "spot", "spot": {"outerConeAngle": 0}})"))), "",
+                         {"lights[0].spot.outerConeAngle", "above 0", "got 0"});
+    expect_error_message(load_error(write_gltf("inverted", one_light(R"({"type": "spot", "spot": {"innerConeAngle": 0.6, "outerConeAngle": 0.4}})"))), "",
+                         {"lights[0].spot.innerConeAngle", "below outerConeAngle (0.4)", "got 0.6"});
+    expect_error_message(load_error(write_gltf("equal", one_light(R"({"type": "spot", "spot": {"innerConeAngle": 0.4, "outerConeAngle": 0.4}})"))), "",
+                         {"lights[0].spot.innerConeAngle", "got 0.4"});
+    expect_error_message(load_error(write_gltf("negative", one_light(R"({"type": "spot", "spot": {"innerConeAngle": -0.1}})"))), "",
+                         {"lights[0].spot.innerConeAngle", "got -0.1"});
+    expect_error_message(load_error(write_gltf("flat_sun", one_light(R"({"type": "directional"})", R"("scale": [1, 1, 0])"))), "",
+                         {"nodes[1]", "flattens its directional light's direction"});
+    expect_error_message(load_error(write_gltf("dark_sun", one_light(R"({"type": "directional", "intensity": -1})"))), "",
+                         {"lights[0].intensity", "expected a number >= 0"});
 }
 
 TEST(GltfErrors, AFlatteningTransformIsRefused) {

@@ -126,7 +126,7 @@ TEST(QuadScene, RendersAsItsTwoTrianglesWithHalfTheTests) {
     vkrt::Material white;
     white.diffuse = dvec3(0.75);
     quads.materials = {white};
-    quads.lights.push_back(vkrt::PointLight{{0.3, 1.8, 0.2}, dvec3(1.0), 1.0});
+    quads.lights.push_back(vkrt::Light{{0.3, 1.8, 0.2}, dvec3(1.0), 1.0});
     quads.triangles = {vkrt::quad({-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, 0), vkrt::quad({-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, 0),
                        vkrt::quad({-1, 0, -1}, {2, 0, 0}, {0, 2, 0}, 0), vkrt::quad({-1, 0, -1}, {0, 2, 0}, {0, 0, 2}, 0),
                        vkrt::quad({1, 0, -1}, {0, 0, 2}, {0, 2, 0}, 0)};

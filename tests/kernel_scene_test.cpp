@@ -23,7 +23,7 @@ namespace {
 using vkrt::kernel::INFINITY_T;
 using vkrt::kernel::Kernel;
 using vkrt::kernel::Material;
-using vkrt::kernel::PointLight;
+using vkrt::kernel::Light;
 using vkrt::kernel::Sphere;
 using vkrt::kernel::Triangle;
 using vkrt::kernel::uvec4;
@@ -42,6 +42,12 @@ Kernel::Ray ray(vec3 origin, vec3 dir) { return Kernel::Ray(origin, dir); }
     }
     return ::testing::AssertionFailure() << "got (" << got.x << ", " << got.y << ", " << got.z << "), want ("
                                          << want.x << ", " << want.y << ", " << want.z << ")";
+}
+
+// A point light as the host writes it (layout.glsl): w = 1, and the cone that lets
+// everything through.
+Light point_light(vec3 position, vec3 radiance) {
+    return Light{vec4(position, 1.0f), vec4(radiance, 0.0f), vec4(0.0f, 0.0f, 0.0f, 1.0f)};
 }
 
 Sphere sphere(vec3 center, float radius, std::uint32_t material) {
@@ -67,7 +73,7 @@ struct TestScene {
     std::vector<Material> materials;
     std::vector<Sphere> spheres;
     std::vector<Triangle> triangles;
-    std::vector<PointLight> lights;
+    std::vector<Light> lights;
 
     Kernel kernel() const {
         Kernel k;
@@ -392,7 +398,7 @@ struct ShadeSetup {
         m.reflect_shininess = vec4(0.0f, 0.0f, 0.0f, 3.0f);
         scene.materials = {m};
         scene.spheres = {sphere(vec3(0, 0, 0), 1.0f, 0)};
-        scene.lights = {PointLight{vec4(vec3(light_pos), 0.0f), vec4(vec3(light_color * light_intensity), 0.0f)}};
+        scene.lights = {point_light(vec3(light_pos), vec3(light_color * light_intensity))};
     }
     Kernel kernel() const {
         Kernel k = scene.kernel();
@@ -502,11 +508,11 @@ TEST(ShadeLocal, LightsBelowTheSurfaceCastNoShadowRay) {
     ShadeSetup s;
     // Straight below the hit point, on the far side of the sphere, and one exactly in
     // the tangent plane (cos(theta) = 0).
-    s.scene.lights.push_back(PointLight{vec4(0.0f, 0.0f, -5.0f, 0.0f), vec4(100.0f, 100.0f, 100.0f, 0.0f)});
-    s.scene.lights.push_back(PointLight{vec4(4.0f, 0.0f, 1.0f, 0.0f), vec4(100.0f, 100.0f, 100.0f, 0.0f)});
+    s.scene.lights.push_back(point_light(vec3(0.0f, 0.0f, -5.0f), vec3(100.0f)));
+    s.scene.lights.push_back(point_light(vec3(4.0f, 0.0f, 1.0f), vec3(100.0f)));
     // A second lit light, opposite the first: same cos(theta), mirrored highlight.
     s.scene.lights.push_back(s.scene.lights[0]);
-    s.scene.lights.back().position = vec4(-3.0f, 0.0f, 5.0f, 0.0f);
+    s.scene.lights.back().position = vec4(-3.0f, 0.0f, 5.0f, 1.0f);
     Kernel k = s.kernel();
     const Kernel::Hit hit = k.closest_hit(s.eye_ray, INFINITY_T);
     std::uint32_t shadow_rays = 0;
@@ -550,7 +556,7 @@ TestScene tiny_view() {
     m.diffuse_kd = vec4(0.8f, 0.2f, 0.2f, 1.0f);
     scene.materials = {m};
     scene.spheres = {sphere(vec3(0, 0, -3), 1.5f, 0)};
-    scene.lights = {PointLight{vec4(0.0f), vec4(1.0f, 1.0f, 1.0f, 0.0f)}};
+    scene.lights = {point_light(vec3(0.0f), vec3(1.0f))};
     return scene;
 }
 

@@ -77,7 +77,7 @@ Scene many_lights(std::uint32_t count) {
     s.spheres.push_back(Sphere{{0, 0, 0}, 6.0, 0});  // fills the view
     for (std::uint32_t i = 0; i < count; ++i) {
         const double a = double(i) * 0.618;
-        s.lights.push_back(PointLight{{10 * std::cos(a), 10 * std::sin(a), 10}, {1, 1, 1}, 1e-5});
+        s.lights.push_back(Light{{10 * std::cos(a), 10 * std::sin(a), 10}, {1, 1, 1}, 1e-5});
     }
     return s;
 }

@@ -34,7 +34,7 @@ Scene probe_scene() {
     m.ks = 0.5;
     m.shininess = 10;
     s.materials.push_back(m);
-    s.lights.push_back(PointLight{{2, 3, 6}, {1.0, 0.9, 0.8}, 1.5});
+    s.lights.push_back(Light{{2, 3, 6}, {1.0, 0.9, 0.8}, 1.5});
     s.spheres.push_back(Sphere{{0, 0, 0}, 1.0, 0});
     return s;
 }
@@ -65,7 +65,7 @@ std::optional<dvec3> expected_radiance(const Scene& s, std::uint32_t px, std::ui
     const dvec3 n = (p - sp.center) / sp.radius;
     const Material& m = s.materials[0];
     dvec3 color = s.render.ambient * m.kd * m.diffuse;
-    const PointLight& light = s.lights[0];
+    const Light& light = s.lights[0];
     const dvec3 l = glm::normalize(light.position - p);
     const double cos_theta = glm::dot(n, l);
     if (cos_theta > 0.0) {
@@ -123,7 +123,7 @@ Scene lamp_on_ceiling(bool shadows) {
     Material m;
     m.diffuse = {0.7, 0.7, 0.7};
     s.materials.push_back(m);
-    s.lights.push_back(PointLight{{0.1, 2.0, 0.2}, {1, 1, 1}, 1.0});
+    s.lights.push_back(Light{{0.1, 2.0, 0.2}, {1, 1, 1}, 1.0});
     auto quad = [&](dvec3 corner, dvec3 e1, dvec3 e2) {
         s.triangles.push_back(Triangle{{corner, corner + e1, corner + e1 + e2}, std::nullopt, 0});
         s.triangles.push_back(Triangle{{corner, corner + e1 + e2, corner + e2}, std::nullopt, 0});

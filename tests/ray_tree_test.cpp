@@ -205,7 +205,7 @@ TEST(RayTree, APerfectMirrorShowsTheLitPlaneExactly) {
     scene.materials[0].kd = 0.0;
     add_quad(scene, {-20, 0, 20}, {40, 0, 0}, {0, 0, -40}, 0);
     add_quad(scene, {-20, 2, -20}, {40, 0, 0}, {0, 0, 40}, 1);
-    scene.lights.push_back(PointLight{{0, 1, 0}, {1, 1, 1}, 2.0});
+    scene.lights.push_back(Light{{0, 1, 0}, {1, 1, 1}, 2.0});
     const FlatScene gpu = flatten_scene(scene);
     Kernel k = make_kernel(gpu);
     const Kernel::SampleResult r = k.render_sample(0, 0, 0);
@@ -243,7 +243,7 @@ TEST(RayTree, GlassCastsAnOpaqueShadow) {
     scene.materials = {material(dvec3(0.8)), material(dvec3(0.0), dvec3(0.0), dvec3(1.0), 1.5)};
     add_quad(scene, {-20, 0, 20}, {40, 0, 0}, {0, 0, -40}, 0);
     scene.spheres.push_back(Sphere{{0, 1.5, 0}, 0.4, 1});
-    scene.lights.push_back(PointLight{{0, 10, 0}, {1, 1, 1}, 1.0});
+    scene.lights.push_back(Light{{0, 10, 0}, {1, 1, 1}, 1.0});
     const FlatScene gpu = flatten_scene(scene);
     Kernel k = make_kernel(gpu);
     // A ray straight down through the ball reaches the floor's shadowed centre.

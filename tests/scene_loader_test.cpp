@@ -257,6 +257,71 @@ TEST_F(SceneLoaderTest, LightDefaults) {
     EXPECT_DOUBLE_EQ(s.lights[0].intensity, 1.0);
 }
 
+// Directions are made unit; angles are degrees in the file, radians in the scene.
+TEST_F(SceneLoaderTest, SpotAndDirectionalLights) {
+    const Scene s = load(Parts{.lights = R"([
+        {"type": "spot", "position": [1, 2, 3], "direction": [0, -2, 0], "inner_angle": 10, "outer_angle": 30,
+         "color": [1, 0.5, 0.25], "intensity": 4},
+        {"type": "directional", "direction": [3, 0, -4], "intensity": 0.5},
+        {"type": "spot", "position": [0, 0, 0], "direction": [0, 0, -1e-3]}])"}.text());
+    ASSERT_EQ(s.lights.size(), 3u);
+    const vkrt::Light& spot = s.lights[0];
+    EXPECT_EQ(spot.type, vkrt::LightType::Spot);
+    expect_vec(spot.position, {1, 2, 3});
+    expect_vec(spot.direction, {0, -1, 0});
+    EXPECT_DOUBLE_EQ(spot.inner_angle, M_PI / 18.0);
+    EXPECT_DOUBLE_EQ(spot.outer_angle, M_PI / 6.0);
+    expect_vec(spot.color, {1, 0.5, 0.25});
+    EXPECT_DOUBLE_EQ(spot.intensity, 4.0);
+    const vkrt::Light& sun = s.lights[1];
+    EXPECT_EQ(sun.type, vkrt::LightType::Directional);
+    expect_vec(sun.direction, {0.6, 0, -0.8});
+    expect_vec(sun.color, {1, 1, 1});
+    EXPECT_DOUBLE_EQ(sun.intensity, 0.5);
+    // The cone's defaults: 0 and 45 degrees.
+    EXPECT_DOUBLE_EQ(s.lights[2].inner_angle, 0.0);
+    EXPECT_DOUBLE_EQ(s.lights[2].outer_angle, M_PI / 4.0);
+    expect_vec(s.lights[2].direction, {0, 0, -1});
+    const Scene points = load(Parts{.lights = R"([{"type": "point", "position": [1, 2, 3]}])"}.text());
+    EXPECT_EQ(points.lights[0].type, vkrt::LightType::Point);
+}
+
+TEST_F(SceneLoaderTest, SpotAndDirectionalLightErrors) {
+    const std::string spot = R"("type": "spot", "position": [0, 0, 0])";
+    auto lights = [](const std::string& fields) { return Parts{.lights = "[{" + fields + "}]"}; };
+    expect_error(lights(spot), {": lights[0].direction: required field is missing"});
+    expect_error(lights(R"("type": "directional")"), {": lights[0].direction: required field is missing"});
+    expect_error(lights(R"("type": "directional", "direction": [0, 0, 0])"),
+                 {": lights[0].direction: expected a non-zero vector", "got [0, 0, 0]"});
+    expect_error(lights(spot + R"(, "direction": [0, 0, 0])"), {": lights[0].direction: expected a non-zero vector"});
+    expect_error(lights(R"("type": "directional", "direction": [0, 1e999, 0])"), {": lights[0].direction[1]"});
+    expect_error(lights(R"("type": "directional", "direction": [0, -1])"), {": lights[0].direction"});
+    expect_error(lights(spot + R"(, "direction": [0, -1, 0], "inner_angle": 30, "outer_angle": 30)"),
+                 {": lights[0].inner_angle: expected an angle in degrees below outer_angle (30), got 30"});
+    expect_error(lights(spot + R"(, "direction": [0, -1, 0], "inner_angle": 40, "outer_angle": 20)"),
+                 {": lights[0].inner_angle: expected an angle in degrees below outer_angle (20), got 40"});
+    expect_error(lights(spot + R"(, "direction": [0, -1, 0], "inner_angle": 50)"),
+                 {": lights[0].inner_angle: expected an angle in degrees below outer_angle (45, its default), got 50"});
+    expect_error(lights(spot + R"(, "direction": [0, -1, 0], "inner_angle": -1)"),
+                 {": lights[0].inner_angle: expected a number >= 0, got -1"});
+    expect_error(lights(spot + R"(, "direction": [0, -1, 0], "outer_angle": 91)"),
+                 {": lights[0].outer_angle: expected an angle in degrees above 0 and at most 90, got 91"});
+    expect_error(lights(spot + R"(, "direction": [0, -1, 0], "outer_angle": 0)"),
+                 {": lights[0].outer_angle: expected an angle in degrees above 0 and at most 90, got 0"});
+    expect_error(lights(spot + R"(, "direction": [0, -1, 0], "outer_angle": "wide")"), {": lights[0].outer_angle"});
+    // Each kind takes its own fields only.
+    expect_error(lights(R"("type": "point", "position": [0, 0, 0], "direction": [0, -1, 0])"),
+                 {": lights[0]: unknown field 'direction'"});
+    expect_error(lights(R"("type": "directional", "direction": [0, -1, 0], "position": [0, 0, 0])"),
+                 {": lights[0]: unknown field 'position'"});
+    expect_error(lights(R"("type": "directional", "direction": [0, -1, 0], "outer_angle": 20)"),
+                 {": lights[0]: unknown field 'outer_angle'"});
+    expect_error(lights(spot + R"(, "direction": [0, -1, 0], "angle": 20)"),
+                 {": lights[0]: unknown field 'angle'", "inner_angle", "outer_angle"});
+    expect_error(lights(R"("type": "directional", "direction": [0, -1, 0], "intensity": -1)"),
+                 {": lights[0].intensity: expected a number >= 0, got -1"});
+}
+
 TEST_F(SceneLoaderTest, QuadBecomesOneParallelogramFacingCrossOfEdges) {
     const Scene s = load(Parts{.objects = R"([{"type": "quad", "corner": [1, 2, 3], "edge1": [2, 0, 0],
                                            "edge2": [0, 0, -4], "material": "glass"}])"}
@@ -638,8 +703,8 @@ TEST_F(SceneLoaderTest, UnknownMaterial) {
 TEST_F(SceneLoaderTest, UnknownTypes) {
     expect_error(Parts{.objects = R"([{"type": "cube", "material": "chalk"}])"},
                  {": objects[0].type: unknown object type 'cube' (expected one of: sphere, triangle, quad, ring, cylinder, mesh, gltf, random_spheres, sphereflake, torus_knot)"});
-    expect_error(Parts{.lights = R"([{"type": "spot", "position": [0, 0, 0]}])"},
-                 {": lights[0].type: unknown light type 'spot'"});
+    expect_error(Parts{.lights = R"([{"type": "sun", "direction": [0, -1, 0]}])"},
+                 {": lights[0].type: unknown light type 'sun' (expected one of: point, spot, directional)"});
 }
 
 // Exporters write triangles of zero area and zero vertex normals: one warning each,

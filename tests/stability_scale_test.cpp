@@ -171,7 +171,7 @@ Expected expect_at(const Scene& s, const dvec3& origin, double x, double y) {
     Expected e;
     e.material = h.material;
     if (h.material < 0) return e;
-    const PointLight& light = s.lights.at(0);
+    const Light& light = s.lights.at(0);
     const dvec3 p = r.origin + h.t * r.dir;
     const dvec3 to_light = light.position - p;
     const double dist = glm::length(to_light);
@@ -296,7 +296,7 @@ Scene as_global(Scene s) {
     s.render.max_bounces = 1;
     s.render.jitter = false;
     s.render.spp = 1;
-    for (PointLight& l : s.lights) {
+    for (Light& l : s.lights) {
         const double r = glm::length(l.position - s.camera.look_at);
         l.intensity *= glm::pi<double>() * r * r;
     }

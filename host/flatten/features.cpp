@@ -92,6 +92,9 @@ FeatureSet analyze_features(const Scene& scene) {
 
     f.set(Feature::HAS_GLOBAL, global);
     f.set(Feature::HAS_POINT_LIGHTS, has_lights && has_geometry);
+    f.set(Feature::HAS_DIRECTED_LIGHTS,
+          has_geometry && std::any_of(scene.lights.begin(), scene.lights.end(),
+                                      [](const Light& l) { return l.type != LightType::Point; }));
     f.set(Feature::HAS_SHADOWS, scene.render.shadows && any_light && has_geometry);
     // The lift moves shadow rays' origins; without shadow rays it has nothing to move.
     f.set(Feature::HAS_TERMINATOR,

@@ -123,6 +123,26 @@ void add_textures(const Scene& scene, FlatScene& g) {
     }
 }
 
+// A light as the kernel reads it (kernel/layout.glsl, Light): a directional light as
+// the point at infinity toward it (w = 0), which no origin moves; a spot light's
+// axis and cone angles folded into the cone's linear ramp in the cosine, with the
+// width floored at 0.001 as glTF's reference code floors it (a ramp of 0 would
+// divide by 0).
+kernel::Light flatten(const Light& l, const dvec3& origin) {
+    const vec4 radiance = to_vec4(l.color * l.intensity);
+    switch (l.type) {
+    case LightType::Directional:
+        return kernel::Light(to_vec4(-l.direction, 0.0), radiance, vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    case LightType::Spot: {
+        const double cos_outer = std::cos(l.outer_angle);
+        const double scale = 1.0 / std::max(std::cos(l.inner_angle) - cos_outer, 1e-3);
+        return kernel::Light(to_vec4(l.position - origin, 1.0), radiance, to_vec4(l.direction * scale, -cos_outer * scale));
+    }
+    case LightType::Point: break;
+    }
+    return kernel::Light(to_vec4(l.position - origin, 1.0), radiance, vec4(0.0f, 0.0f, 0.0f, 1.0f));
+}
+
 // Which shape a Triangle record holds (kernel::Triangle meta.z): a parallelogram with
 // perpendicular edges is a rectangle, which the kernel samples by solid angle when it
 // emits (kernel/emitters.glsl).
@@ -417,9 +437,7 @@ FlatScene flatten_scene(const Scene& scene, const AccelPolicy& policy) {
         }
     }
     if (g.features.has(Feature::HAS_POINT_LIGHTS)) {
-        for (const PointLight& l : scene.lights) {
-            g.lights.push_back(kernel::PointLight(to_vec4(l.position - o), to_vec4(l.color * l.intensity)));
-        }
+        for (const Light& l : scene.lights) g.lights.push_back(flatten(l, o));
     }
     kernel::set_sphere_count(p, static_cast<std::uint32_t>(g.spheres.size()));
     kernel::set_triangle_count(p, static_cast<std::uint32_t>(g.triangles.size()));

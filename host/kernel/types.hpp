@@ -27,7 +27,7 @@ static_assert(sizeof(Sphere) == 32);
 static_assert(sizeof(Triangle) == 112);
 static_assert(sizeof(Material) == 144);
 static_assert(sizeof(Texture) == 16);
-static_assert(sizeof(PointLight) == 32);
+static_assert(sizeof(Light) == 48);
 static_assert(sizeof(Ring) == 48);
 static_assert(sizeof(Cylinder) == 48);
 static_assert(sizeof(Emitter) == 32);

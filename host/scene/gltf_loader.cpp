@@ -397,22 +397,54 @@ private:
                     fmt::format("light {} does not exist (the file has {})", i, model_.lights.size()));
         }
         const tinygltf::Light& l = model_.lights[static_cast<std::size_t>(i)];
-        if (l.type != "point") {
+        const std::string element = fmt::format("extensions.KHR_lights_punctual.lights[{}]", i);
+        Light p;
+        if (l.type == "spot") {
+            p.type = LightType::Spot;
+        } else if (l.type == "directional") {
+            p.type = LightType::Directional;
+        } else if (l.type != "point") {
             note_unsupported(fmt::format("{} lights", l.type));
             return;
         }
-        PointLight p;
-        p.position = dvec3(world * glm::dvec4(0, 0, 0, 1));
-        if (l.color.size() == 3) p.color = color(dvec3(l.color[0], l.color[1], l.color[2]), fmt::format("extensions.KHR_lights_punctual.lights[{}].color", i));
-        if (!(l.intensity >= 0.0 && std::isfinite(l.intensity))) {
-            fail_at(fmt::format("extensions.KHR_lights_punctual.lights[{}].intensity", i), "expected a number >= 0");
+        // The node places a point or spot light; a spot or directional light shines
+        // down the node's -z axis (its scale aside: the direction is made unit).
+        if (p.type != LightType::Directional) p.position = dvec3(world * glm::dvec4(0, 0, 0, 1));
+        if (p.type != LightType::Point) {
+            const dvec3 d = glm::dmat3(world) * dvec3(0, 0, -1);
+            if (!is_nonzero(d) || !std::isfinite(max_abs(d))) {
+                fail_at(node, fmt::format("the node's transform flattens its {} light's direction (its -z axis)", l.type));
+            }
+            p.direction = robust_normalize(d);
         }
-        // Candela taken as the renderer's radiant intensity, one for one, as glTF
-        // viewers do: a light of intensity I lights a surface facing it at distance r
-        // with I / r^2 (docs/gltf.md).
+        if (p.type == LightType::Spot) read_cone(l.spot, element + ".spot", p);
+        if (l.color.size() == 3) p.color = color(dvec3(l.color[0], l.color[1], l.color[2]), element + ".color");
+        if (!(l.intensity >= 0.0 && std::isfinite(l.intensity))) fail_at(element + ".intensity", "expected a number >= 0");
+        // Candela (lux for a directional light) taken as the renderer's radiant
+        // intensity (irradiance), one for one, as glTF viewers do: a point light of
+        // intensity I lights a surface facing it at distance r with I / r^2
+        // (docs/gltf.md).
         p.intensity = l.intensity;
         if (l.range > 0.0) note_unsupported("light ranges (lights reach everywhere)");
         scene_.lights.push_back(p);
+    }
+
+    // A spot light's cone: 0 <= innerConeAngle < outerConeAngle <= pi/2 (tinygltf
+    // fills in the defaults, 0 and pi/4). An outer angle above pi/2 by no more than
+    // kAngleSlack is pi/2 written with too few digits (1.5708), and taken as pi/2.
+    void read_cone(const tinygltf::SpotLight& spot, const std::string& element, Light& out) const {
+        constexpr double kHalfPi = 1.57079632679489661923;
+        constexpr double kAngleSlack = 1e-5;
+        const double outer = spot.outerConeAngle, inner = spot.innerConeAngle;
+        if (!(outer > 0.0 && outer <= kHalfPi + kAngleSlack)) {
+            fail_at(element + ".outerConeAngle", fmt::format("expected an angle above 0 and at most pi/2, got {}", outer));
+        }
+        if (!(inner >= 0.0 && inner < outer)) {
+            fail_at(element + ".innerConeAngle",
+                    fmt::format("expected an angle from 0 to below outerConeAngle ({}), got {}", outer, inner));
+        }
+        out.inner_angle = inner;
+        out.outer_angle = std::min(outer, kHalfPi);
     }
 
     std::filesystem::path file_;

@@ -1,7 +1,7 @@
 #pragma once
 // glTF 2.0 files (.gltf with its buffers, or .glb) as scenes to render directly:
 // the default scene's node hierarchy, its triangle meshes and their materials, its
-// first camera and its KHR_lights_punctual point lights, rendered in global mode
+// first camera and its KHR_lights_punctual lights, rendered in global mode
 // (docs/gltf.md has what is read, what is not, and the defaults).
 #include <filesystem>
 
@@ -12,11 +12,11 @@ namespace vkrt {
 
 // Throws SceneError, naming the file and the element (e.g.
 // "meshes[2].primitives[0].indices"), for anything it cannot read. What it reads but
-// cannot render as the file means (textures, metallic materials, spot lights, ...)
+// cannot render as the file means (textures, metallic materials, light ranges, ...)
 // becomes one warning per kind in Scene::warnings.
 Scene load_gltf_scene(const std::filesystem::path& file);
 
-// The file's meshes with their materials, and its point lights, placed by
+// The file's meshes with their materials, and its lights, placed by
 // `placement` and appended to `scene` (a JSON scene's "gltf" object); its camera
 // and the render defaults are not taken.
 void add_gltf(const std::filesystem::path& file, const Transform& placement, Scene& scene);

@@ -19,6 +19,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <glm/vec3.hpp>
 
 #include "scene/estimator_spec.hpp"
@@ -269,7 +270,37 @@ MaterialIndex read_materials(const Node& n, Scene& scene) {
     return index;
 }
 
-void read_lights(const Node& n, std::vector<PointLight>& out) {
+// A spot or directional light's "direction": any non-zero length, made unit here.
+dvec3 read_direction(const Node& light) {
+    const Node direction = light.required("direction");
+    const dvec3 d = direction.vec3();
+    if (!is_nonzero(d)) direction.fail("expected a non-zero vector (the way the light travels), got [0, 0, 0]");
+    return robust_normalize(d);
+}
+
+// A spot light's cone, in degrees in the file and radians in the scene:
+// 0 <= inner_angle < outer_angle <= 90.
+void read_cone(const Node& light, Light& out) {
+    double outer = 45.0;
+    if (auto v = light.find("outer_angle")) {
+        outer = v->number();
+        if (!(outer > 0.0 && outer <= 90.0)) {
+            v->fail(fmt::format("expected an angle in degrees above 0 and at most 90, got {}", outer));
+        }
+    }
+    double inner = 0.0;
+    if (auto v = light.find("inner_angle")) {
+        inner = v->number_at_least(0.0);
+        if (!(inner < outer)) {
+            v->fail(fmt::format("expected an angle in degrees below outer_angle ({}{}), got {}", outer,
+                                light.find("outer_angle") ? "" : ", its default", inner));
+        }
+    }
+    out.inner_angle = glm::radians(inner);
+    out.outer_angle = glm::radians(outer);
+}
+
+void read_lights(const Node& n, std::vector<Light>& out) {
     for (const Node& light : n.elements()) {
         const Node type = light.required("type");
         const std::string t = type.string();
@@ -278,13 +309,27 @@ void read_lights(const Node& n, std::vector<PointLight>& out) {
             type.fail("there is no \"area\" light type: an object whose material has a nonzero \"emission\" "
                       "is an area light");
         }
-        if (t != "point") type.fail(fmt::format("unknown light type {} (expected one of: point)", json::quote_user(t)));
-        light.allow_only({"type", "position", "color", "intensity"});
-        PointLight p;
-        p.position = light.required("position").vec3();
-        if (auto c = light.find("color")) p.color = c->color();
-        if (auto i = light.find("intensity")) p.intensity = i->number_at_least(0.0);
-        out.push_back(p);
+        Light l;
+        if (t == "point") {
+            light.allow_only({"type", "position", "color", "intensity"});
+            l.position = light.required("position").vec3();
+        } else if (t == "spot") {
+            light.allow_only({"type", "position", "direction", "inner_angle", "outer_angle", "color", "intensity"});
+            l.type = LightType::Spot;
+            l.position = light.required("position").vec3();
+            l.direction = read_direction(light);
+            read_cone(light, l);
+        } else if (t == "directional") {
+            light.allow_only({"type", "direction", "color", "intensity"});
+            l.type = LightType::Directional;
+            l.direction = read_direction(light);
+        } else {
+            type.fail(fmt::format("unknown light type {} (expected one of: point, spot, directional)",
+                                  json::quote_user(t)));
+        }
+        if (auto c = light.find("color")) l.color = c->color();
+        if (auto i = light.find("intensity")) l.intensity = i->number_at_least(0.0);
+        out.push_back(l);
     }
 }
 
@@ -430,7 +475,7 @@ void read_quad(const Node& n, const MaterialIndex& materials, std::vector<Triang
 }
 
 // {"type": "gltf", "file": F, "transform": T}: a glTF file's meshes, materials and
-// point lights, placed by T (docs/scene-format.md).
+// lights, placed by T (docs/scene-format.md).
 void read_gltf_object(const Node& n, Scene& scene) {
     n.allow_only({"type", "file", "transform"});
     const Node file = n.required("file");

@@ -340,7 +340,7 @@ private:
         if (got != 3 && got != 6) {
             fail(l.number, fmt::format("expected 3 or 6 numbers after 'l' (x y z [r g b]), got {}", got));
         }
-        PointLight light;
+        Light light;
         light.position = vec3(l, 1, "'l'");
         // A coloured light's colour is its brightness: it is used as given, while
         // the uncoloured ones get the SPD intensity in finish().

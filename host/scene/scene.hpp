@@ -120,10 +120,24 @@ struct Material {
     std::array<double, 6> uv_transform{1.0, 0.0, 0.0, 0.0, 1.0, 0.0};
 };
 
-struct PointLight {
-    dvec3 position{0.0};
+enum class LightType { Point, Spot, Directional };
+
+// One of the scene's `lights` (docs/scene-format.md): a point, a spot light (a point
+// that shines into a cone) or a directional light (a light at infinity).
+struct Light {
+    dvec3 position{0.0};  // point and spot
     dvec3 color{1.0};
+    // Multiplies color: an intensity for point and spot lights, the irradiance on a
+    // surface facing it for a directional light.
     double intensity = 1.0;
+    LightType type = LightType::Point;
+    // Spot and directional: the way the light travels, unit length (the loaders
+    // normalize it).
+    dvec3 direction{0.0, -1.0, 0.0};
+    // Spot: the cone's half-angles from the axis, in radians, 0 <= inner < outer <=
+    // pi/2; full intensity within inner, none beyond outer, glTF's falloff between.
+    double inner_angle = 0.0;
+    double outer_angle = 0.25 * 3.14159265358979323846;
 };
 
 struct Sphere {
@@ -177,7 +191,7 @@ struct Scene {
     Camera camera;
     RenderSettings render;
     std::vector<Material> materials;
-    std::vector<PointLight> lights;
+    std::vector<Light> lights;
     std::vector<Sphere> spheres;
     std::vector<Triangle> triangles;
     std::vector<Ring> rings;

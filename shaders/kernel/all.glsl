@@ -20,6 +20,7 @@
 #include "solid_angle.glsl"
 #include "phong.glsl"
 #include "visibility.glsl"
+#include "lights.glsl"
 #include "emitters.glsl"
 #include "area_lights.glsl"
 #include "shade.glsl"

@@ -47,7 +47,7 @@ vec3 shade_area_lights(Ray ray, Hit hit, Material m, INOUT(Rng) rng, INOUT(uint)
         vec3 l = to_light / sqrt(dot(to_light, to_light));
         // The emitter's front must face the point (visibility.glsl tests the rest).
         bool facing = y.pdf > 0.0f && -dot(y.normal, l) > 0.0f;
-        if (light_reaches(hit, shadow_origin, l, y.position, facing, shadow_rays)) {
+        if (light_reaches(hit, shadow_origin, l, vec4(y.position, 1.0f), facing, shadow_rays)) {
             sum += y.emission * phong_term(m, diffuse, hit.normal, l, dot(hit.normal, l), to_eye) / y.pdf;
         }
     }

@@ -17,7 +17,7 @@ SCENE_ARRAY(1, spheres, Sphere, load_sphere, rgba32ui)
 SCENE_ARRAY(2, triangles, Triangle, load_triangle, rgba32ui)
 SCENE_ARRAY(3, rings, Ring, load_ring, rgba32ui)
 SCENE_ARRAY(4, cylinders, Cylinder, load_cylinder, rgba32ui)
-SCENE_ARRAY(5, lights, PointLight, load_light, rgba32ui)
+SCENE_ARRAY(5, lights, Light, load_light, rgba32ui)
 SCENE_ARRAY(6, emitters, Emitter, load_emitter, rgba32ui)          // empty without area lights
 SCENE_ARRAY(7, textures, Texture, load_texture, rgba32ui)         // empty without textures
 SCENE_ARRAY(8, grid_nodes, uint, load_grid_node, r32ui)           // cells + 1 offsets into grid_refs;

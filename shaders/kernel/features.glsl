@@ -9,7 +9,7 @@
 FEATURE(0, HAS_SPHERES)
 FEATURE(1, HAS_TRIANGLES)
 FEATURE(2, HAS_SMOOTH_NORMALS)
-FEATURE(3, HAS_POINT_LIGHTS)
+FEATURE(3, HAS_POINT_LIGHTS)   // the scene's `lights`, of any kind: the loop over them (lights.glsl)
 FEATURE(4, HAS_SHADOWS)
 FEATURE(5, HAS_SPECULAR)
 FEATURE(6, HAS_AMBIENT)
@@ -56,3 +56,6 @@ FEATURE(28, HAS_LENS)
 FEATURE(29, HAS_MICROFACET)
 // Colour textures (texture.glsl): a material that the scene uses has one.
 FEATURE(30, HAS_TEXTURES)
+// Spot or directional lights among the `lights`: their cone and direction (lights.glsl).
+// Without it every light is a point light, read and shaded as such, at no extra cost.
+FEATURE(31, HAS_DIRECTED_LIGHTS)

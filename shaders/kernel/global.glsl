@@ -12,7 +12,9 @@
 // Radiance units: global mode is physical. A point light of intensity I lights a
 // surface with irradiance I cos(theta) / r^2, whose Lambertian radiance is then
 // rho / pi * I cos(theta) / r^2 (local mode keeps the paper's convention, without
-// the fall-off and the 1/pi). Emitters are seen, and light, from their front face.
+// the fall-off and the 1/pi). A spot light is a point light times its cone factor
+// (lights.glsl); a directional light of irradiance E (its colour * intensity) gives
+// E cos(theta), with no fall-off. Emitters are seen, and light, from their front face.
 
 // The point a ray hits, rounded once (precise: no fused multiply-add) as in local
 // mode. A function because glslang 11 crashes on a `precise` local inside
@@ -51,8 +53,9 @@ float power_heuristic(float pdf_this, float pdf_other) {
     return 1.0f / (1.0f + r * r);
 }
 
-// Direct light at a path vertex through its smooth lobes: every point light (the
-// only way to reach one: no path can hit a point) and, with next-event estimation
+// Direct light at a path vertex through its smooth lobes: every light of the
+// scene's `lights` (the only way to reach one: no path can hit a point, nor come
+// from exactly one direction) and, with next-event estimation
 // (HAS_AREA_LIGHTS in global mode), one point on the area lights, weighted by the
 // power heuristic against the BSDF sampling that could have found it too (whose
 // hits are weighted to match in path_sample). p_smooth is the probability of
@@ -68,12 +71,15 @@ vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smoo
             if (!loop_tick()) {
                 break;
             }
-            PointLight light = load_light(i);
-            vec3 to_light = vec3(light.position) - p;
+            Light light = load_light(i);
+            vec3 to_light = toward_light(light, p);
+            // A directional light's vector is its unit direction: r2 is 1, to rounding,
+            // and the light does not fall off.
             float r2 = dot(to_light, to_light);
             vec3 l = to_light / sqrt(r2);
-            if (light_reaches(hit, shadow_origin, l, vec3(light.position), true, s.shadow_rays)) {
-                sum += eval_smooth(lobes, hit.normal, wo, l) * vec3(light.radiance) * (dot(hit.normal, l) / r2);
+            float cone = HAS_DIRECTED_LIGHTS ? cone_factor(light, l) : 1.0f;
+            if (cone > 0.0f && light_reaches(hit, shadow_origin, l, light.position, true, s.shadow_rays)) {
+                sum += eval_smooth(lobes, hit.normal, wo, l) * vec3(light.radiance) * (dot(hit.normal, l) * cone / r2);
             }
         }
     }
@@ -86,7 +92,7 @@ vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smoo
         vec3 to_light = y.position - shadow_origin;
         vec3 l = to_light / sqrt(dot(to_light, to_light));
         bool facing = y.pdf > 0.0f && -dot(y.normal, l) > 0.0f;
-        if (light_reaches(hit, shadow_origin, l, y.position, facing, s.shadow_rays)) {
+        if (light_reaches(hit, shadow_origin, l, vec4(y.position, 1.0f), facing, s.shadow_rays)) {
             float pdf_bsdf = p_smooth * pdf_smooth(lobes, frame, wo, l, hemisphere_rule());
             sum += eval_smooth(lobes, hit.normal, wo, l) * y.emission *
                    (dot(hit.normal, l) * power_heuristic(y.pdf, pdf_bsdf) / y.pdf);

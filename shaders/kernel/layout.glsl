@@ -87,12 +87,26 @@ struct Texture {
 };
 #define Texture_FROM_TEXELS(b, i) Texture(fetch_texel(b, i))
 
-// A point light: position in xyz; rgb = colour * intensity.
-struct PointLight {
+// One of the scene's `lights`: a point, spot or directional light, one record for
+// the three kinds so that the kernel loops over one list (lights.glsl).
+// position: xyz where a point or spot light is, w = 1. A directional light has
+//   w = 0 and xyz the unit vector toward it, against the way its light travels:
+//   the point at infinity that way, in homogeneous coordinates.
+// radiance: rgb = colour * intensity (for a directional light the irradiance it
+//   gives a surface facing it); w unused.
+// cone: a spot light's cone, xyz = its unit axis (the way it shines) * s and
+//   w = -cos(outer angle) * s, with s = 1 / max(cos(inner) - cos(outer), 0.001):
+//   clamp(dot(cone.xyz, -l) + cone.w, 0, 1) is 1 inside the inner cone and 0 outside
+//   the outer one. (0, 0, 0, 1) for the other kinds, whose factor is then 1. Fetched
+//   only with HAS_DIRECTED_LIGHTS: a scene of point lights never reads it.
+struct Light {
     vec4 position;
     vec4 radiance;
+    vec4 cone;
 };
-#define PointLight_FROM_TEXELS(b, i) PointLight(fetch_vec4(b, 2u * (i)), fetch_vec4(b, 2u * (i) + 1u))
+#define Light_FROM_TEXELS(b, i)                                                \
+    Light(fetch_vec4(b, 3u * (i)), fetch_vec4(b, 3u * (i) + 1u),               \
+          HAS_DIRECTED_LIGHTS ? fetch_vec4(b, 3u * (i) + 2u) : vec4(0.0f, 0.0f, 0.0f, 1.0f))
 
 // One emissive primitive: a primitive whose material has nonzero emission
 // (kernel/emitters.glsl samples them, host/flatten/flat_scene.cpp lists them). Emitters

@@ -4,6 +4,9 @@
 // vector; plus ambient * kd * diffuse, plus the material's own emission seen from
 // its front face, plus the light of emissive primitives (area_lights.glsl). Lights
 // below the surface get no shadow ray (the SPD rule; visibility.glsl).
+// The paper's convention has no fall-off with distance, and the other kinds keep
+// it: a spot light is a point light times its cone factor (lights.glsl), a
+// directional light one at infinity, theta and alpha taken with its direction.
 
 vec3 shade_local(Ray ray, Hit hit, INOUT(Rng) rng, INOUT(uint) shadow_rays) {
     Material m = surface_material(hit);
@@ -24,12 +27,13 @@ vec3 shade_local(Ray ray, Hit hit, INOUT(Rng) rng, INOUT(uint) shadow_rays) {
             if (!loop_tick()) {
                 break;
             }
-            PointLight light = load_light(i);
-            vec3 to_light = vec3(light.position) - p;
+            Light light = load_light(i);
+            vec3 to_light = toward_light(light, p);
             float dist = length(to_light);
             vec3 l = to_light / dist;
-            if (light_reaches(hit, shadow_origin, l, vec3(light.position), true, shadow_rays)) {
-                color += vec3(light.radiance) * phong_term(m, diffuse, hit.normal, l, dot(hit.normal, l), to_eye);
+            float cone = HAS_DIRECTED_LIGHTS ? cone_factor(light, l) : 1.0f;
+            if (cone > 0.0f && light_reaches(hit, shadow_origin, l, light.position, true, shadow_rays)) {
+                color += vec3(light.radiance) * cone * phong_term(m, diffuse, hit.normal, l, dot(hit.normal, l), to_eye);
             }
         }
     }
