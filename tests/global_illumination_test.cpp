@@ -198,14 +198,14 @@ TEST(GlobalPointLight, LambertianPlaneShowsRhoOverPiTimesIrradiance) {
 }
 
 // The metallic-roughness BSDF (shaders/kernel/bsdf.glsl, microfacet.glsl) in double:
-// Ashikhmin-Shirley's coupled diffuse lobe and the GGX lobe with Schlick's Fresnel.
+// Shirley et al.'s coupled diffuse lobe and the GGX lobe with Schlick's Fresnel.
 double metallic_roughness_bsdf(double base, double metallic, double roughness, glm::dvec3 n, glm::dvec3 wo,
                                glm::dvec3 wi) {
     const double co = glm::dot(n, wo), ci = glm::dot(n, wi);
     const double f0 = 0.04 + (base - 0.04) * metallic, alpha = roughness * roughness, a2 = alpha * alpha;
     const auto p5 = [](double x) { return x * x * x * x * x; };
-    const double diffuse = (1.0 - metallic) * base * (1.0 - f0) * 28.0 / (23.0 * M_PI) * (1.0 - p5(1.0 - ci / 2.0)) *
-                           (1.0 - p5(1.0 - co / 2.0));
+    const double diffuse = (1.0 - metallic) * base * (1.0 - f0) * 21.0 / (20.0 * M_PI) * (1.0 - p5(1.0 - ci)) *
+                           (1.0 - p5(1.0 - co));
     const glm::dvec3 h = glm::normalize(wo + wi);
     const double ch = glm::dot(n, h), k = (a2 - 1.0) * ch * ch + 1.0;
     const double d = a2 / (M_PI * k * k);

@@ -17,14 +17,16 @@
 // A metallic-roughness material (HAS_MICROFACET) has the diffuse and the rough lobes
 // only. The rough lobe, of reflectance f0 at normal incidence, takes a share of the
 // light that grows toward grazing angles by Fresnel's law; the diffuse lobe, of
-// albedo (1 - metallic) base_color, gets what the rough lobe leaves, by Ashikhmin
-// and Shirley's coupling ("An Anisotropic Phong BRDF Model", 2000):
+// albedo (1 - metallic) base_color, gets what the rough lobe leaves, by the coupling
+// of Shirley, Hu, Smits and Lafortune ("A Practitioners' Assessment of Light
+// Reflection Models", 1997):
 //
-//   diffuse * (1 - f0) * 28 / (23 pi) * (1 - (1 - cos_i / 2)^5) (1 - (1 - cos_o / 2)^5)
+//   diffuse * (1 - f0) * 21 / (20 pi) * (1 - (1 - cos_i)^5) (1 - (1 - cos_o)^5)
 //
-// symmetric in wi and wo, and with the rough lobe reflecting at most
-// f0 + (1 - f0)(1 - cos_o)^5 from wo, never more than all the light in sum
-// (glTF's reference mix, (1 - F(wo.h)) diffuse / pi, exceeds 1 near grazing angles).
+// symmetric in wi and wo, and leaving from wo exactly the light a lobe of Schlick's
+// reflectance f0 + (1 - f0)(1 - cos_o)^5 does not take; the rough lobe reflects no
+// more than that, so the sum stays at most 1 (glTF's reference mix, (1 - F(wo.h))
+// diffuse / pi, exceeds 1 near grazing angles).
 
 // A scattering event picks one lobe group at random in proportion to its weight
 // (the mean of its colour; for the rough lobe, of its Fresnel reflectance toward wo):
@@ -75,7 +77,7 @@ Lobes material_lobes(Material m, float cos_o) {
         // The diffuse lobe's albedo seen from wo is its weight (the coupling's
         // constant makes the cos_i factor integrate to 1).
         bool above = cos_o > 0.0f;
-        l.w_diffuse = above ? mean3(l.diffuse * (vec3(1.0f) - l.f0)) * (1.0f - schlick_scalar(0.5f * cos_o)) : 0.0f;
+        l.w_diffuse = above ? mean3(l.diffuse * (vec3(1.0f) - l.f0)) * (1.0f - schlick_scalar(cos_o)) : 0.0f;
         l.w_rough = above ? mean3(fresnel_schlick(l.f0, cos_o)) : 0.0f;
     }
     l.w_mirror = mean3(l.mirror);
@@ -103,8 +105,8 @@ float phong_cos_alpha(vec3 n, vec3 wo, vec3 wi) {
 vec3 eval_smooth(Lobes l, vec3 n, vec3 wo, vec3 wi) {
     vec3 f = l.diffuse * (1.0f / PI);
     if (HAS_MICROFACET && l.alpha > 0.0f) {
-        float coupling = (1.0f - schlick_scalar(0.5f * dot(n, wi))) * (1.0f - schlick_scalar(0.5f * dot(n, wo)));
-        f *= (vec3(1.0f) - l.f0) * (28.0f / 23.0f * coupling);
+        float coupling = (1.0f - schlick_scalar(dot(n, wi))) * (1.0f - schlick_scalar(dot(n, wo)));
+        f *= (vec3(1.0f) - l.f0) * (21.0f / 20.0f * coupling);
         f += ggx_eval(l.f0, l.alpha, n, wo, wi);
     }
     if (HAS_SPECULAR && l.w_glossy > 0.0f) {
