@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 
+#include "image/image.hpp"
 #include "scene/json_scene_loader.hpp"
 #include "scene/obj_mesh.hpp"
 #include "scene/scene_error.hpp"
@@ -559,15 +560,48 @@ TEST_F(ObjMeshTest, TheObjectsMaterialOverridesTheMtlFile) {
 
 TEST_F(ObjMeshTest, WhatMaterialsAskForBeyondPhongIsAWarning) {
     write("mesh.obj", "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl wood\nf 1 2 3\n");
-    write("t.mtl", "newmtl wood\nKd 0.5 0.3 0.1\nmap_Kd wood.png\nd 0.5\n");
+    write("t.mtl", "newmtl wood\nKd 0.5 0.3 0.1\nmap_Ks wood.png\nd 0.5\n");
     const Scene s = vkrt::load_json_scene(scene(R"([{"type": "mesh", "file": "mesh.obj"}])"));
     ASSERT_EQ(s.warnings.size(), 2u);
     EXPECT_NE(s.warnings[0].find("objects[0]: "), std::string::npos) << s.warnings[0];
-    EXPECT_NE(s.warnings[0].find("material 'wood': textures are not supported yet; map_Kd 'wood.png' is ignored"),
+    EXPECT_NE(s.warnings[0].find("material 'wood': textures are not supported yet; map_Ks 'wood.png' is ignored"),
               std::string::npos)
         << s.warnings[0];
     EXPECT_NE(s.warnings[1].find("transparency (d 0.5) is not supported"), std::string::npos) << s.warnings[1];
     expect_vec(s.materials.back().diffuse, {0.5, 0.3, 0.1}, 1e-7);
+}
+
+// map_Kd: the texture beside the OBJ, its -o and -s options as the transform, and
+// each corner's vt with v turned to run down the image as vkrt's textures do.
+TEST_F(ObjMeshTest, MapKdTexturesTheDiffuseColourAtTheFacesTextureCoordinates) {
+    vkrt::Image img(2, 2);
+    for (float& v : img.rgb) v = 0.25f;
+    vkrt::write_image(img, dir_ / "wood.exr");
+    write("mesh.obj", "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0.25 1\nusemtl wood\n"
+                      "f 1/1 2/2 3/3\n");
+    write("t.mtl", "newmtl wood\nKd 0.5 0.3 0.1\nmap_Kd -s 2 4 1 -o 0.5 0.25 0 wood.exr\n");
+    const Scene s = vkrt::load_json_scene(scene(R"([{"type": "mesh", "file": "mesh.obj"}])"));
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+    ASSERT_EQ(s.textures.size(), 1u);
+    EXPECT_EQ(s.textures[0].width, 2u);
+    EXPECT_EQ(s.textures[0].texels[3], glm::vec4(0.25f, 0.25f, 0.25f, 1.0f)) << "a float file, read as it is";
+    const Material& wood = s.materials.back();
+    ASSERT_EQ(wood.texture, std::optional<std::uint32_t>(0u));
+    const std::array<double, 6> expected = {2, 0, 0.5, 0, 4, 1.0 - 4.0 - 0.25};
+    for (int i = 0; i < 6; ++i) EXPECT_NEAR(wood.uv_transform[i], expected[i], 1e-6) << i;
+    ASSERT_EQ(s.triangles.size(), 1u);
+    ASSERT_TRUE(s.triangles[0].uvs.has_value());
+    EXPECT_EQ((*s.triangles[0].uvs)[0], glm::dvec2(0, 1));
+    EXPECT_EQ((*s.triangles[0].uvs)[1], glm::dvec2(1, 1));
+    EXPECT_EQ((*s.triangles[0].uvs)[2], glm::dvec2(0.25, 0));
+    // A missing texture file is an error naming the material.
+    write("t.mtl", "newmtl wood\nmap_Kd absent.png\n");
+    try {
+        vkrt::load_json_scene(scene(R"([{"type": "mesh", "file": "mesh.obj"}])"));
+        ADD_FAILURE() << "no error";
+    } catch (const vkrt::SceneError& e) {
+        test::expect_error_message(e.what(), "", {"objects[0].file", "material 'wood' map_Kd", "absent.png", "no such file"});
+    }
 }
 
 TEST_F(ObjMeshTest, AFaceWithoutAMaterialIsAnErrorWhenTheObjectGivesNone) {

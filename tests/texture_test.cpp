@@ -16,6 +16,7 @@
 #include "flatten/flat_scene.hpp"
 #include "image/image.hpp"
 #include "kernel/kernel.hpp"
+#include "scene/load_scene.hpp"
 #include "scene/scene_error.hpp"
 #include "scene/texture_image.hpp"
 #include "test_support.hpp"
@@ -187,6 +188,83 @@ TEST(TextureRender, AFineCheckerboardFarAwayAveragesToGrey) {
     EXPECT_GT(hi - lo, 0.3f);
 }
 
+// A glTF quad with TEXCOORD_0 and a base colour texture (an 8-bit PNG beside the
+// file), with and without KHR_texture_transform.
+std::filesystem::path textured_gltf(const std::string& name, const std::string& texture_info, int wrap) {
+    const std::filesystem::path dir = test::temp_dir("texture_gltf");
+    const std::filesystem::path exr = quadrant_texture(name);
+    write_image(read_image(exr), dir / (name + ".png"));
+    const float positions[12] = {-1, 1, 0, 1, 1, 0, 1, -1, 0, -1, -1, 0};
+    const float uvs[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+    const std::uint16_t indices[6] = {0, 2, 1, 0, 3, 2};
+    std::ofstream bin(dir / (name + ".bin"), std::ios::binary);
+    bin.write(reinterpret_cast<const char*>(positions), sizeof positions);
+    bin.write(reinterpret_cast<const char*>(uvs), sizeof uvs);
+    bin.write(reinterpret_cast<const char*>(indices), sizeof indices);
+    bin.close();
+    const std::filesystem::path file = dir / (name + ".gltf");
+    std::ofstream(file) << R"({
+      "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+      "extensionsUsed": ["KHR_texture_transform"],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2, "material": 0}]}],
+      "materials": [{"pbrMetallicRoughness": {"metallicFactor": 0, "baseColorTexture": )" + texture_info + R"(}}],
+      "textures": [{"source": 0, "sampler": 0}],
+      "samplers": [{"wrapS": )" + std::to_string(wrap) + R"(, "wrapT": )" + std::to_string(wrap) + R"(}],
+      "images": [{"uri": ")" + name + R"(.png"}],
+      "buffers": [{"byteLength": 92, "uri": ")" + name + R"(.bin"}],
+      "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 32},
+                      {"buffer": 0, "byteOffset": 80, "byteLength": 12}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, -1, 0], "max": [1, 1, 0]},
+                    {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
+                    {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}]
+    })";
+    return file;
+}
+
+// The four quadrants where the pixels of TextureRender's view show them, through
+// an 8-bit sRGB file (a few thousandths off), and shifted by half the texture in
+// both directions by a transform over a repeating sampler.
+TEST(TextureGltf, BaseColourTextureOnTexcoord0WithItsTransform) {
+    for (const bool shifted : {false, true}) {
+        SCOPED_TRACE(shifted ? "offset [0.5, 0.5]" : "no transform");
+        const std::string info = shifted ? R"({"index": 0, "extensions": {"KHR_texture_transform": {"offset": [0.5, 0.5]}}})"
+                                         : R"({"index": 0})";
+        Scene scene = load_scene(textured_gltf(shifted ? "shifted" : "plain", info, 10497));
+        EXPECT_TRUE(scene.warnings.empty()) << scene.warnings.front();
+        ASSERT_EQ(scene.textures.size(), 1u);
+        EXPECT_EQ(scene.textures[0].wrap_s, Wrap::Repeat);
+        ASSERT_TRUE(scene.triangles.at(0).uvs.has_value());
+        // Lambertian under a white sky, to see the texture itself (glTF's material
+        // adds a view-dependent Fresnel share).
+        for (Material& m : scene.materials) {
+            m.metallic_roughness.reset();
+            m.diffuse = glm::dvec3(1.0);
+        }
+        scene.camera.eye = glm::dvec3(0, 0, 3);
+        scene.camera.look_at = glm::dvec3(0, 0, 0);
+        scene.camera.up = glm::dvec3(0, 1, 0);
+        scene.camera.fov = 30;
+        scene.camera.width = scene.camera.height = 32;
+        scene.render.spp = 4;
+        scene.render.background = glm::dvec3(1.0);
+        const float quadrant[4][3] = {{0.8f, 0.1f, 0.1f}, {0.1f, 0.7f, 0.2f}, {0.2f, 0.3f, 0.9f}, {0.5f, 0.5f, 0.5f}};
+        const RenderOutcome out = test::render_cpu(scene);
+        const std::uint32_t at[4][2] = {{8, 8}, {23, 8}, {8, 23}, {23, 23}};
+        for (int q = 0; q < 4; ++q) {
+            const float* expected = quadrant[shifted ? 3 - q : q];
+            const float* v = out.image.pixel(at[q][0], at[q][1]);
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(v[c], expected[c], 0.01f) << "quadrant " << q << " channel " << c;
+        }
+    }
+}
+
+TEST(TextureGltf, SamplerWrapModesAreRead) {
+    const Scene clamp = load_scene(textured_gltf("clamped", R"({"index": 0})", 33071));
+    EXPECT_EQ(clamp.textures.at(0).wrap_t, Wrap::Clamp);
+    const Scene mirror = load_scene(textured_gltf("mirrored", R"({"index": 0})", 33648));
+    EXPECT_EQ(mirror.textures.at(0).wrap_s, Wrap::Mirror);
+}
+
 TEST(TextureErrors, EachNamesTheMaterialAndTheFile) {
     const std::filesystem::path dir = test::temp_dir("texture_errors");
     const auto error_of = [&](const std::string& material) {
@@ -212,6 +290,25 @@ TEST(TextureErrors, EachNamesTheMaterialAndTheFile) {
                                {"materials.m.texture_transform", "needs a \"texture\""});
     test::expect_error_message(error_of(R"({"texture": "", "diffuse": [1, 1, 1]})"), "",
                                {"materials.m.texture", "expected a file name"});
+}
+
+TEST(TextureErrors, GltfImagesThatCannotBeReadNameTheImage) {
+    const std::filesystem::path file = textured_gltf("broken", R"({"index": 0})", 10497);
+    std::ofstream(file.parent_path() / "broken.png") << "not a PNG at all";
+    try {
+        load_scene(file);
+        ADD_FAILURE() << "no error";
+    } catch (const SceneError& e) {
+        test::expect_error_message(e.what(), "", {"broken.gltf", "images[0]", "cannot read the image it holds"});
+    }
+    const std::filesystem::path missing = textured_gltf("missing_texture", R"({"index": 3})", 10497);
+    try {
+        load_scene(missing);
+        ADD_FAILURE() << "no error";
+    } catch (const SceneError& e) {
+        test::expect_error_message(e.what(), "",
+                                   {"materials[0].pbrMetallicRoughness.baseColorTexture.index", "texture 3 does not exist"});
+    }
 }
 
 }  // namespace

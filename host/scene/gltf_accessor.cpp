@@ -66,7 +66,7 @@ Elements locate(const tinygltf::Model& model, int index, int type, const char* t
     e.count = a.count;
     e.normalized = a.normalized;
     if (e.size == 0) fail(origin, fmt::format("{} has component type {}, which glTF does not define", name, a.componentType));
-    const std::size_t components = type == TINYGLTF_TYPE_VEC3 ? 3 : 1;
+    const std::size_t components = type == TINYGLTF_TYPE_VEC3 ? 3 : type == TINYGLTF_TYPE_VEC2 ? 2 : 1;
     const std::size_t element = e.size * components;
     if (a.bufferView < 0 || static_cast<std::size_t>(a.bufferView) >= model.bufferViews.size()) {
         fail(origin, fmt::format("{} refers to bufferView {}, which does not exist (the file has {})", name,
@@ -125,21 +125,36 @@ double component_value(const Elements& e, std::size_t i, std::size_t k) {
 
 }  // namespace
 
-std::vector<glm::dvec3> read_vec3(const tinygltf::Model& model, int accessor, const Origin& origin) {
-    const Elements e = locate(model, accessor, TINYGLTF_TYPE_VEC3, "a VEC3", origin);
+namespace {
+
+// An accessor of `N` floats (or normalized integers) per element, each finite.
+template <int N, typename Vec>
+std::vector<Vec> read_floats(const tinygltf::Model& model, int accessor, int type, const char* name,
+                             const Origin& origin) {
+    const Elements e = locate(model, accessor, type, name, origin);
     if (e.component != TINYGLTF_COMPONENT_TYPE_FLOAT && !e.normalized) {
         fail(origin, fmt::format("accessors[{}] holds {} values that are not normalized; expected FLOAT", accessor,
                                  component_name(e.component)));
     }
-    std::vector<glm::dvec3> out(e.count);
+    std::vector<Vec> out(e.count);
     for (std::size_t i = 0; i < e.count; ++i) {
-        for (int k = 0; k < 3; ++k) {
+        for (int k = 0; k < N; ++k) {
             const double v = component_value(e, i, static_cast<std::size_t>(k));
             if (!std::isfinite(v)) fail(origin, fmt::format("accessors[{}] element {} is not finite", accessor, i));
             out[i][k] = v;
         }
     }
     return out;
+}
+
+}  // namespace
+
+std::vector<glm::dvec3> read_vec3(const tinygltf::Model& model, int accessor, const Origin& origin) {
+    return read_floats<3, glm::dvec3>(model, accessor, TINYGLTF_TYPE_VEC3, "a VEC3", origin);
+}
+
+std::vector<glm::dvec2> read_vec2(const tinygltf::Model& model, int accessor, const Origin& origin) {
+    return read_floats<2, glm::dvec2>(model, accessor, TINYGLTF_TYPE_VEC2, "a VEC2", origin);
 }
 
 std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int accessor, std::uint32_t limit,

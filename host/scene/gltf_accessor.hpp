@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace tinygltf {
@@ -23,6 +24,9 @@ struct Origin {
 
 // A VEC3 accessor of floats (or normalized integers) as doubles; each value finite.
 std::vector<glm::dvec3> read_vec3(const tinygltf::Model& model, int accessor, const Origin& origin);
+
+// A VEC2 accessor, as read_vec3 (texture coordinates).
+std::vector<glm::dvec2> read_vec2(const tinygltf::Model& model, int accessor, const Origin& origin);
 
 // A SCALAR accessor of unsigned bytes, shorts or ints, each below `limit`.
 std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int accessor, std::uint32_t limit,

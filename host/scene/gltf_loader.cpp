@@ -20,6 +20,7 @@
 #include <tiny_gltf.h>
 
 #include "scene/gltf_accessor.hpp"
+#include "scene/gltf_textures.hpp"
 #include "scene/indexed_mesh.hpp"
 #include "scene/json_reader.hpp"
 #include "scene/scene_error.hpp"
@@ -36,13 +37,8 @@ using glm::dvec3;
 constexpr std::size_t kMaxNodeVisits = 100'000;
 
 // The extensions read (docs/gltf.md); any other the file uses is named in a warning.
-const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
-
-// Textures are not sampled yet: their images are neither decoded nor kept, but a
-// missing image file still fails, as any missing part of the asset does.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
-    return true;
-}
+const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
+                                                    "KHR_texture_transform"};
 
 // A URI's percent escapes decoded (RFC 3986, 2.1), as glTF relative URIs are written.
 std::string decode_uri(const std::string& uri) {
@@ -76,7 +72,7 @@ void check_image_files(const std::filesystem::path& file, const tinygltf::Model&
 
 tinygltf::Model read_model(const std::filesystem::path& file, std::vector<std::string>& warnings) {
     tinygltf::TinyGLTF reader;
-    reader.SetImageLoader(skip_image, nullptr);
+    reader.SetImageLoader(gltf::keep_image_bytes, nullptr);
     tinygltf::Model model;
     std::string error, warning;
     // Binary or JSON by the file's first bytes, the .glb magic "glTF", whatever its name.
@@ -102,7 +98,11 @@ tinygltf::Model read_model(const std::filesystem::path& file, std::vector<std::s
 class GltfReader {
 public:
     GltfReader(std::filesystem::path file, tinygltf::Model model, Scene& scene, bool want_camera)
-        : file_(std::move(file)), model_(std::move(model)), scene_(scene), want_camera_(want_camera) {}
+        : file_(std::move(file)),
+          model_(std::move(model)),
+          scene_(scene),
+          want_camera_(want_camera),
+          textures_(model_, file_, scene_, [this](const std::string& what) { note_unsupported(what); }) {}
 
     // Everything under the default scene's roots, placed by `root`.
     void read(const dmat4& root) {
@@ -140,8 +140,8 @@ private:
         }
     }
 
-    // The metallic-roughness factors, emission as emissive factor times strength;
-    // textures are listed as ignored.
+    // The metallic-roughness factors and the base colour texture, emission as
+    // emissive factor times strength; the other textures are listed as ignored.
     void read_materials() {
         for (std::size_t i = 0; i < model_.materials.size(); ++i) {
             const tinygltf::Material& g = model_.materials[i];
@@ -168,10 +168,11 @@ private:
                 m.emission = strength * color(dvec3(g.emissiveFactor[0], g.emissiveFactor[1], g.emissiveFactor[2]),
                                               element + ".emissiveFactor");
             }
-            if (g.pbrMetallicRoughness.baseColorTexture.index >= 0 || g.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 ||
-                g.emissiveTexture.index >= 0) {
-                note_unsupported("materials with textures, rendered with their factors");
+            textures_.colour_texture(pbr.baseColorTexture, element + ".pbrMetallicRoughness.baseColorTexture", m);
+            if (pbr.metallicRoughnessTexture.index >= 0) {
+                note_unsupported("metallic-roughness textures, rendered with their factors");
             }
+            if (g.emissiveTexture.index >= 0) note_unsupported("emissive textures, rendered with their factors");
             if (g.normalTexture.index >= 0) note_unsupported("normal maps");
             if (g.occlusionTexture.index >= 0) note_unsupported("occlusion maps (not needed by a path tracer)");
             if (g.alphaMode != "OPAQUE") note_unsupported(fmt::format("materials with alphaMode {}, rendered opaque", g.alphaMode));
@@ -317,6 +318,14 @@ private:
                                                                     mesh.normals.size(), mesh.positions.size()));
             }
         }
+        const auto texcoord = prim.attributes.find("TEXCOORD_0");
+        if (texcoord != prim.attributes.end()) {
+            mesh.uvs = gltf::read_vec2(model_, texcoord->second, {file_.string(), element + ".attributes.TEXCOORD_0"});
+            if (mesh.uvs.size() != mesh.positions.size()) {
+                fail_at(element + ".attributes.TEXCOORD_0",
+                        fmt::format("{} texture coordinates for {} positions", mesh.uvs.size(), mesh.positions.size()));
+            }
+        }
         if (mesh.positions.size() > std::numeric_limits<std::uint32_t>::max()) fail_at(element, "too many vertices");
         const auto vertices = static_cast<std::uint32_t>(mesh.positions.size());
         std::vector<std::uint32_t> indices;
@@ -335,6 +344,7 @@ private:
             IndexedMesh::Face f;
             f.position = {indices[i], indices[i + 1], indices[i + 2]};
             if (smooth) f.normal = f.position;
+            if (!mesh.uvs.empty()) f.uv = f.position;
             mesh.faces.push_back(f);
         }
         transform_mesh(mesh, t);
@@ -458,6 +468,7 @@ private:
     std::size_t triangles_read_ = 0;
     bool want_camera_ = true;
     bool camera_found_ = false;
+    gltf::TextureReader textures_;  // after model_, file_ and scene_, which it refers to
 };
 
 // Without a camera in the file: look at the scene's bounding box from the front and a

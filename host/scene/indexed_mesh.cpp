@@ -22,6 +22,7 @@ void transform_mesh(IndexedMesh& mesh, const Transform& t) {
         for (IndexedMesh::Face& f : mesh.faces) {
             std::swap(f.position[1], f.position[2]);
             std::swap(f.normal[1], f.normal[2]);
+            std::swap(f.uv[1], f.uv[2]);
         }
     }
 }
@@ -129,6 +130,7 @@ std::size_t append_mesh(const IndexedMesh& mesh, const MeshOptions& options, Sce
             f.material == IndexedMesh::kNoMaterial ? options.material : options.face_materials.at(f.material);
         Triangle tri{{p[0], p[1], p[2]}, std::nullopt, material};
         if (options.smooth) tri.normals = corner_normals(mesh, f, computed, p);
+        if (f.uv[0] != IndexedMesh::kNoUv) tri.uvs = {mesh.uvs[f.uv[0]], mesh.uvs[f.uv[1]], mesh.uvs[f.uv[2]]};
         scene.triangles.push_back(tri);
     }
     return skipped;

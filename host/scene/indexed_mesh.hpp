@@ -7,8 +7,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "scene/json_reader.hpp"
@@ -20,17 +22,22 @@ namespace vkrt {
 struct IndexedMesh {
     static constexpr std::uint32_t kNoNormal = 0xFFFFFFFFu;
     static constexpr std::uint32_t kNoMaterial = 0xFFFFFFFFu;
+    static constexpr std::uint32_t kNoUv = 0xFFFFFFFFu;
 
     struct Face {
         std::array<std::uint32_t, 3> position{};                          // into positions
         std::array<std::uint32_t, 3> normal{kNoNormal, kNoNormal, kNoNormal};  // into normals
         std::uint32_t material = kNoMaterial;                             // into materials
+        std::array<std::uint32_t, 3> uv{kNoUv, kNoUv, kNoUv};           // into uvs
     };
 
     std::vector<glm::dvec3> positions;
     std::vector<glm::dvec3> normals;  // given by the source (OBJ "vn"); may be empty
+    std::vector<glm::dvec2> uvs;      // texture coordinates (OBJ "vt", glTF TEXCOORD_0); may be empty
     std::vector<Face> faces;          // front face = cross(p1 - p0, p2 - p0)
     std::vector<Material> materials;  // the source's own (OBJ "usemtl" from its MTL file); may be empty
+    std::vector<std::string> material_textures;  // per material, its colour texture file (OBJ map_Kd) or ""
+
 };
 
 // Moves positions and normals (normals renormalized; zero ones stay zero) and, if

@@ -129,7 +129,8 @@ private:
         } else if (words[0] == "mtllib") {
             for (std::size_t i = 1; i < words.size(); ++i) out_.mtllibs.emplace_back(words[i]);
         }
-        // Every other statement (vt, g, o, s, l, p, ...) carries nothing we use.
+        // Every other statement (g, o, s, l, p, ...) carries nothing we use; vt is counted by
+        // tinyobjloader alone.
     }
 
     // The first three numbers of a "v" or "vn" line; the rest (w, vertex colours)
@@ -208,8 +209,15 @@ Material from_mtl(const tinyobj::material_t& m, const std::string& obj_name, std
         throw SceneError(fmt::format("{}: Ns must be a finite number >= 0, got {}", who, m.shininess));
     }
     out.shininess = m.shininess;
+    // map_Kd is read by read_mesh (it needs the scene); with tinyobjloader's -o and
+    // -s options as the coordinates' transform, the v axis turned to run down as
+    // vkrt's textures do (read_obj flips the file's v): v' = s v + 1 - s - o.
+    if (!m.diffuse_texname.empty()) {
+        const tinyobj::texture_option_t& o = m.diffuse_texopt;
+        out.uv_transform = {o.scale[0], 0.0, o.origin_offset[0], 0.0, o.scale[1], 1.0 - o.scale[1] - o.origin_offset[1]};
+    }
     const std::pair<const char*, const std::string*> maps[] = {
-        {"map_Kd", &m.diffuse_texname},  {"map_Ks", &m.specular_texname}, {"map_Ns", &m.specular_highlight_texname},
+        {"map_Ks", &m.specular_texname}, {"map_Ns", &m.specular_highlight_texname},
         {"map_bump", &m.bump_texname},   {"map_Ka", &m.ambient_texname},  {"map_d", &m.alpha_texname},
         {"disp", &m.displacement_texname}, {"refl", &m.reflection_texname}, {"map_Ke", &m.emissive_texname},
         {"norm", &m.normal_texname}};
@@ -281,6 +289,14 @@ IndexedMesh read_obj(const std::filesystem::path& file, std::vector<std::string>
     IndexedMesh mesh;
     mesh.positions = std::move(scanned.positions);
     mesh.normals = std::move(scanned.normals);
+    // OBJ's v runs up the image, vkrt's (glTF's) down from its top row.
+    for (std::size_t i = 0; i + 1 < attrib.texcoords.size(); i += 2) {
+        const glm::dvec2 uv(attrib.texcoords[i], 1.0 - double(attrib.texcoords[i + 1]));
+        if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) {
+            throw SceneError(fmt::format("{}: texture coordinate {} is not finite", name, i / 2 + 1));
+        }
+        mesh.uvs.push_back(uv);
+    }
     const auto position_of = [&](int index, std::size_t line) {
         if (index < 0 || static_cast<std::size_t>(index) >= mesh.positions.size()) {
             throw SceneError(fmt::format("{}:{}: a face refers to vertex {}, but the file has {} vertices", name, line,
@@ -298,7 +314,10 @@ IndexedMesh read_obj(const std::filesystem::path& file, std::vector<std::string>
     };
 
     if (material_warnings != nullptr) {
-        for (const tinyobj::material_t& m : materials) mesh.materials.push_back(from_mtl(m, name, *material_warnings));
+        for (const tinyobj::material_t& m : materials) {
+            mesh.materials.push_back(from_mtl(m, name, *material_warnings));
+            mesh.material_textures.push_back(m.diffuse_texname);
+        }
     }
     std::size_t face = 0;
     for (const tinyobj::shape_t& shape : shapes) {
@@ -338,6 +357,17 @@ IndexedMesh read_obj(const std::filesystem::path& file, std::vector<std::string>
                 for (int i = 0; i < 3; ++i) {
                     f.position[i] = position_of(c[i].vertex_index, line);
                     f.normal[i] = normal_of(c[i].normal_index, line);
+                }
+                // Texture coordinates where all three corners have them.
+                if (c[0].texcoord_index >= 0 && c[1].texcoord_index >= 0 && c[2].texcoord_index >= 0) {
+                    for (int i = 0; i < 3; ++i) {
+                        if (static_cast<std::size_t>(c[i].texcoord_index) >= mesh.uvs.size()) {
+                            throw SceneError(fmt::format("{}:{}: a face refers to texture coordinate {}, but the file "
+                                                         "has {}",
+                                                         name, line, c[i].texcoord_index + 1, mesh.uvs.size()));
+                        }
+                        f.uv[i] = static_cast<std::uint32_t>(c[i].texcoord_index);
+                    }
                 }
                 mesh.faces.push_back(f);
             }
@@ -379,10 +409,18 @@ void read_mesh(const json::Node& n, const MaterialLookup& material, Scene& scene
     }
     // The file's materials join the scene's, named after the file: JSON objects
     // cannot refer to them, and two meshes' materials of one name stay apart.
-    for (const Material& m : mesh.materials) {
+    for (std::size_t i = 0; i < mesh.materials.size(); ++i) {
         options.face_materials.push_back(static_cast<std::uint32_t>(scene.materials.size()));
-        Material named = m;
-        named.name = fmt::format("{}:{}", relative, m.name);
+        Material named = mesh.materials[i];
+        named.name = fmt::format("{}:{}", relative, named.name);
+        // map_Kd, relative to the OBJ file (where tinyobjloader found its MTL file).
+        if (const std::string& texture = mesh.material_textures.at(i); !texture.empty()) {
+            const std::string element = fmt::format("{}: {}: material {} map_Kd", n.file(), file.path(),
+                                                    json::quote_user(mesh.materials[i].name));
+            add_texture(scene, load_texture_file(path.parent_path() / texture, Encoding::SrgbUnlessFloat, element),
+                        element);
+            named.texture = static_cast<std::uint32_t>(scene.textures.size() - 1);
+        }
         scene.materials.push_back(std::move(named));
     }
     for (const std::string& w : warnings) scene.warnings.push_back(fmt::format("{}: {}: {}", n.file(), n.path(), w));

@@ -14,7 +14,11 @@
 # with lights of its own.
 import argparse
 import math
+import os
+import struct
 import sys
+import tempfile
+import zlib
 
 import bpy
 
@@ -44,6 +48,33 @@ def principled(name, rgb, metallic=0.0, roughness=1.0, emission=None, strength=0
     if emission:
         bsdf.inputs["Emission"].default_value = (*emission, 1.0)
         bsdf.inputs["Emission Strength"].default_value = strength
+    return m
+
+
+def checker_png(path, squares=8, size=256, light=200, dark=60):
+    # An 8-bit grey checkerboard PNG (ISO/IEC 15948), written here so that the
+    # script needs nothing beyond Blender's own Python.
+    side = size // squares
+    rows = b"".join(b"\x00" + bytes(light if ((x // side) + (y // side)) % 2 == 0 else dark for x in range(size))
+                    for y in range(size))
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", size, size, 8, 0, 0, 0, 0)) +
+                chunk(b"IDAT", zlib.compress(rows, 9)) + chunk(b"IEND", b""))
+
+
+def textured(name, png, roughness):
+    # A dielectric whose base colour is an image (sRGB), packed into the .blend so
+    # that the exporter embeds it in the .glb.
+    m = principled(name, (1, 1, 1), roughness=roughness)
+    image = bpy.data.images.load(png)
+    image.pack()
+    node = m.node_tree.nodes.new("ShaderNodeTexImage")
+    node.image = image
+    m.node_tree.links.new(node.outputs["Color"], m.node_tree.nodes["Principled BSDF"].inputs["Base Color"])
     return m
 
 
@@ -78,9 +109,12 @@ def still_life():
 
 
 def metals():
-    # Gold, steel and red plastic spheres of three roughnesses on a rough grey floor.
+    # Gold, steel and red plastic spheres of three roughnesses on a rough floor
+    # textured with a checkerboard of 1 m squares.
+    png = os.path.join(tempfile.mkdtemp(), "checker.png")
+    checker_png(png)
     bpy.ops.mesh.primitive_plane_add(size=8, location=(0, 0, 0))
-    give(bpy.context.object, principled("floor", (0.5, 0.5, 0.5), roughness=0.8))
+    give(bpy.context.object, textured("floor", png, roughness=0.8))
     for x, name, rgb, metallic, roughness in [(-1.3, "gold", (1.0, 0.78, 0.34), 1.0, 0.3),
                                               (0.0, "steel", (0.8, 0.8, 0.8), 1.0, 0.6),
                                               (1.3, "plastic", (0.7, 0.1, 0.1), 0.0, 0.4)]:
