@@ -155,6 +155,22 @@ TEST(TextureRender, ATexturedQuadUnderAWhiteSkyShowsTheTexture) {
     }
 }
 
+// Spheres have no texture coordinates: a textured material shows its colour there.
+TEST(TextureRender, ASphereKeepsTheUntexturedColour) {
+    const std::filesystem::path texture = quadrant_texture("on_a_sphere");
+    const Scene scene = test::scene_from_text("textured_sphere", R"({
+      "camera": { "eye": [0, 0, 3], "look_at": [0, 0, 0], "fov": 30, "width": 16, "height": 16 },
+      "render": { "mode": "global", "spp": 4, "max_bounces": 2, "background": [1, 1, 1] },
+      "materials": { "m": { "diffuse": [0.5, 0.5, 0.5], "texture": ")" + texture.string() + R"(" } },
+      "objects": [ { "type": "sphere", "center": [0, 0, 0], "radius": 0.5, "material": "m" },
+                   { "type": "quad", "corner": [-9, -9, -5], "edge1": [0, 1, 0], "edge2": [1, 0, 0], "material": "m" } ]
+    })");
+    for (const bool vulkan : {false, true}) {
+        const RenderOutcome out = vulkan ? test::render_vulkan(scene) : test::render_cpu(scene);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(out.image.pixel(8, 8)[c], 0.5f, 1e-5f) << (vulkan ? "vulkan" : "cpu");
+    }
+}
+
 // No mipmaps: a pixel's jittered samples spread over its footprint, so a checkerboard
 // far finer than the pixels averages to its mean rather than aliasing into patterns.
 TEST(TextureRender, AFineCheckerboardFarAwayAveragesToGrey) {

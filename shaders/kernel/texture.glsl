@@ -61,10 +61,11 @@ vec4 texture_bilinear(Texture t, vec2 uv) {
 
 // The material at a hit, its colour textured: the diffuse colour, and for a
 // metallic-roughness material the metallic share of the rough lobe's reflectance,
-// f0 = 0.04 (1 - metallic) + metallic base_color, both times the texture.
+// f0 = 0.04 (1 - metallic) + metallic base_color, both times the texture. Only
+// triangles and quads have texture coordinates; other shapes keep the colour.
 Material surface_material(Hit hit) {
     Material m = load_material(hit.material);
-    if (HAS_TEXTURES && m.maps.x != 0u) {
+    if (HAS_TEXTURES && m.maps.x != 0u && (hit.prim >> REF_KIND_SHIFT) == REF_TRIANGLE) {
         vec2 uv = vec2(dot(vec2(m.uv_u), hit.uv) + m.uv_u.z, dot(vec2(m.uv_v), hit.uv) + m.uv_v.z);
         vec3 c = vec3(texture_bilinear(load_texture(m.maps.x - 1u), uv));
         m.diffuse_kd = vec4(vec3(m.diffuse_kd) * c, m.diffuse_kd.w);
