@@ -197,6 +197,34 @@ TEST(GlobalPointLight, LambertianPlaneShowsRhoOverPiTimesIrradiance) {
     }
 }
 
+// A constant environment of radiance L (the background) around a Lambertian sphere
+// of albedo rho: every path from the sphere leaves it and sees L, so every pixel on
+// it is rho L, per channel, on both backends.
+TEST(GlobalEnvironment, ADiffuseSphereUnderAConstantSkyIsRhoTimesL) {
+    const Scene scene = test::scene_from_text("sphere_sky", R"({
+      "camera": { "eye": [0, 0, 4], "look_at": [0, 0, 0], "fov": 30, "width": 24, "height": 24 },
+      "render": { "mode": "global", "spp": 8, "max_bounces": 4, "background": [2, 1, 0.5] },
+      "materials": { "m": { "diffuse": [0.6, 0.3, 0.9] } },
+      "objects": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m" } ]
+    })");
+    const float expected[3] = {0.6f * 2.0f, 0.3f * 1.0f, 0.9f * 0.5f};
+    for (const bool vulkan : {false, true}) {
+        const RenderOutcome out = vulkan ? test::render_vulkan(scene) : test::render_cpu(scene);
+        std::size_t on_sphere = 0;
+        for (std::uint32_t y = 0; y < 24; ++y) {
+            for (std::uint32_t x = 0; x < 24; ++x) {
+                const float* v = out.image.pixel(x, y);
+                // Pixels wholly on the sphere (not its silhouette, not the sky of 2, 1, 0.5).
+                const double dx = x + 0.5 - 12.0, dy = y + 0.5 - 12.0;
+                if (dx * dx + dy * dy > 7.5 * 7.5) continue;
+                ++on_sphere;
+                for (int c = 0; c < 3; ++c) EXPECT_NEAR(v[c], expected[c], 1e-5f) << (vulkan ? "vulkan" : "cpu") << " " << x << "," << y;
+            }
+        }
+        EXPECT_GT(on_sphere, 150u);
+    }
+}
+
 // The metallic-roughness BSDF (shaders/kernel/bsdf.glsl, microfacet.glsl) in double:
 // Shirley et al.'s coupled diffuse lobe and the GGX lobe with Schlick's Fresnel.
 double metallic_roughness_bsdf(double base, double metallic, double roughness, glm::dvec3 n, glm::dvec3 wo,
