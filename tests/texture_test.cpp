@@ -7,6 +7,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <optional>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -92,6 +94,40 @@ TEST(Texture, RepeatAndMirrorWrapAsTheirNamesSay) {
     // Coordinates that are not finite read a texel, never outside the texture.
     EXPECT_TRUE(std::isfinite(repeat.at(NAN, INFINITY)));
     EXPECT_TRUE(std::isfinite(mirror.at(-INFINITY, 1e38f)));
+}
+
+// A metallic-roughness material rebuilt from its factors times its textures: base
+// colour times the colour texture, metallic times blue, roughness times green.
+TEST(Texture, MetallicRoughnessTexturesScaleTheFactors) {
+    Kernel k;
+    const std::vector<kernel::Texture> records = {kernel::Texture(uvec4(0u, 1u, 1u, 0u)),
+                                                  kernel::Texture(uvec4(2u, 1u, 1u, 0u))};
+    const std::vector<std::uint32_t> words = {glm::packHalf2x16(vec2(0.5f, 1.0f)), glm::packHalf2x16(vec2(0.25f, 1.0f)),
+                                              glm::packHalf2x16(vec2(1.0f, 0.5f)), glm::packHalf2x16(vec2(0.375f, 1.0f))};
+    k.textures = records;
+    k.texture_words = words;
+    // Factors: base (0.8, 0.6, 0.4), metallic 0.5, roughness 0.6 (as flat_scene.cpp writes them).
+    const std::vector<kernel::Material> materials = {kernel::Material(
+        vec4(0.4f, 0.3f, 0.2f, 1.0f), vec4(0.8f, 0.6f, 0.4f, 0.0f), vec4(0.0f), vec4(0.0f, 0.0f, 0.0f, 1.5f),
+        vec4(0.0f), vec4(0.42f, 0.32f, 0.22f, 0.36f), uvec4(1u, 2u, 0u, 0u), vec4(1.0f, 0.0f, 0.0f, 0.5f),
+        vec4(0.0f, 1.0f, 0.0f, 0.6f))};
+    k.materials = materials;
+    Kernel::Hit hit = k.no_hit();
+    hit.material = 0u;
+    hit.prim = kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT;
+    hit.uv = vec2(0.5f, 0.5f);
+    const kernel::Material m = k.surface_material(hit);
+    // metallic 0.5 * 0.375, roughness 0.6 * 0.5; base (0.4, 0.6, 0.1).
+    const float metallic = 0.1875f, alpha = 0.09f;
+    const glm::vec3 base(0.4f, 0.6f, 0.1f);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(m.diffuse_kd[c], (1.0f - metallic) * base[c], 1e-6f) << c;
+        EXPECT_NEAR(m.microfacet[c], 0.04f + (base[c] - 0.04f) * metallic, 1e-6f) << c;
+    }
+    EXPECT_NEAR(m.microfacet.w, alpha, 1e-6f);
+    // On a sphere the factors stand.
+    hit.prim = kernel::REF_SPHERE << kernel::REF_KIND_SHIFT;
+    EXPECT_EQ(k.surface_material(hit).microfacet.w, 0.36f);
 }
 
 TEST(Texture, TransformFollowsKhrTextureTransform) {
@@ -272,6 +308,32 @@ TEST(TextureGltf, BaseColourTextureOnTexcoord0WithItsTransform) {
             for (int c = 0; c < 3; ++c) EXPECT_NEAR(v[c], expected[c], 0.01f) << "quadrant " << q << " channel " << c;
         }
     }
+}
+
+// The metallic-roughness texture is data, not colour: the same image as the base
+// colour's is decoded a second time, linear.
+TEST(TextureGltf, MetallicRoughnessTextureIsReadLinear) {
+    const std::filesystem::path file = textured_gltf("mr", R"({"index": 0})", 10497);
+    std::string text;
+    {
+        std::ifstream in(file);
+        text.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    const std::string base = R"("baseColorTexture": {"index": 0})";
+    text.replace(text.find(base), base.size(), base + R"(, "metallicFactor": 1, "roughnessFactor": 1, "metallicRoughnessTexture": {"index": 0})");
+    // The material's metallicFactor 0 given before stays the first one read: drop it.
+    text.replace(text.find(R"("metallicFactor": 0, )"), 20, "");
+    std::ofstream(file) << text;
+    const Scene scene = load_scene(file);
+    EXPECT_TRUE(scene.warnings.empty()) << scene.warnings.front();
+    ASSERT_EQ(scene.textures.size(), 2u);
+    const Material& m = scene.materials.at(0);
+    EXPECT_EQ(m.texture, std::optional<std::uint32_t>(0u));
+    EXPECT_EQ(m.metallic_roughness_texture, std::optional<std::uint32_t>(1u));
+    // Texel (0, 0) is red 0.8 (linear), stored in the PNG as sRGB byte 231.
+    EXPECT_NEAR(scene.textures[0].texels[0].r, 0.8f, 0.005f);
+    EXPECT_NEAR(scene.textures[1].texels[0].r, 231.0f / 255.0f, 1e-6f);
+    EXPECT_TRUE(flatten_scene(scene).features.has(Feature::HAS_TEXTURES));
 }
 
 TEST(TextureGltf, SamplerWrapModesAreRead) {

@@ -71,7 +71,7 @@ FeatureSet analyze_features(const Scene& scene) {
         reflection = reflection || is_nonzero(m.reflect);
         refraction = refraction || is_nonzero(m.transmit);
         microfacet = microfacet || m.metallic_roughness.has_value();
-        textures = textures || m.texture.has_value();
+        textures = textures || m.texture.has_value() || m.metallic_roughness_texture.has_value();
     }
 
     f.set(Feature::HAS_SPHERES, !scene.spheres.empty());

@@ -76,20 +76,17 @@ void set_camera(const Camera& cam, bool corners, const dvec3& origin, kernel::Pa
     kernel::set_focus_distance(p, static_cast<float>(cam.focus_distance.value_or(glm::length(cam.look_at - cam.eye))));
 }
 
-// The narrowest GGX lobe: alpha = roughness^2 down to this, so that a roughness of 0
-// (a polished metal) stays a lobe that next-event estimation and MIS can weigh. Its
-// peak, 1 / (pi alpha^2), is far inside float's range.
-constexpr double kMinGgxAlpha = 1e-3;
-
-// The texture fields every material carries: the colour texture (0: none), the
-// coordinates' transform, and the metallic share that texture.glsl needs to texture
-// the rough lobe's reflectance.
+// The texture fields every material carries: the textures (0: none), the
+// coordinates' transform, and the metallic and roughness factors that texture.glsl
+// rebuilds a textured metallic-roughness material from.
 void set_texture_fields(const Material& m, kernel::Material& out) {
     const auto& a = m.uv_transform;
     const double metallic = m.metallic_roughness ? m.metallic_roughness->metallic : 0.0;
-    out.maps = uvec4(m.texture ? *m.texture + 1u : 0u, 0u, 0u, 0u);
+    const double roughness = m.metallic_roughness ? m.metallic_roughness->roughness : 0.0;
+    out.maps = uvec4(m.texture ? *m.texture + 1u : 0u, m.metallic_roughness_texture ? *m.metallic_roughness_texture + 1u : 0u,
+                     0u, 0u);
     out.uv_u = vec4(float(a[0]), float(a[1]), float(a[2]), float(metallic));
-    out.uv_v = vec4(float(a[3]), float(a[4]), float(a[5]), 0.0f);
+    out.uv_v = vec4(float(a[3]), float(a[4]), float(a[5]), float(roughness));
 }
 
 kernel::Material flatten(const Material& m) {
@@ -98,8 +95,10 @@ kernel::Material flatten(const Material& m) {
         // glTF 2.0 appendix B: dielectrics reflect 4% at normal incidence (ior 1.5),
         // metals their base colour; metals have no diffuse lobe.
         const dvec3 f0 = glm::mix(dvec3(0.04), pbr->base_color, pbr->metallic);
-        const double alpha = std::max(pbr->roughness * pbr->roughness, kMinGgxAlpha);
-        out = kernel::Material(to_vec4((1.0 - pbr->metallic) * pbr->base_color, 1.0), vec4(0.0f),
+        const double alpha = std::max(pbr->roughness * pbr->roughness, double(kernel::MIN_GGX_ALPHA));
+        // The base colour rides in specular_ks with ks 0: no Phong lobe, and texture.glsl
+        // can rebuild the lobes from it.
+        out = kernel::Material(to_vec4((1.0 - pbr->metallic) * pbr->base_color, 1.0), to_vec4(pbr->base_color, 0.0),
                                to_vec4(dvec3(0.0), m.shininess), to_vec4(dvec3(0.0), m.ior), to_vec4(m.emission, 1.0),
                                to_vec4(f0, alpha), uvec4(0u), vec4(0.0f), vec4(0.0f));
     } else {

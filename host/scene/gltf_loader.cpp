@@ -140,8 +140,8 @@ private:
         }
     }
 
-    // The metallic-roughness factors and the base colour texture, emission as
-    // emissive factor times strength; the other textures are listed as ignored.
+    // The metallic-roughness factors and textures, emission as emissive factor times
+    // strength; the other textures are listed as ignored.
     void read_materials() {
         for (std::size_t i = 0; i < model_.materials.size(); ++i) {
             const tinygltf::Material& g = model_.materials[i];
@@ -168,10 +168,11 @@ private:
                 m.emission = strength * color(dvec3(g.emissiveFactor[0], g.emissiveFactor[1], g.emissiveFactor[2]),
                                               element + ".emissiveFactor");
             }
-            textures_.colour_texture(pbr.baseColorTexture, element + ".pbrMetallicRoughness.baseColorTexture", m);
-            if (pbr.metallicRoughnessTexture.index >= 0) {
-                note_unsupported("metallic-roughness textures, rendered with their factors");
-            }
+            m.texture = textures_.texture(pbr.baseColorTexture, element + ".pbrMetallicRoughness.baseColorTexture",
+                                          Encoding::SrgbUnlessFloat, m);
+            m.metallic_roughness_texture =
+                textures_.texture(pbr.metallicRoughnessTexture, element + ".pbrMetallicRoughness.metallicRoughnessTexture",
+                                  Encoding::Linear, m);
             if (g.emissiveTexture.index >= 0) note_unsupported("emissive textures, rendered with their factors");
             if (g.normalTexture.index >= 0) note_unsupported("normal maps");
             if (g.occlusionTexture.index >= 0) note_unsupported("occlusion maps (not needed by a path tracer)");

@@ -40,8 +40,9 @@ void TextureReader::fail_at(const std::string& element, const std::string& what)
     throw SceneError(fmt::format("{}: {}: {}", file_.string(), element, what));
 }
 
-void TextureReader::colour_texture(const tinygltf::TextureInfo& info, const std::string& element, Material& m) {
-    if (info.index < 0) return;
+std::optional<std::uint32_t> TextureReader::texture(const tinygltf::TextureInfo& info, const std::string& element,
+                                                    Encoding encoding, Material& m) {
+    if (info.index < 0) return std::nullopt;
     if (static_cast<std::size_t>(info.index) >= model_.textures.size()) {
         fail_at(element + ".index", fmt::format("texture {} does not exist (the file has {})", info.index,
                                                 model_.textures.size()));
@@ -49,6 +50,7 @@ void TextureReader::colour_texture(const tinygltf::TextureInfo& info, const std:
     const tinygltf::Texture& texture = model_.textures[static_cast<std::size_t>(info.index)];
     const std::string where = fmt::format("textures[{}]", info.index);
     int tex_coord = info.texCoord;
+    std::array<double, 6> transform{1.0, 0.0, 0.0, 0.0, 1.0, 0.0};
     if (auto t = info.extensions.find("KHR_texture_transform"); t != info.extensions.end()) {
         const tinygltf::Value& v = t->second;
         const auto pair = [&](const char* key, double fallback) {
@@ -68,17 +70,24 @@ void TextureReader::colour_texture(const tinygltf::TextureInfo& info, const std:
         for (double x : {ou, ov, su, sv, rotation}) {
             if (!std::isfinite(x)) fail_at(element + ".extensions.KHR_texture_transform", "a value is not finite");
         }
-        m.uv_transform = texture_transform(ou, ov, rotation, su, sv);
+        transform = texture_transform(ou, ov, rotation, su, sv);
         if (v.Get("texCoord").IsInt()) tex_coord = v.Get("texCoord").GetNumberAsInt();
     }
     if (tex_coord != 0) {
         note_("textures on texture coordinates other than TEXCOORD_0, rendered without the texture");
-        return;
+        return std::nullopt;
     }
+    if (m.texture || m.metallic_roughness_texture) {
+        if (transform != m.uv_transform) {
+            note_("a material's textures with different KHR_texture_transforms, rendered without the later texture");
+            return std::nullopt;
+        }
+    }
+    m.uv_transform = transform;
     if (texture.source < 0 || static_cast<std::size_t>(texture.source) >= model_.images.size()) {
         if (texture.source < 0) {
             note_("textures without a source image (or with one of an extension's), rendered without the texture");
-            return;
+            return std::nullopt;
         }
         fail_at(where + ".source", fmt::format("image {} does not exist (the file has {})", texture.source,
                                                model_.images.size()));
@@ -87,24 +96,22 @@ void TextureReader::colour_texture(const tinygltf::TextureInfo& info, const std:
         fail_at(where + ".sampler", fmt::format("sampler {} does not exist (the file has {})", texture.sampler,
                                                 model_.samplers.size()));
     }
-    const auto key = std::pair{texture.source, texture.sampler};
-    if (auto it = loaded_.find(key); it != loaded_.end()) {
-        m.texture = it->second;
-        return;
-    }
+    const auto key = std::tuple{texture.source, texture.sampler, encoding};
+    if (auto it = loaded_.find(key); it != loaded_.end()) return it->second;
     const tinygltf::Image& image = model_.images[static_cast<std::size_t>(texture.source)];
     const std::string image_element = fmt::format("{}: images[{}]", file_.string(), texture.source);
     if (image.image.empty()) fail_at(fmt::format("images[{}]", texture.source), "the image holds no bytes");
-    TextureImage t = load_texture_memory(image.image.data(), image.image.size(), format_name(image),
-                                         Encoding::SrgbUnlessFloat, image_element);
+    TextureImage t = load_texture_memory(image.image.data(), image.image.size(), format_name(image), encoding,
+                                         image_element);
     if (texture.sampler >= 0) {
         const tinygltf::Sampler& s = model_.samplers[static_cast<std::size_t>(texture.sampler)];
         t.wrap_s = wrap_mode(s.wrapS);
         t.wrap_t = wrap_mode(s.wrapT);
     }
     add_texture(scene_, std::move(t), image_element);
-    m.texture = static_cast<std::uint32_t>(scene_.textures.size() - 1);
-    loaded_.emplace(key, *m.texture);
+    const auto index = static_cast<std::uint32_t>(scene_.textures.size() - 1);
+    loaded_.emplace(key, index);
+    return index;
 }
 
 }  // namespace vkrt::gltf

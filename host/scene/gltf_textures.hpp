@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
+#include <tuple>
 #include <string>
 #include <utility>
 
@@ -32,10 +34,14 @@ public:
     TextureReader(const tinygltf::Model& model, std::filesystem::path file, Scene& scene, Note note_unsupported)
         : model_(model), file_(std::move(file)), scene_(scene), note_(std::move(note_unsupported)) {}
 
-    // Gives `m` the colour texture `info` names (decoded once per image and
-    // sampler), with its coordinate transform. `element` is the textureInfo's
-    // place, e.g. "materials[0].pbrMetallicRoughness.baseColorTexture".
-    void colour_texture(const tinygltf::TextureInfo& info, const std::string& element, Material& m);
+    // The scene texture `info` names (decoded once per image, sampler and
+    // encoding), its coordinate transform given to `m`: all of a material's
+    // textures share one, so a second, different one is named as ignored. None for
+    // an absent textureInfo or one vkrt cannot use (said in a warning). `element`
+    // is the textureInfo's place, e.g.
+    // "materials[0].pbrMetallicRoughness.baseColorTexture".
+    std::optional<std::uint32_t> texture(const tinygltf::TextureInfo& info, const std::string& element,
+                                         Encoding encoding, Material& m);
 
 private:
     [[noreturn]] void fail_at(const std::string& element, const std::string& what) const;
@@ -44,7 +50,7 @@ private:
     std::filesystem::path file_;
     Scene& scene_;
     Note note_;
-    std::map<std::pair<int, int>, std::uint32_t> loaded_;  // (image, sampler) -> index into scene.textures
+    std::map<std::tuple<int, int, Encoding>, std::uint32_t> loaded_;  // (image, sampler, encoding) -> scene.textures
 };
 
 }  // namespace vkrt::gltf

@@ -117,6 +117,9 @@ struct Material {
     // base colour; read at the texture coordinates (u, v) taken through
     // uv_transform: u' = [0] u + [1] v + [2], v' = [3] u + [4] v + [5].
     std::optional<std::uint32_t> texture;
+    // With metallic_roughness: a linear texture whose blue channel multiplies
+    // metallic and green roughness (glTF's), at the same coordinates.
+    std::optional<std::uint32_t> metallic_roughness_texture;
     std::array<double, 6> uv_transform{1.0, 0.0, 0.0, 0.0, 1.0, 0.0};
 };
 

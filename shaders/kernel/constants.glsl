@@ -67,6 +67,11 @@ const uint SHAPE_TRIANGLE = 0u;
 const uint SHAPE_PARALLELOGRAM = 1u;
 const uint SHAPE_RECTANGLE = 2u;
 
+// The narrowest GGX lobe (bsdf.glsl, microfacet.glsl): alpha = roughness^2 down to
+// this, so that a roughness of 0 (a polished metal) stays a lobe that next-event
+// estimation and MIS can weigh. Its peak, 1 / (pi alpha^2), is far inside float's range.
+const float MIN_GGX_ALPHA = 0.001f;
+
 // How a texture continues beyond [0, 1] (Texture.info.w, two bits per axis).
 const uint WRAP_REPEAT = 0u;
 const uint WRAP_CLAMP = 1u;

@@ -68,10 +68,12 @@ struct Material {
                              // reflection/refraction, 0: the constant weights reflect and transmit
     vec4 microfacet;         // the metallic-roughness material's rough lobe (bsdf.glsl): rgb = its
                              // reflectance at normal incidence, w = GGX alpha; w = 0: no such lobe
-    uvec4 maps;              // x = 1 + the colour texture's index (texture.glsl), 0: none; y, z, w: 0
-    vec4 uv_u;               // the texture coordinates' transform: u' = dot(xy, uv) + z;
-                             // w = metallic (the textured colour's share of the rough lobe's reflectance)
-    vec4 uv_v;               // v' = dot(xy, uv) + z; w unused
+    uvec4 maps;              // 1 + a texture's index (texture.glsl), 0: none: x = colour, y = metallic
+                             // (blue) and roughness (green); z, w: 0
+    vec4 uv_u;               // the texture coordinates' transform: u' = dot(xy, uv) + z; w = metallic
+    vec4 uv_v;               // v' = dot(xy, uv) + z; w = roughness
+                             // (a metallic-roughness material keeps its base colour in specular_ks.rgb,
+                             // with ks = 0, so that texture.glsl can rebuild its lobes)
 };
 #define Material_FROM_TEXELS(b, i)                                                                   \
     Material(fetch_vec4(b, 9u * (i)), fetch_vec4(b, 9u * (i) + 1u), fetch_vec4(b, 9u * (i) + 2u),     \

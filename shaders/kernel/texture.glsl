@@ -59,18 +59,31 @@ vec4 texture_bilinear(Texture t, vec2 uv) {
     return mix(top, bottom, f.y);
 }
 
-// The material at a hit, its colour textured: the diffuse colour, and for a
-// metallic-roughness material the metallic share of the rough lobe's reflectance,
-// f0 = 0.04 (1 - metallic) + metallic base_color, both times the texture. Only
-// triangles and quads have texture coordinates; other shapes keep the colour.
+// The material at a hit, textured. A Phong material's diffuse colour times the
+// colour texture; a metallic-roughness material rebuilt from its factors (flat_scene.cpp)
+// times its textures: base colour times the colour texture, metallic times the
+// metallic-roughness texture's blue channel, roughness times its green (glTF's
+// packing). Only triangles and quads have texture coordinates; other shapes keep
+// the untextured material.
 Material surface_material(Hit hit) {
     Material m = load_material(hit.material);
-    if (HAS_TEXTURES && m.maps.x != 0u && (hit.prim >> REF_KIND_SHIFT) == REF_TRIANGLE) {
+    if (HAS_TEXTURES && (m.maps.x != 0u || m.maps.y != 0u) && (hit.prim >> REF_KIND_SHIFT) == REF_TRIANGLE) {
         vec2 uv = vec2(dot(vec2(m.uv_u), hit.uv) + m.uv_u.z, dot(vec2(m.uv_v), hit.uv) + m.uv_v.z);
-        vec3 c = vec3(texture_bilinear(load_texture(m.maps.x - 1u), uv));
-        m.diffuse_kd = vec4(vec3(m.diffuse_kd) * c, m.diffuse_kd.w);
-        vec3 dielectric = vec3(0.04f * (1.0f - m.uv_u.w));
-        m.microfacet = vec4(dielectric + (vec3(m.microfacet) - dielectric) * c, m.microfacet.w);
+        vec3 c = m.maps.x != 0u ? vec3(texture_bilinear(load_texture(m.maps.x - 1u), uv)) : vec3(1.0f);
+        if (m.microfacet.w > 0.0f) {
+            vec3 base = vec3(m.specular_ks) * c;
+            float metallic = m.uv_u.w;
+            float roughness = m.uv_v.w;
+            if (m.maps.y != 0u) {
+                vec4 mr = texture_bilinear(load_texture(m.maps.y - 1u), uv);
+                metallic = clamp(metallic * mr.b, 0.0f, 1.0f);
+                roughness = clamp(roughness * mr.g, 0.0f, 1.0f);
+            }
+            m.diffuse_kd = vec4((1.0f - metallic) * base, 1.0f);
+            m.microfacet = vec4(mix(vec3(0.04f), base, metallic), max(roughness * roughness, MIN_GGX_ALPHA));
+        } else {
+            m.diffuse_kd = vec4(vec3(m.diffuse_kd) * c, m.diffuse_kd.w);
+        }
     }
     return m;
 }
