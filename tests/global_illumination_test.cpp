@@ -18,6 +18,7 @@
 #include "render/render.hpp"
 #include "scene/load_scene.hpp"
 #include "flatten/flat_scene.hpp"
+#include "ggx_reference.hpp"
 #include "test_support.hpp"
 
 namespace vkrt {
@@ -225,24 +226,6 @@ TEST(GlobalEnvironment, ADiffuseSphereUnderAConstantSkyIsRhoTimesL) {
     }
 }
 
-// The metallic-roughness BSDF (shaders/kernel/bsdf.glsl, microfacet.glsl) in double:
-// Shirley et al.'s coupled diffuse lobe and the GGX lobe with Schlick's Fresnel.
-double metallic_roughness_bsdf(double base, double metallic, double roughness, glm::dvec3 n, glm::dvec3 wo,
-                               glm::dvec3 wi) {
-    const double co = glm::dot(n, wo), ci = glm::dot(n, wi);
-    const double f0 = 0.04 + (base - 0.04) * metallic, alpha = roughness * roughness, a2 = alpha * alpha;
-    const auto p5 = [](double x) { return x * x * x * x * x; };
-    const double diffuse = (1.0 - metallic) * base * (1.0 - f0) * 21.0 / (20.0 * M_PI) * (1.0 - p5(1.0 - ci)) *
-                           (1.0 - p5(1.0 - co));
-    const glm::dvec3 h = glm::normalize(wo + wi);
-    const double ch = glm::dot(n, h), k = (a2 - 1.0) * ch * ch + 1.0;
-    const double d = a2 / (M_PI * k * k);
-    const auto lambda = [&](double c) { return 0.5 * (std::sqrt(1.0 + a2 * (1.0 - c * c) / (c * c)) - 1.0); };
-    const double g2 = 1.0 / (1.0 + lambda(co) + lambda(ci));
-    const double fresnel = f0 + (1.0 - f0) * p5(1.0 - glm::dot(wo, h));
-    return diffuse + fresnel * d * g2 / (4.0 * co * ci);
-}
-
 TEST(GlobalPointLight, MetallicRoughnessPlaneShowsItsBsdfTimesIrradiance) {
     constexpr double kIntensity = 3.0;
     const glm::dvec3 light(0.3, 2.0, -0.2);
@@ -267,7 +250,7 @@ TEST(GlobalPointLight, MetallicRoughnessPlaneShowsItsBsdfTimesIrradiance) {
             const glm::dvec3 to_light = light - p;
             const double r2 = glm::dot(to_light, to_light);
             const glm::dvec3 wi = to_light / std::sqrt(r2);
-            const double expected = metallic_roughness_bsdf(base, metallic, roughness, glm::dvec3(0, 1, 0), -dir, wi) *
+            const double expected = test::ggx::metallic_roughness_bsdf(base, metallic, roughness, glm::dvec3(0, 1, 0), -dir, wi) *
                                     kIntensity * wi.y / r2;
             const std::size_t i = 3 * (std::size_t(y) * 32 + x);
             EXPECT_NEAR(cpu.image.rgb[i], expected, 1e-4 * expected) << "cpu, pixel " << x << "," << y;

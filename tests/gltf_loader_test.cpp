@@ -281,6 +281,22 @@ TEST(Gltf, AJsonSceneIncludesAFileWithATransform) {
     EXPECT_EQ(s.render.mode, vkrt::RenderMode::Local) << "the scene's own settings";
 }
 
+// The metallic-roughness factors lie in [0, 1], as glTF defines them.
+TEST(GltfErrors, MaterialFactorsOutOfRangeNameTheirElement) {
+    const std::string material = R"("metallicFactor": 0}})";
+    for (const auto& [factors, piece] :
+         {std::pair{R"("metallicFactor": 0, "roughnessFactor": 1.5}})", "materials[0].pbrMetallicRoughness.roughnessFactor: expected a number from 0 to 1, got 1.5"},
+          std::pair{R"("metallicFactor": -0.5}})", "materials[0].pbrMetallicRoughness.metallicFactor: expected a number from 0 to 1, got -0.5"}}) {
+        std::string json = gltf_json("mesh.bin", kOneNode);
+        json.replace(json.find(material), material.size(), factors);
+        vkrt::test::expect_error_message(load_error(write_gltf("factors", json)), "", {piece});
+    }
+    std::string json = gltf_json("mesh.bin", kOneNode);
+    json.replace(json.find("[0.5, 0.5, 0.5, 1]"), 18, "[2, 0.5, 0.5, 1]");
+    vkrt::test::expect_error_message(load_error(write_gltf("base", json)), "",
+                                     {"materials[0].pbrMetallicRoughness.baseColorFactor", "expected components from 0 to 1, got 2"});
+}
+
 TEST(GltfErrors, AnIncludedFilesErrorFollowsTheScenesPath) {
     const std::string json = R"({
       "camera": { "eye": [0, 0, 10], "look_at": [0, 0, 0] },

@@ -11,6 +11,7 @@
 #include <random>
 #include <vector>
 
+#include "ggx_reference.hpp"
 #include "kernel/kernel.hpp"
 
 namespace {
@@ -19,20 +20,9 @@ using vkrt::kernel::Kernel;
 using vkrt::kernel::vec3;
 using vkrt::kernel::vec4;
 
-constexpr double kPi = 3.14159265358979323846;
+using vkrt::test::ggx::kPi;
 
 // ---------------------------------------------------------- formulas in double
-
-double d_ggx(double c, double alpha) {
-    const double a2 = alpha * alpha;
-    const double k = (a2 - 1.0) * c * c + 1.0;
-    return a2 / (kPi * k * k);
-}
-
-double lambda_ggx(double c, double alpha) {
-    const double t2 = (1.0 - c * c) / (c * c);
-    return 0.5 * (std::sqrt(1.0 + alpha * alpha * t2) - 1.0);
-}
 
 // f cos(theta_i) dw_i of a lobe with F = 1, for wo at cos_o in the xz plane, per unit
 // solid angle of the half vector h = (hx, hy, hz): D G2 (wo.h) / cos_o, where
@@ -44,8 +34,7 @@ double lobe_cos_per_h(double alpha, double cos_o, double hx, double hy, double h
     const double iz = 2.0 * oh * hz - oz;
     if (!(iz > 0.0)) return 0.0;
     (void)hy;
-    const double g2 = 1.0 / (1.0 + lambda_ggx(cos_o, alpha) + lambda_ggx(iz, alpha));
-    return d_ggx(hz, alpha) * g2 * oh / cos_o;
+    return vkrt::test::ggx::d(hz, alpha) * vkrt::test::ggx::g2(cos_o, iz, alpha) * oh / cos_o;
 }
 
 // The same per unit solid angle of wi = (ix, iy, iz), for comparing values.
@@ -54,8 +43,7 @@ double lobe_cos(double alpha, double cos_o, double ix, double iy, double iz) {
     const double ox = std::sqrt(1.0 - cos_o * cos_o), oz = cos_o;
     const double hx = ox + ix, hy = iy, hz = oz + iz;
     const double len = std::sqrt(hx * hx + hy * hy + hz * hz);
-    const double g2 = 1.0 / (1.0 + lambda_ggx(cos_o, alpha) + lambda_ggx(iz, alpha));
-    return d_ggx(hz / len, alpha) * g2 / (4.0 * cos_o);
+    return vkrt::test::ggx::d(hz / len, alpha) * vkrt::test::ggx::g2(cos_o, iz, alpha) / (4.0 * cos_o);
 }
 
 // The hemisphere integral of fn(x, y, z) by the midpoint rule in (cos theta, phi),

@@ -4,6 +4,7 @@
 // a distant fine checkerboard, and bad texture input.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -144,14 +145,29 @@ TEST(Texture, TransformFollowsKhrTextureTransform) {
     EXPECT_NEAR(c.y, 0.5, 1e-12);
 }
 
-// Writes a linear float texture of four quadrants, each 4 x 4 texels: red, green
-// / blue, grey (top left, top right / bottom left, bottom right).
+// The four quadrants of quadrant_texture: red, green / blue, grey (top left, top
+// right / bottom left, bottom right); and where a 32 x 32 view of a quad that
+// spans 2 / (2 tan 15 deg 3) = 1.24 of it (the tests' camera) sees each quadrant's
+// middle, 4 pixels from each edge.
+constexpr float kQuadrants[4][3] = {{0.8f, 0.1f, 0.1f}, {0.1f, 0.7f, 0.2f}, {0.2f, 0.3f, 0.9f}, {0.5f, 0.5f, 0.5f}};
+constexpr std::uint32_t kQuadrantPixels[4][2] = {{8, 8}, {23, 8}, {8, 23}, {23, 23}};
+
+// Each quadrant's middle pixel holds `quadrant(q)`'s colour within `tolerance`.
+template <class Quadrant>
+void expect_quadrants(const Image& image, Quadrant quadrant, float tolerance, const char* what) {
+    for (int q = 0; q < 4; ++q) {
+        const float* v = image.pixel(kQuadrantPixels[q][0], kQuadrantPixels[q][1]);
+        const float* expected = kQuadrants[quadrant(q)];
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(v[c], expected[c], tolerance) << what << ", quadrant " << q << " channel " << c;
+    }
+}
+
+// Writes a linear float texture of the four quadrants, each 4 x 4 texels.
 std::filesystem::path quadrant_texture(const std::string& name) {
     Image img(8, 8);
-    const float colours[4][3] = {{0.8f, 0.1f, 0.1f}, {0.1f, 0.7f, 0.2f}, {0.2f, 0.3f, 0.9f}, {0.5f, 0.5f, 0.5f}};
     for (std::uint32_t y = 0; y < 8; ++y) {
         for (std::uint32_t x = 0; x < 8; ++x) {
-            const float* c = colours[(y / 4) * 2 + x / 4];
+            const float* c = kQuadrants[(y / 4) * 2 + x / 4];
             std::copy(c, c + 3, img.pixel(x, y));
         }
     }
@@ -173,21 +189,10 @@ TEST(TextureRender, ATexturedQuadUnderAWhiteSkyShowsTheTexture) {
     })");
     ASSERT_EQ(scene.textures.size(), 1u);
     EXPECT_TRUE(flatten_scene(scene).features.has(Feature::HAS_TEXTURES));
-    // The quad spans 2 / (2 tan 15 deg 3) = 1.24 of the view: pixel 4 from each edge
-    // is a quadrant's middle.
-    const struct {
-        std::uint32_t x, y;
-        float r, g, b;
-    } probes[] = {{8, 8, 0.8f, 0.1f, 0.1f}, {23, 8, 0.1f, 0.7f, 0.2f}, {8, 23, 0.2f, 0.3f, 0.9f}, {23, 23, 0.5f, 0.5f, 0.5f}};
     for (const bool vulkan : {false, true}) {
         const RenderOutcome out = vulkan ? test::render_vulkan(scene) : test::render_cpu(scene);
-        for (const auto& p : probes) {
-            const float* v = out.image.pixel(p.x, p.y);
-            // The texels are half floats.
-            EXPECT_NEAR(v[0], p.r, 1e-3f) << (vulkan ? "vulkan" : "cpu") << " pixel " << p.x << "," << p.y;
-            EXPECT_NEAR(v[1], p.g, 1e-3f) << (vulkan ? "vulkan" : "cpu") << " pixel " << p.x << "," << p.y;
-            EXPECT_NEAR(v[2], p.b, 1e-3f) << (vulkan ? "vulkan" : "cpu") << " pixel " << p.x << "," << p.y;
-        }
+        // The texels are half floats.
+        expect_quadrants(out.image, [](int q) { return q; }, 1e-3f, vulkan ? "vulkan" : "cpu");
     }
 }
 
@@ -299,14 +304,8 @@ TEST(TextureGltf, BaseColourTextureOnTexcoord0WithItsTransform) {
         scene.camera.width = scene.camera.height = 32;
         scene.render.spp = 4;
         scene.render.background = glm::dvec3(1.0);
-        const float quadrant[4][3] = {{0.8f, 0.1f, 0.1f}, {0.1f, 0.7f, 0.2f}, {0.2f, 0.3f, 0.9f}, {0.5f, 0.5f, 0.5f}};
         const RenderOutcome out = test::render_cpu(scene);
-        const std::uint32_t at[4][2] = {{8, 8}, {23, 8}, {8, 23}, {23, 23}};
-        for (int q = 0; q < 4; ++q) {
-            const float* expected = quadrant[shifted ? 3 - q : q];
-            const float* v = out.image.pixel(at[q][0], at[q][1]);
-            for (int c = 0; c < 3; ++c) EXPECT_NEAR(v[c], expected[c], 0.01f) << "quadrant " << q << " channel " << c;
-        }
+        expect_quadrants(out.image, [&](int q) { return shifted ? 3 - q : q; }, 0.01f, "cpu");
     }
 }
 
@@ -368,6 +367,28 @@ TEST(TextureErrors, EachNamesTheMaterialAndTheFile) {
                                {"materials.m.texture_transform", "needs a \"texture\""});
     test::expect_error_message(error_of(R"({"texture": "", "diffuse": [1, 1, 1]})"), "",
                                {"materials.m.texture", "expected a file name"});
+    const std::string garbage = (dir / "garbage.png").string();
+    test::expect_error_message(error_of(R"({"texture": ")" + garbage + R"(", "texture_transform": {"scale": [2]}})"), "",
+                               {"materials.m.texture_transform.scale", "expected an array of 2 numbers"});
+    test::expect_error_message(error_of(R"({"texture": ")" + garbage + R"(", "texture_transform": {"skew": 1}})"), "",
+                               {"materials.m.texture_transform", "unknown field 'skew'"});
+}
+
+// A JSON texture_transform is glTF's, with the rotation in degrees.
+TEST(Texture, JsonTextureTransformReadsAsGltfsInDegrees) {
+    const std::filesystem::path texture = quadrant_texture("transformed");
+    const Scene scene = test::scene_from_text("texture_transform", R"({
+      "camera": { "eye": [0, 0, 3], "look_at": [0, 0, 0] },
+      "materials": { "m": { "texture": ")" + texture.string() + R"(",
+                            "texture_transform": { "offset": [0, 1], "rotation": 90, "scale": [0.5, 0.5] } },
+                     "plain": { "texture": ")" + texture.string() + R"(" } },
+      "objects": [ { "type": "quad", "corner": [-1, 1, 0], "edge1": [2, 0, 0], "edge2": [0, -2, 0], "material": "m" } ]
+    })");
+    const auto expected = texture_transform(0.0, 1.0, std::numbers::pi / 2.0, 0.5, 0.5);
+    for (int i = 0; i < 6; ++i) EXPECT_NEAR(scene.materials.at(0).uv_transform[i], expected[i], 1e-12) << i;
+    const std::array<double, 6> identity = {1, 0, 0, 0, 1, 0};
+    EXPECT_EQ(scene.materials.at(1).uv_transform, identity);
+    EXPECT_EQ(scene.textures.size(), 2u) << "each material reads its own file";
 }
 
 TEST(TextureErrors, GltfImagesThatCannotBeReadNameTheImage) {
@@ -378,6 +399,15 @@ TEST(TextureErrors, GltfImagesThatCannotBeReadNameTheImage) {
         ADD_FAILURE() << "no error";
     } catch (const SceneError& e) {
         test::expect_error_message(e.what(), "", {"broken.gltf", "images[0]", "cannot read the image it holds"});
+    }
+    const std::filesystem::path bad_transform =
+        textured_gltf("bad_transform", R"({"index": 0, "extensions": {"KHR_texture_transform": {"scale": [1]}}})", 10497);
+    try {
+        load_scene(bad_transform);
+        ADD_FAILURE() << "no error";
+    } catch (const SceneError& e) {
+        test::expect_error_message(e.what(), "",
+                                   {"baseColorTexture.extensions.KHR_texture_transform.scale", "expected an array of 2 numbers"});
     }
     const std::filesystem::path missing = textured_gltf("missing_texture", R"({"index": 3})", 10497);
     try {

@@ -110,6 +110,9 @@ kernel::Material flatten(const Material& m) {
     return out;
 }
 
+static_assert(std::uint32_t(Wrap::Repeat) == kernel::WRAP_REPEAT && std::uint32_t(Wrap::Clamp) == kernel::WRAP_CLAMP &&
+              std::uint32_t(Wrap::Mirror) == kernel::WRAP_MIRROR);
+
 // The textures' records and their texels, two words each (kernel::Texture).
 void add_textures(const Scene& scene, FlatScene& g) {
     for (const TextureImage& t : scene.textures) {

@@ -151,7 +151,7 @@ private:
             const tinygltf::PbrMetallicRoughness& pbr = g.pbrMetallicRoughness;
             Material::MetallicRoughness& mr = m.metallic_roughness.emplace();
             const std::vector<double>& base = pbr.baseColorFactor;
-            if (base.size() == 4) mr.base_color = unit(dvec3(base[0], base[1], base[2]), element + ".pbrMetallicRoughness.baseColorFactor");
+            if (base.size() == 4) mr.base_color = color(dvec3(base[0], base[1], base[2]), 1.0, element + ".pbrMetallicRoughness.baseColorFactor");
             mr.metallic = unit(pbr.metallicFactor, element + ".pbrMetallicRoughness.metallicFactor");
             mr.roughness = unit(pbr.roughnessFactor, element + ".pbrMetallicRoughness.roughnessFactor");
             if (base.size() == 4 && base[3] < 1.0) note_unsupported("materials with a base colour alpha below 1, rendered opaque");
@@ -165,7 +165,7 @@ private:
                 }
             }
             if (g.emissiveFactor.size() == 3) {
-                m.emission = strength * color(dvec3(g.emissiveFactor[0], g.emissiveFactor[1], g.emissiveFactor[2]),
+                m.emission = strength * color(dvec3(g.emissiveFactor[0], g.emissiveFactor[1], g.emissiveFactor[2]), 1e6,
                                               element + ".emissiveFactor");
             }
             m.texture = textures_.texture(pbr.baseColorTexture, element + ".pbrMetallicRoughness.baseColorTexture",
@@ -187,16 +187,10 @@ private:
         return v;
     }
 
-    dvec3 unit(dvec3 c, const std::string& element) const {
+    // A colour whose components lie in [0, hi]: 1 for a base colour, 1e6 for emission.
+    dvec3 color(dvec3 c, double hi, const std::string& element) const {
         for (int k = 0; k < 3; ++k) {
-            if (!(c[k] >= 0.0 && c[k] <= 1.0)) fail_at(element, fmt::format("expected components from 0 to 1, got {}", c[k]));
-        }
-        return c;
-    }
-
-    dvec3 color(dvec3 c, const std::string& element) const {
-        for (int k = 0; k < 3; ++k) {
-            if (!(c[k] >= 0.0 && c[k] <= 1e6)) fail_at(element, fmt::format("expected components from 0 to 1e6, got {}", c[k]));
+            if (!(c[k] >= 0.0 && c[k] <= hi)) fail_at(element, fmt::format("expected components from 0 to {}, got {}", hi, c[k]));
         }
         return c;
     }
@@ -429,7 +423,7 @@ private:
             p.direction = robust_normalize(d);
         }
         if (p.type == LightType::Spot) read_cone(l.spot, element + ".spot", p);
-        if (l.color.size() == 3) p.color = color(dvec3(l.color[0], l.color[1], l.color[2]), element + ".color");
+        if (l.color.size() == 3) p.color = color(dvec3(l.color[0], l.color[1], l.color[2]), 1e6, element + ".color");
         if (!(l.intensity >= 0.0 && std::isfinite(l.intensity))) fail_at(element + ".intensity", "expected a number >= 0");
         // Candela (lux for a directional light) taken as the renderer's radiant
         // intensity (irradiance), one for one, as glTF viewers do: a point light of

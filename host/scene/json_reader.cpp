@@ -170,6 +170,12 @@ glm::dvec3 Node::vec3() const {
     return triple([](const Node& n) { return n.number(); });
 }
 
+std::filesystem::path Node::file_path() const {
+    const std::string name = string();
+    if (name.empty()) fail("expected a file name, got an empty string");
+    return std::filesystem::path(file()).parent_path() / name;
+}
+
 glm::dvec3 Node::color() const {
     return triple([](const Node& n) { return n.number_at_least(0.0); });
 }

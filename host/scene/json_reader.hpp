@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -93,6 +94,9 @@ public:
 
     bool boolean() const;
     std::string string() const;
+    // A non-empty string naming a file, relative to the scene file's directory
+    // (an absolute name stands as it is).
+    std::filesystem::path file_path() const;
     glm::dvec3 vec3() const;
 
     // A colour or any other non-negative triple.

@@ -225,12 +225,8 @@ void read_texture(const Node& n, Material& m, Scene& scene) {
     }
     auto file = n.find("texture");
     if (!file) return;
-    const std::string relative = file->string();
-    if (relative.empty()) file->fail("expected a file name, got an empty string");
     const std::string element = fmt::format("{}: {}", n.file(), file->path());
-    add_texture(scene, load_texture_file(std::filesystem::path(n.file()).parent_path() / relative,
-                                         Encoding::SrgbUnlessFloat, element),
-                element);
+    add_texture(scene, load_texture_file(file->file_path(), Encoding::SrgbUnlessFloat, element), element);
     m.texture = static_cast<std::uint32_t>(scene.textures.size() - 1);
 }
 
@@ -479,12 +475,11 @@ void read_quad(const Node& n, const MaterialIndex& materials, std::vector<Triang
 void read_gltf_object(const Node& n, Scene& scene) {
     n.allow_only({"type", "file", "transform"});
     const Node file = n.required("file");
-    const std::string relative = file.string();
-    if (relative.empty()) file.fail("expected a file name, got an empty string");
+    const std::filesystem::path path = file.file_path();
     const std::optional<Node> transform = n.find("transform");
     const Transform t = transform ? read_transform(*transform) : Transform{};
     try {
-        add_gltf(std::filesystem::path(n.file()).parent_path() / relative, t, scene);
+        add_gltf(path, t, scene);
     } catch (const SceneError& e) {
         file.fail(e.what());  // the glTF's own message after the scene's path to it
     }

@@ -388,9 +388,8 @@ IndexedMesh load_obj_with_materials(const std::filesystem::path& file, std::vect
 void read_mesh(const json::Node& n, const MaterialLookup& material, Scene& scene) {
     n.allow_only({"type", "file", "material", "smooth", "transform"});
     const json::Node file = n.required("file");
-    const std::string relative = file.string();
-    if (relative.empty()) file.fail("expected a file name, got an empty string");
-    const std::filesystem::path path = std::filesystem::path(n.file()).parent_path() / relative;
+    const std::string relative = file.string();  // names the file's materials
+    const std::filesystem::path path = file.file_path();
 
     MeshOptions options;
     const std::optional<json::Node> given = n.find("material");
