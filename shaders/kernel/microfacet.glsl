@@ -15,20 +15,27 @@
 // "Sampling the GGX Distribution of Visible Normals", JCGT 2018), whose density over
 // wi is D(h) G1(wo) / (4 cos(theta_o)): the sample's weight f cos(theta_i) / pdf is
 // then F G2 / G1(wo), never larger than F.
+//
+// Its arithmetic is `precise` (no fused multiply-add): near the mirror direction of
+// a smooth lobe D's denominator is a difference of nearly equal numbers, where a
+// fused and an unfused rounding differ in the leading digits, and the two backends
+// must agree (a sun reflected in smooth gold shows the difference).
 
 // D(h) for cos(theta_h) = c: alpha^2 / (pi ((alpha^2 - 1) c^2 + 1)^2).
 float ggx_d(float c, float alpha) {
     float a2 = alpha * alpha;
-    float k = (a2 - 1.0f) * (c * c) + 1.0f;
-    return a2 / (PI * k * k);
+    precise float k = (a2 - 1.0f) * (c * c) + 1.0f;
+    precise float d = a2 / (PI * k * k);
+    return d;
 }
 
 // Smith's Lambda for a direction at cos(theta) = c: (sqrt(1 + alpha^2 tan^2) - 1) / 2,
 // written without the difference of nearly equal numbers that loses it near the pole.
 float ggx_lambda(float c, float alpha) {
-    float c2 = c * c;
-    float a2t2 = alpha * alpha * max(0.0f, 1.0f - c2) / c2;
-    return a2t2 / (2.0f * (sqrt(1.0f + a2t2) + 1.0f));
+    precise float c2 = c * c;
+    precise float a2t2 = alpha * alpha * max(0.0f, 1.0f - c2) / c2;
+    precise float lambda = a2t2 / (2.0f * (sqrt(1.0f + a2t2) + 1.0f));
+    return lambda;
 }
 
 float schlick_scalar(float cos_d) {
@@ -38,31 +45,38 @@ float schlick_scalar(float cos_d) {
 }
 
 vec3 fresnel_schlick(vec3 f0, float cos_d) {
-    return f0 + (vec3(1.0f) - f0) * schlick_scalar(cos_d);
+    precise vec3 f = f0 + (vec3(1.0f) - f0) * schlick_scalar(cos_d);
+    return f;
 }
 
 // The lobe's value f for unit directions wo, wi about the unit normal n (0 where
 // either lies below).
 vec3 ggx_eval(vec3 f0, float alpha, vec3 n, vec3 wo, vec3 wi) {
-    float co = dot(n, wo);
-    float ci = dot(n, wi);
+    precise float co = dot(n, wo);
+    precise float ci = dot(n, wi);
     if (!(co > 0.0f && ci > 0.0f)) {
         return vec3(0.0f);
     }
     vec3 h = unit_vector(wo + wi);
-    float g2 = 1.0f / (1.0f + ggx_lambda(co, alpha) + ggx_lambda(ci, alpha));
-    return fresnel_schlick(f0, dot(wo, h)) * (ggx_d(dot(n, h), alpha) * g2 / (4.0f * co * ci));
+    precise float oh = dot(wo, h);
+    precise float nh = dot(n, h);
+    precise float g2 = 1.0f / (1.0f + ggx_lambda(co, alpha) + ggx_lambda(ci, alpha));
+    precise vec3 f = fresnel_schlick(f0, oh) * (ggx_d(nh, alpha) * g2 / (4.0f * co * ci));
+    return f;
 }
 
 // The density over solid angle with which ggx_sample draws wi.
 float ggx_pdf(float alpha, vec3 n, vec3 wo, vec3 wi) {
-    float co = dot(n, wo);
-    if (!(co > 0.0f && dot(n, wi) > 0.0f)) {
+    precise float co = dot(n, wo);
+    precise float ci = dot(n, wi);
+    if (!(co > 0.0f && ci > 0.0f)) {
         return 0.0f;
     }
     vec3 h = unit_vector(wo + wi);
-    float g1 = 1.0f / (1.0f + ggx_lambda(co, alpha));
-    return ggx_d(dot(n, h), alpha) * g1 / (4.0f * co);
+    precise float nh = dot(n, h);
+    precise float g1 = 1.0f / (1.0f + ggx_lambda(co, alpha));
+    precise float pdf = ggx_d(nh, alpha) * g1 / (4.0f * co);
+    return pdf;
 }
 
 // Draws local wi (z along the normal) for local wo (wo.z > 0) by a visible normal: the view is stretched to the
@@ -77,10 +91,10 @@ vec3 ggx_sample(float alpha, vec3 wo, float u1, float u2) {
     float r = sqrt(u1);
     vec2 sc = sin_cos(2.0f * PI * u2);
     float p1 = r * sc.y;
-    float p2 = r * sc.x;
     float s = 0.5f * (1.0f + v.z);
-    p2 = (1.0f - s) * sqrt(max(0.0f, 1.0f - p1 * p1)) + s * p2;
-    vec3 n = p1 * t1 + p2 * t2 + sqrt(max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * v;
+    precise float p2 = (1.0f - s) * sqrt(max(0.0f, 1.0f - p1 * p1)) + s * (r * sc.x);
+    precise vec3 n = p1 * t1 + p2 * t2 + sqrt(max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * v;
     vec3 m = unit_vector(vec3(alpha * n.x, alpha * n.y, max(0.0f, n.z)));
-    return (2.0f * dot(wo, m)) * m - wo;
+    precise vec3 wi = (2.0f * dot(wo, m)) * m - wo;
+    return wi;
 }
