@@ -3,7 +3,9 @@
 // other on scene K, and the edge settings (no bounce, a thousand, one sample).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <string>
 #include <tuple>
@@ -13,6 +15,7 @@
 #include <fmt/format.h>
 #include <glm/glm.hpp>
 
+#include "image/image.hpp"
 #include "kernel/kernel.hpp"
 #include "cpu/cpu_backend.hpp"
 #include "render/render.hpp"
@@ -339,6 +342,59 @@ TEST(GlobalEstimators, UnbiasedOnesAgreeOnMetallicRoughness) {
     const auto [diff, standard_error] = paired_difference(pixel_means(scene), nee);
     EXPECT_GT(standard_error, 0.0);
     EXPECT_LT(std::abs(diff), 4.0 * standard_error) << "difference " << diff;
+    std::printf("difference %.3g, standard error %.3g\n", diff, standard_error);
+}
+
+// Under an environment image that is dark but for one bright patch, next-event
+// estimation (which draws the patch by the image's brightness, weighed by MIS) and
+// BSDF sampling alone (which finds it only by chance) give the same image: a diffuse
+// sphere on a glossy plane, both lit and shadowed by the patch. With independent
+// numbers for the BSDF sampling, which shares nothing with the other.
+TEST(GlobalEstimators, LightAndBsdfSamplingAgreeUnderABrightPatch) {
+    Image sky(32, 16);
+    for (std::uint32_t y = 0; y < 16; ++y) {
+        for (std::uint32_t x = 0; x < 32; ++x) {
+            const bool patch = x >= 18 && x < 21 && y >= 4 && y < 6;
+            const float v = patch ? 40.0f : 0.02f;
+            std::fill(sky.pixel(x, y), sky.pixel(x, y) + 3, v);
+        }
+    }
+    const std::filesystem::path file = test::temp_dir("global") / "patch.exr";
+    write_image(sky, file);
+    Scene scene = test::scene_from_text("patch", R"({
+      "camera": { "eye": [0, 1.5, 4], "look_at": [0, 0.3, 0], "fov": 40, "width": 16, "height": 12 },
+      "render": { "mode": "global", "max_bounces": 4, "background": { "image": ")" + file.string() + R"(" } },
+      "materials": { "white": { "diffuse": [0.7, 0.7, 0.7] },
+                     "glossy": { "diffuse": [0.3, 0.3, 0.3], "specular": [1, 1, 1], "ks": 0.5, "shininess": 30 } },
+      "objects": [ { "type": "quad", "corner": [-3, 0, 3], "edge1": [6, 0, 0], "edge2": [0, 0, -6], "material": "glossy" },
+                   { "type": "sphere", "center": [0, 0.6, 0], "radius": 0.6, "material": "white" } ] })");
+    scene.render.spp = 1024;
+    scene.render.nee = true;
+    const PixelMeans nee = pixel_means(scene);
+    scene.render.spp = 8192;
+    scene.render.nee = false;
+    scene.render.sampler = Sampler::Hash;
+    scene.render.seed = 7919;
+    const auto [diff, standard_error] = paired_difference(pixel_means(scene), nee);
+    EXPECT_GT(standard_error, 0.0);
+    EXPECT_LT(std::abs(diff), 3.0 * standard_error) << "difference " << diff;
+    std::printf("difference %.3g, standard error %.3g\n", diff, standard_error);
+}
+
+// The same on the committed sky (a sun of 0.007 sr carrying most of the light) and
+// its four materials, glass and metal among them.
+TEST(GlobalEstimators, LightAndBsdfSamplingAgreeUnderTheSky) {
+    Scene scene = test::load_at_size(test::source_dir() / "scenes" / "environment.json", 16, 12);
+    scene.render.spp = 1024;
+    scene.render.nee = true;
+    const PixelMeans nee = pixel_means(scene);
+    scene.render.spp = 8192;
+    scene.render.nee = false;
+    scene.render.sampler = Sampler::Hash;
+    scene.render.seed = 7919;
+    const auto [diff, standard_error] = paired_difference(pixel_means(scene), nee);
+    EXPECT_GT(standard_error, 0.0);
+    EXPECT_LT(std::abs(diff), 3.0 * standard_error) << "difference " << diff;
     std::printf("difference %.3g, standard error %.3g\n", diff, standard_error);
 }
 

@@ -88,7 +88,10 @@ FeatureSet analyze_features(const Scene& scene) {
     // global mode by next-event estimation (the path estimator's "nee").
     const bool area_lights =
         emission && (global ? scene.render.nee : scene.render.mode == RenderMode::Local && scene.render.light_samples > 0);
-    const bool any_light = has_lights || area_lights;
+    // An environment image lights the scene through next-event estimation too.
+    const bool environment_light = scene.environment.has_value() && global && scene.render.nee &&
+                                   scene.render.estimator == Estimator::Path;
+    const bool any_light = has_lights || area_lights || environment_light;
 
     f.set(Feature::HAS_GLOBAL, global);
     f.set(Feature::HAS_POINT_LIGHTS, has_lights && has_geometry);
@@ -115,6 +118,7 @@ FeatureSet analyze_features(const Scene& scene) {
     f.set(Feature::HAS_MICROFACET, microfacet && global);
     // Only triangles and quads carry texture coordinates.
     f.set(Feature::HAS_TEXTURES, textures && !scene.triangles.empty());
+    f.set(Feature::HAS_ENVIRONMENT_MAP, scene.environment.has_value());
     return f;
 }
 

@@ -1,5 +1,6 @@
 #include "flatten/flat_scene.hpp"
 
+#include "flatten/environment_table.hpp"
 #include "scene/vec_math.hpp"
 
 #include <algorithm>
@@ -123,6 +124,19 @@ void add_textures(const Scene& scene, FlatScene& g) {
             g.texture_words.push_back(glm::packHalf2x16(glm::vec2(c.b, c.a)));
         }
     }
+}
+
+// The environment's words after the textures', and the chance that next-event
+// estimation draws from it rather than from the emitters: where the path estimator
+// samples lights at all, one half beside emitters (their powers and the image's do
+// not compare: one is at a distance, the other not), else all.
+void add_environment(const Scene& scene, FlatScene& g) {
+    bool sampled = false;
+    kernel::set_environment_first_word(g.params, append_environment(*scene.environment, g.texture_words, sampled));
+    const RenderSettings& r = scene.render;
+    const bool nee = g.features.has(Feature::HAS_GLOBAL) && r.estimator == Estimator::Path && r.nee;
+    const float choice = !(nee && sampled) ? 0.0f : g.features.has(Feature::HAS_AREA_LIGHTS) ? 0.5f : 1.0f;
+    kernel::set_environment_choice(g.params, choice);
 }
 
 // A light as the kernel reads it (kernel/layout.glsl, Light): a directional light as
@@ -452,6 +466,7 @@ FlatScene flatten_scene(const Scene& scene, const AccelPolicy& policy) {
     // Every emissive primitive kind has its sampler, so the list is empty only if no
     // primitive emits; the kernel's search must never see an empty list.
     if (g.emitters.empty()) g.features.set(Feature::HAS_AREA_LIGHTS, false);
+    if (g.features.has(Feature::HAS_ENVIRONMENT_MAP)) add_environment(scene, g);
 
     g.grid.used = want_grid(scene, g.spheres.size() + g.triangles.size() + g.rings.size() + g.cylinders.size(),
                             policy, g.grid.reason);

@@ -138,6 +138,21 @@ void read_global(const Node& n, RenderSettings& r) {
     if (r.mode == RenderMode::Global && !n.find("jitter")) r.jitter = true;
 }
 
+// render.background as an image: {"image": file, "intensity", "rotation", "up"}.
+Environment read_environment(const Node& n, std::vector<std::string>& warnings) {
+    n.allow_only({"image", "intensity", "rotation", "up"});
+    const Node file = n.required("image");
+    Environment env = load_environment(file.file_path(), fmt::format("{}: {}", n.file(), file.path()), warnings);
+    if (auto v = n.find("intensity")) env.intensity = v->number_between(0.0, 1e6);
+    if (auto v = n.find("rotation")) env.rotation = v->number();
+    if (auto v = n.find("up")) {
+        env.up = v->vec3();
+        if (!is_nonzero(env.up)) v->fail(fmt::format("expected a non-zero vector, got {}", json::format_vec3(env.up)));
+        env.up = glm::normalize(env.up);
+    }
+    return env;
+}
+
 RenderSettings read_render(const Node& n) {
     n.allow_only({"mode", "aa", "jitter", "shadows", "terminator", "max_depth", "min_weight", "corners", "ambient", "background",
                   "seed", "spp", "loop_budget", "grid", "light_samples", "estimator", "hemisphere", "nee",
@@ -178,7 +193,7 @@ RenderSettings read_render(const Node& n) {
     }
     if (auto corners = n.find("corners")) r.corners = corners->boolean();
     if (auto ambient = n.find("ambient")) r.ambient = ambient->color();
-    if (auto background = n.find("background")) r.background = background->color();
+    if (auto background = n.find("background"); background && !background->is_object()) r.background = background->color();
     if (auto seed = n.find("seed")) r.seed = whole32(*seed, 0, std::numeric_limits<std::uint32_t>::max());
     if (auto spp = n.find("spp")) r.spp = whole32(*spp, 1, limits::kMaxSpp);
     if (auto budget = n.find("loop_budget")) r.loop_budget = whole32(*budget, 1, limits::kMaxLoopBudget);
@@ -556,6 +571,7 @@ Scene parse_json_scene(const std::string& text, const std::filesystem::path& fil
     scene.camera = read_camera(root.required("camera"));
     if (auto render = root.find("render")) {
         scene.render = read_render(*render);
+        if (auto b = render->find("background"); b && b->is_object()) scene.environment = read_environment(*b, scene.warnings);
         const std::string problem =
             limits::image_size_problem(scene.camera.width, scene.camera.height, scene.render.corners);
         if (!problem.empty()) render->fail_field("corners", problem);

@@ -14,6 +14,7 @@
 #include <glm/vec3.hpp>
 
 #include "image/display.hpp"
+#include "scene/environment.hpp"
 #include "scene/texture_image.hpp"
 
 namespace vkrt {
@@ -200,6 +201,8 @@ struct Scene {
     std::vector<Ring> rings;
     std::vector<Cylinder> cylinders;
     std::vector<TextureImage> textures;  // Material::texture indexes them
+    // The image around the scene; without it rays that leave see render.background.
+    std::optional<Environment> environment;
     // What the loader accepted but the renderer will not show as the file means it
     // (e.g. an NFF mirror before mirrors exist); printed as warnings before rendering.
     std::vector<std::string> warnings;

@@ -13,6 +13,7 @@
 #include "terminator.glsl"
 #include "texture.glsl"
 #include "budget.glsl"
+#include "environment.glsl"
 #include "camera.glsl"
 #include "grid.glsl"
 #include "scene.glsl"

@@ -185,9 +185,8 @@ float area_to_solid_angle(float area_density, vec3 o, vec3 y, vec3 normal) {
 // Sobol points whose first number falls in that share, and such a subset of a net,
 // rescaled, is a net again: each emitter's points stay stratified. (With the choice
 // in a slot of its own, each emitter got a random subset of the points, spread no
-// better than independent ones.)
-LightSample sample_light(vec3 o, INOUT(Rng) rng) {
-    vec2 u = rng_2d(rng);
+// better than independent ones.) u is the slot's two numbers.
+LightSample sample_light_from(vec3 o, vec2 u) {
     Emitter e = load_emitter(pick_emitter(u.x));
     // The largest float below 1 bounds it: rounding may bring the quotient up to 1.
     u.x = min((u.x - e.cdf.y) / (e.cdf.x - e.cdf.y), 0.99999994f);
@@ -222,6 +221,10 @@ LightSample sample_light(vec3 o, INOUT(Rng) rng) {
     EmitterPoint y = emitter_point(e, u.x, u.y);
     float density = emission_weight(y.emission) / emitter_power();
     return LightSample(y.position, y.normal, y.emission, area_to_solid_angle(density, o, y.position, y.normal));
+}
+
+LightSample sample_light(vec3 o, INOUT(Rng) rng) {
+    return sample_light_from(o, rng_2d(rng));
 }
 
 // The density over solid angle with which sample_light, called at the ray's origin,

@@ -59,3 +59,6 @@ FEATURE(30, HAS_TEXTURES)
 // Spot or directional lights among the `lights`: their cone and direction (lights.glsl).
 // Without it every light is a point light, read and shaded as such, at no extra cost.
 FEATURE(31, HAS_DIRECTED_LIGHTS)
+// An equirectangular image around the scene instead of the one-colour background,
+// and in global mode a light that next-event estimation samples (environment.glsl).
+FEATURE(32, HAS_ENVIRONMENT_MAP)

@@ -24,12 +24,30 @@ vec3 hit_point(Ray ray, float t) {
     return p;
 }
 
-// Traces a path's next ray into `hit`. When it leaves the scene, adds the background
-// weighed by the path's throughput and returns false; counts the eye ray's hit.
-bool path_hit(Ray ray, uint bounce, vec3 beta, INOUT(SampleResult) s, INOUT(Hit) hit) {
+// The power heuristic (Veach, 1997, beta = 2) for a sample drawn with density
+// pdf_this that the other technique would have drawn with pdf_other. Written with
+// the ratio so that neither density is squared: both can be as large as INFINITY_T.
+float power_heuristic(float pdf_this, float pdf_other) {
+    if (!(pdf_this > 0.0f)) {
+        return 0.0f;
+    }
+    float r = min(pdf_other / pdf_this, 1.0e18f);
+    return 1.0f / (1.0f + r * r);
+}
+
+// Traces a path's next ray into `hit`. When it leaves the scene, adds what the sky
+// sends along it weighed by the path's throughput and returns false; counts the eye
+// ray's hit. pdf_prev is the density with which the ray was drawn by sampling the
+// smooth lobes, 0 otherwise: such a ray that finds the environment is weighed
+// against next-event estimation's drawing it (the power heuristic, as for emitters).
+bool path_hit(Ray ray, uint bounce, vec3 beta, float pdf_prev, INOUT(SampleResult) s, INOUT(Hit) hit) {
     hit = closest_hit(ray, INFINITY_T);
     if (!(hit.t < INFINITY_T)) {
-        s.radiance += beta * background();
+        float w = 1.0f;
+        if (HAS_ENVIRONMENT_MAP && pdf_prev > 0.0f && environment_choice() > 0.0f) {
+            w = power_heuristic(pdf_prev, environment_choice() * environment_pdf(ray.dir));
+        }
+        s.radiance += beta * sky(ray.dir) * w;
         return false;
     }
     if (bounce == 0u) {
@@ -42,23 +60,18 @@ bool path_hit(Ray ray, uint bounce, vec3 beta, INOUT(SampleResult) s, INOUT(Hit)
 // light, and ending them at random would only add noise.
 const uint ROULETTE_START = 3u;
 
-// The power heuristic (Veach, 1997, beta = 2) for a sample drawn with density
-// pdf_this that the other technique would have drawn with pdf_other. Written with
-// the ratio so that neither density is squared: both can be as large as INFINITY_T.
-float power_heuristic(float pdf_this, float pdf_other) {
-    if (!(pdf_this > 0.0f)) {
-        return 0.0f;
-    }
-    float r = min(pdf_other / pdf_this, 1.0e18f);
-    return 1.0f / (1.0f + r * r);
+// Whether next-event estimation draws directions from the environment image.
+bool sampled_environment() {
+    return HAS_ENVIRONMENT_MAP && environment_choice() > 0.0f;
 }
 
 // Direct light at a path vertex through its smooth lobes: every light of the
 // scene's `lights` (the only way to reach one: no path can hit a point, nor come
 // from exactly one direction) and, with next-event estimation
-// (HAS_AREA_LIGHTS in global mode), one point on the area lights, weighted by the
+// (HAS_AREA_LIGHTS in global mode, or an environment image that is sampled), one
+// point on the area lights or one direction of the environment, weighted by the
 // power heuristic against the BSDF sampling that could have found it too (whose
-// hits are weighted to match in path_sample). p_smooth is the probability of
+// hits are weighted to match in path_hit and path_sample). p_smooth is the probability of
 // picking the smooth group, part of the BSDF sampling's density; `slot` is the
 // bounce's first slot (constants.glsl).
 vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smooth, uint slot,
@@ -83,19 +96,36 @@ vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smoo
             }
         }
     }
-    if (HAS_AREA_LIGHTS) {
-        // Drawn from the shadow ray's origin, which is also the origin of the bounce
-        // ray whose hit on a light light_pdf_of_hit weighs: the same point, the same
-        // choice of technique.
+    if (HAS_AREA_LIGHTS || sampled_environment()) {
+        // One slot, one shadow ray: its first number picks the environment with
+        // probability environment_choice() and, rescaled to its share, draws with the
+        // second as sample_light does (for a choice of 0, exactly the number drawn).
         rng_seek(rng, slot + SLOT_LIGHT);
-        LightSample y = sample_light(shadow_origin, rng);
-        vec3 to_light = y.position - shadow_origin;
-        vec3 l = to_light / sqrt(dot(to_light, to_light));
-        bool facing = y.pdf > 0.0f && -dot(y.normal, l) > 0.0f;
-        if (light_reaches(hit, shadow_origin, l, vec4(y.position, 1.0f), facing, s.shadow_rays)) {
-            float pdf_bsdf = p_smooth * pdf_smooth(lobes, frame, wo, l, hemisphere_rule());
-            sum += eval_smooth(lobes, hit.normal, wo, l) * y.emission *
-                   (dot(hit.normal, l) * power_heuristic(y.pdf, pdf_bsdf) / y.pdf);
+        vec2 u = rng_2d(rng);
+        float p_env = HAS_ENVIRONMENT_MAP ? environment_choice() : 0.0f;
+        if (u.x < p_env) {
+            EnvironmentSample e = sample_environment(min(u.x / p_env, 0.99999994f), u.y);
+            float pdf = p_env * e.pdf;
+            if (pdf > 0.0f && light_reaches(hit, shadow_origin, e.dir, vec4(e.dir, 0.0f), true, s.shadow_rays)) {
+                float pdf_bsdf = p_smooth * pdf_smooth(lobes, frame, wo, e.dir, hemisphere_rule());
+                sum += eval_smooth(lobes, hit.normal, wo, e.dir) * e.radiance *
+                       (dot(hit.normal, e.dir) * power_heuristic(pdf, pdf_bsdf) / pdf);
+            }
+        } else if (HAS_AREA_LIGHTS) {
+            // Drawn from the shadow ray's origin, which is also the origin of the bounce
+            // ray whose hit on a light light_pdf_of_hit weighs: the same point, the same
+            // choice of technique.
+            u.x = min((u.x - p_env) / (1.0f - p_env), 0.99999994f);
+            LightSample y = sample_light_from(shadow_origin, u);
+            y.pdf *= 1.0f - p_env;
+            vec3 to_light = y.position - shadow_origin;
+            vec3 l = to_light / sqrt(dot(to_light, to_light));
+            bool facing = y.pdf > 0.0f && -dot(y.normal, l) > 0.0f;
+            if (light_reaches(hit, shadow_origin, l, vec4(y.position, 1.0f), facing, s.shadow_rays)) {
+                float pdf_bsdf = p_smooth * pdf_smooth(lobes, frame, wo, l, hemisphere_rule());
+                sum += eval_smooth(lobes, hit.normal, wo, l) * y.emission *
+                       (dot(hit.normal, l) * power_heuristic(y.pdf, pdf_bsdf) / y.pdf);
+            }
         }
     }
     return sum;
@@ -146,14 +176,15 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
     loop_enter();
     for (uint bounce = 0u; loop_tick(); bounce += 1u) {
         Hit hit;
-        if (!path_hit(ray, bounce, beta, s, hit)) {
+        if (!path_hit(ray, bounce, beta, pdf_prev, s, hit)) {
             return;
         }
         Material m = surface_material(hit);
         if (HAS_EMISSION && hit.front_face) {
             float w = 1.0f;
             if (HAS_AREA_LIGHTS && pdf_prev > 0.0f) {
-                w = power_heuristic(pdf_prev, light_pdf_of_hit(ray, hit, vec3(m.emission_fresnel)));
+                float p_area = 1.0f - (HAS_ENVIRONMENT_MAP ? environment_choice() : 0.0f);
+                w = power_heuristic(pdf_prev, p_area * light_pdf_of_hit(ray, hit, vec3(m.emission_fresnel)));
             }
             s.radiance += beta * vec3(m.emission_fresnel) * w;
         }
@@ -171,7 +202,7 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
         float w_smooth = smooth_weight(lobes);
         float p_smooth = w_smooth / total;
         uint slot = SLOT_PATH + bounce * BOUNCE_SLOTS;
-        if ((HAS_POINT_LIGHTS || HAS_AREA_LIGHTS) && w_smooth > 0.0f) {
+        if ((HAS_POINT_LIGHTS || HAS_AREA_LIGHTS || sampled_environment()) && w_smooth > 0.0f) {
             s.radiance += beta * next_event(hit, p, wo, lobes, frame, p_smooth, slot, rng, s);
         }
         rng_seek(rng, slot + SLOT_LOBE);
@@ -224,7 +255,7 @@ vec3 paper_gl(Ray start, uint bounces, INOUT(Rng) rng, INOUT(SampleResult) s) {
         s.bounce_rays += 1u;
         Hit hit = closest_hit(ray, INFINITY_T);
         if (!(hit.t < INFINITY_T)) {
-            return attenuation * background();
+            return attenuation * sky(ray.dir);
         }
         Material m = surface_material(hit);
         if (HAS_EMISSION && hit.front_face && any(greaterThan(vec3(m.emission_fresnel), vec3(0.0f)))) {
@@ -256,7 +287,7 @@ void paper_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
     loop_enter();
     for (uint bounce = 0u; loop_tick(); bounce += 1u) {
         Hit hit;
-        if (!path_hit(ray, bounce, beta, s, hit)) {
+        if (!path_hit(ray, bounce, beta, 0.0f, s, hit)) {
             return;
         }
         Material m = surface_material(hit);

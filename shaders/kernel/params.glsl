@@ -60,5 +60,9 @@ PARAM3(uvec3, grid_resolution, 15)   // root cells per axis
 PARAM(float, lens_scale, 16, x)      // the lens radius over a pixel's width on the plane at distance 1
 PARAM(float, focus_distance, 16, y)  // along the view axis, to the plane in focus
 
+// The environment image (kernel/environment.glsl, HAS_ENVIRONMENT_MAP).
+PARAM(uint, environment_first_word, 16, z)  // where its header starts in texture_words
+PARAM(float, environment_choice, 16, w)     // the chance next-event estimation picks it (0: never)
+
 #undef PARAM3
 #undef PARAM

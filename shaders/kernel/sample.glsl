@@ -97,7 +97,7 @@ Hit trace_and_shade(PendingRay r, INOUT(Rng) rng, INOUT(SampleResult) s) {
         }
         s.radiance += r.weight * shade_local(r.ray, hit, rng, s.shadow_rays);
     } else {
-        s.radiance += r.weight * background();
+        s.radiance += r.weight * sky(r.ray.dir);
     }
     return hit;
 }

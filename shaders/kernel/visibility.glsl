@@ -20,8 +20,8 @@
 // hit's coordinates, which far from the origin exceeds the margin SHADOW_RAY_END
 // leaves before the light, and a ray of the hit's length from the moved origin then
 // reached the emitter's own surface (found by issue 6's scale cases). Toward a
-// directional light the shadow ray runs along l without end: anything it meets
-// blocks the light.
+// directional light, or the environment, the shadow ray runs along l without end:
+// anything it meets blocks the light.
 bool light_reaches(Hit hit, vec3 shadow_origin, vec3 l, vec4 light, bool source_faces, INOUT(uint) shadow_rays) {
     bool lifted = HAS_TERMINATOR && dot(hit.lift, hit.geo_normal) > 0.0f;
     bool faces = source_faces && dot(hit.normal, l) > 0.0f && (lifted || dot(hit.geo_normal, l) > 0.0f);
@@ -31,7 +31,7 @@ bool light_reaches(Hit hit, vec3 shadow_origin, vec3 l, vec4 light, bool source_
     }
     if (HAS_SHADOWS) {
         shadow_rays += 1u;
-        if (HAS_DIRECTED_LIGHTS && light.w == 0.0f) {
+        if ((HAS_DIRECTED_LIGHTS || HAS_ENVIRONMENT_MAP) && light.w == 0.0f) {
             return !occluded(Ray(shadow_origin, l), INFINITY_T);
         }
         // Shadow rays stop short of the light (SHADOW_RAY_END), so that neither a
