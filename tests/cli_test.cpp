@@ -31,7 +31,7 @@ TEST(Cli, VersionAndHelp) {
     EXPECT_EQ(test::run_vkrt("render --help", dir).code, 0);
     const std::string help = read_file(dir / "stdout.txt");
     for (const char* option : {"--output", "--backend", "--device", "--width", "--height", "--spp", "--time", "--samples", "--seed",
-                               "--bounces", "--background", "--threads", "--stats", "--serve", "--reference", "--checkpoint", "--validate", "--quiet"}) {
+                               "--bounces", "--background", "--environment", "--environment-intensity", "--environment-rotation", "--threads", "--stats", "--serve", "--reference", "--checkpoint", "--validate", "--quiet"}) {
         EXPECT_NE(help.find(option), std::string::npos) << option;
     }
 }
@@ -261,6 +261,33 @@ TEST(Cli, BackgroundAndBouncesOverrideTheScene) {
     EXPECT_EQ(test::run_vkrt("compare " + out("grey.exr") + " " + out("grey3.exr") + " --max-abs 0", dir).code, 0);
     EXPECT_NE(test::run_vkrt("compare " + out("default.exr") + " " + out("grey.exr") + " --max-abs 0", dir).code, 0);
     EXPECT_NE(test::run_vkrt("compare " + out("default.exr") + " " + out("short.exr") + " --max-abs 0", dir).code, 0);
+}
+
+// --environment puts an image around a scene, or replaces the scene's; intensity
+// and rotation change it; --background takes its place. Mistakes are refused.
+TEST(Cli, EnvironmentOptionsOverrideTheScene) {
+    const fs::path dir = test::temp_dir("cli_environment");
+    const std::string sky = test::shell_quote((test::source_dir() / "scenes" / "environment" / "sky.hdr").string());
+    const std::string render = "render " + test::shell_quote(scene("environment").string()) +
+                               " --backend cpu --width 24 --height 16 --spp 2 -q -o ";
+    auto out = [&](const char* name) { return test::shell_quote((dir / name).string()); };
+    ASSERT_EQ(test::run_vkrt(render + out("scene.exr"), dir).code, 0);
+    ASSERT_EQ(test::run_vkrt(render + out("given.exr") + " --environment " + sky, dir).code, 0);
+    ASSERT_EQ(test::run_vkrt(render + out("turned.exr") + " --environment-rotation 90", dir).code, 0);
+    ASSERT_EQ(test::run_vkrt(render + out("dim.exr") + " --environment-intensity 0.5", dir).code, 0);
+    ASSERT_EQ(test::run_vkrt(render + out("grey.exr") + " --background 0.5", dir).code, 0);
+    EXPECT_EQ(test::run_vkrt("compare " + out("scene.exr") + " " + out("given.exr") + " --max-abs 0", dir).code, 0);
+    for (const char* other : {"turned.exr", "dim.exr", "grey.exr"}) {
+        EXPECT_NE(test::run_vkrt("compare " + out("scene.exr") + " " + out(other) + " --max-abs 0", dir).code, 0) << other;
+    }
+    test::expect_one_error(test::run_vkrt(render + out("x.exr") + " --environment " + sky + " --background 1", dir),
+                           {"--environment", "--background"});
+    test::expect_one_error(test::run_vkrt(render + out("x.exr") + " --environment nonesuch.hdr", dir),
+                           {"--environment", "nonesuch.hdr", "no such file"});
+    test::expect_one_error(test::run_vkrt("render " + test::shell_quote(scene("area_light").string()) +
+                                              " --backend cpu -q -o " + out("x.exr") + " --environment-intensity 2",
+                                          dir),
+                           {"--environment-intensity", "no environment image"});
 }
 
 // --exposure and --tonemap change an 8-bit output and leave a float one alone; merge

@@ -56,6 +56,20 @@ void apply_overrides(const RenderArgs& args, Scene& scene) {
     if (!args.background.empty()) {
         const std::array<double, 3> c = parse_colour(args.background);  // checked by the parser
         scene.render.background = glm::dvec3(c[0], c[1], c[2]);
+        scene.environment.reset();
+    }
+    if (!args.environment.empty()) {
+        std::vector<std::string> warnings;
+        scene.environment = load_environment(args.environment, "--environment", warnings);
+        for (const std::string& warning : warnings) fmt::print(stderr, "warning: {}\n", warning);
+    }
+    if (args.environment_intensity || args.environment_rotation) {
+        if (!scene.environment) {
+            throw SceneError("--environment-intensity/--environment-rotation: the scene has no environment image "
+                             "(give one with --environment)");
+        }
+        if (args.environment_intensity) scene.environment->intensity = *args.environment_intensity;
+        if (args.environment_rotation) scene.environment->rotation = *args.environment_rotation;
     }
     scene.render.display = display_with(scene.render.display, args.display);
     if (!args.grid.empty()) {

@@ -25,6 +25,9 @@ struct RenderArgs {
     std::string sampler;  // empty: the scene's; else sobol or hash
     std::optional<std::uint32_t> bounces;  // global mode's max_bounces
     std::string background;                // empty: the scene's; else a colour (parse_colour)
+    std::string environment;               // empty: the scene's; else an image file around the scene
+    std::optional<double> environment_intensity;  // of the scene's environment or --environment's
+    std::optional<double> environment_rotation;   // degrees about its up axis
     DisplayOptions display;
     std::string grid;    // empty: the scene's choice; else auto, on or off
     unsigned threads = 0;

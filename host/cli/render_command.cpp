@@ -42,10 +42,22 @@ Command add_render_command(CLI::App& program) {
     r->add_option("--bounces", args->bounces,
                   "Global mode: scattering events after the first hit (render.max_bounces); overrides the scene")
         ->check(whole_number(0, limits::kMaxBounces));
-    r->add_option("--background", args->background,
+    CLI::Option* background_option = r->add_option("--background", args->background,
                   "Radiance of rays that hit nothing, one number or R,G,B (render.background; in global mode the "
                   "uniform sky that lights the scene); overrides the scene")
         ->check(accepted_by([](const std::string& text) { parse_colour(text); }, "V|R,G,B"));
+    r->add_option("--environment", args->environment,
+                  "Image around the scene (equirectangular; .exr or .hdr for light, any texture format), seen by "
+                  "rays that leave the scene and, in global mode, lighting it (render.background's image); "
+                  "overrides the scene")
+        ->excludes(background_option);
+    r->add_option("--environment-intensity", args->environment_intensity,
+                  "Factor on the environment image's values (render.background.intensity); overrides the scene")
+        ->check(CLI::Range(0.0, 1e6));
+    r->add_option("--environment-rotation", args->environment_rotation,
+                  "Degrees the environment image turns about its up axis, right-handed (render.background.rotation); "
+                  "overrides the scene")
+        ->check(CLI::Range(-1e6, 1e6));
     add_display(r, args->display, "; overrides the scene");
     r->add_option("--grid", args->grid,
                   "Grid: auto (when the scene has enough primitives for it to pay), on, off, uniform (on, no "
