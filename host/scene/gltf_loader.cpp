@@ -149,7 +149,10 @@ private:
             Material m;
             m.name = g.name.empty() ? element : g.name;
             const tinygltf::PbrMetallicRoughness& pbr = g.pbrMetallicRoughness;
-            Material::MetallicRoughness& mr = m.metallic_roughness.emplace();
+            // Assigned rather than emplace()d: clang 14 takes the nested struct, its
+            // member initializers not yet parsed, as not default-constructible.
+            m.metallic_roughness = Material::MetallicRoughness{};
+            Material::MetallicRoughness& mr = *m.metallic_roughness;
             const std::vector<double>& base = pbr.baseColorFactor;
             if (base.size() == 4) mr.base_color = color(dvec3(base[0], base[1], base[2]), 1.0, element + ".pbrMetallicRoughness.baseColorFactor");
             mr.metallic = unit(pbr.metallicFactor, element + ".pbrMetallicRoughness.metallicFactor");
