@@ -3,6 +3,7 @@
 // scene gets them; a white sky's closed form on both backends; and one clear error
 // for each way a file can be broken.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <cstdint>
@@ -334,6 +335,26 @@ TEST(GltfErrors, AMissingImageFileIsNamed) {
     std::string json = gltf_json("mesh.bin", kOneNode, R"(, "images": [{"uri": "absent.png"}], "textures": [{"source": 0}])");
     json.replace(json.find(R"("metallicFactor": 0)"), 19, R"("metallicFactor": 0, "baseColorTexture": {"index": 0})");
     vkrt::test::expect_error_message(load_error(write_gltf("image", json)), "", {"image.gltf", "absent.png"});
+}
+
+// A URI may name a directory or a FIFO: tinygltf's own reader would take a
+// directory's end offset (2^63 - 1 on ext4) for its size and wait on a FIFO.
+TEST(GltfErrors, ABufferThatIsADirectoryIsRefused) {
+    const std::string message = load_error(write_gltf("dir_buffer", gltf_json(".", kOneNode)));
+    vkrt::test::expect_error_message(message, "", {"dir_buffer.gltf", "not a regular file"});
+}
+
+TEST(GltfErrors, ABufferThatIsAFifoIsRefused) {
+    const std::filesystem::path file = write_gltf("fifo_buffer", gltf_json("pipe.bin", kOneNode));
+    ASSERT_EQ(::mkfifo((file.parent_path() / "pipe.bin").c_str(), 0600), 0);
+    vkrt::test::expect_error_message(load_error(file), "", {"fifo_buffer.gltf", "pipe.bin", "not a regular file"});
+}
+
+TEST(GltfErrors, AnImageThatIsADirectoryIsRefused) {
+    std::string json = gltf_json("mesh.bin", kOneNode, R"(, "images": [{"uri": "."}], "textures": [{"source": 0}])");
+    json.replace(json.find(R"("metallicFactor": 0)"), 19, R"("metallicFactor": 0, "baseColorTexture": {"index": 0})");
+    vkrt::test::expect_error_message(load_error(write_gltf("dir_image", json)), "",
+                                     {"dir_image.gltf", "images[0].uri", "is not a regular file"});
 }
 
 TEST(GltfErrors, MalformedJsonIsRefused) {

@@ -391,6 +391,19 @@ TEST(Texture, JsonTextureTransformReadsAsGltfsInDegrees) {
     EXPECT_EQ(scene.textures.size(), 2u) << "each material reads its own file";
 }
 
+// OpenImageIO's message for a PNG cut short spans lines; the error stays one.
+TEST(TextureErrors, ATruncatedGltfImageGetsOneLine) {
+    const std::filesystem::path file = textured_gltf("truncated", R"({"index": 0})", 10497);
+    const std::filesystem::path png = file.parent_path() / "truncated.png";
+    std::filesystem::resize_file(png, std::filesystem::file_size(png) / 2);
+    try {
+        load_scene(file);
+        ADD_FAILURE() << "no error";
+    } catch (const SceneError& e) {
+        test::expect_error_message(e.what(), "", {"truncated.gltf", "images[0]", "cannot read"});
+    }
+}
+
 TEST(TextureErrors, GltfImagesThatCannotBeReadNameTheImage) {
     const std::filesystem::path file = textured_gltf("broken", R"({"index": 0})", 10497);
     std::ofstream(file.parent_path() / "broken.png") << "not a PNG at all";

@@ -5,12 +5,14 @@
 #include <cmath>
 #include <fstream>
 #include <cstdint>
+#include <filesystem>
 #include <limits>
 #include <map>
 #include <optional>
 #include <set>
 #include <string>
 #include <string_view>
+#include <system_error>
 #include <vector>
 
 #include <fmt/format.h>
@@ -64,15 +66,43 @@ void check_image_files(const std::filesystem::path& file, const tinygltf::Model&
         const std::filesystem::path image = file.parent_path() / decode_uri(uri);
         std::error_code ec;
         if (!std::filesystem::is_regular_file(image, ec)) {
-            throw SceneError(fmt::format("{}: images[{}].uri: the image file {} does not exist", file.string(), i,
-                                         image.string()));
+            throw SceneError(fmt::format("{}: images[{}].uri: the image file {} {}", file.string(), i, image.string(),
+                                         std::filesystem::exists(image, ec) ? "is not a regular file" : "does not exist"));
         }
     }
+}
+
+// tinygltf's own file callbacks open whatever a URI names: its FileExists blocks
+// on a FIFO, and its ReadWholeFile takes a directory's end offset for its size
+// (2^63 - 1 bytes on ext4) and allocates that much. The asset's files (the glTF
+// itself, its buffers and images) are read through these instead, which look
+// before they open and take regular files only.
+bool path_exists(const std::string& path, void*) {
+    std::error_code ec;
+    return std::filesystem::exists(path, ec);
+}
+
+bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+    const auto fail = [&](const std::string& why) {
+        if (err) *err += why;
+        return false;
+    };
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) return fail("not a regular file");
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (ec) return fail(ec.message());
+    std::ifstream in(path, std::ios::binary);
+    out->resize(size);
+    if (!in.read(reinterpret_cast<char*>(out->data()), static_cast<std::streamsize>(size))) {
+        return fail("cannot read it");
+    }
+    return true;
 }
 
 tinygltf::Model read_model(const std::filesystem::path& file, std::vector<std::string>& warnings) {
     tinygltf::TinyGLTF reader;
     reader.SetImageLoader(gltf::keep_image_bytes, nullptr);
+    reader.SetFsCallbacks({&path_exists, &tinygltf::ExpandFilePath, &read_regular_file, &tinygltf::WriteWholeFile, nullptr});
     tinygltf::Model model;
     std::string error, warning;
     // Binary or JSON by the file's first bytes, the .glb magic "glTF", whatever its name.
@@ -149,7 +179,10 @@ private:
             Material m;
             m.name = g.name.empty() ? element : g.name;
             const tinygltf::PbrMetallicRoughness& pbr = g.pbrMetallicRoughness;
-            Material::MetallicRoughness& mr = m.metallic_roughness.emplace();
+            // Assigned rather than emplace()d: clang 14 takes the nested struct, its
+            // member initializers not yet parsed, as not default-constructible.
+            m.metallic_roughness = Material::MetallicRoughness{};
+            Material::MetallicRoughness& mr = *m.metallic_roughness;
             const std::vector<double>& base = pbr.baseColorFactor;
             if (base.size() == 4) mr.base_color = color(dvec3(base[0], base[1], base[2]), 1.0, element + ".pbrMetallicRoughness.baseColorFactor");
             mr.metallic = unit(pbr.metallicFactor, element + ".pbrMetallicRoughness.metallicFactor");

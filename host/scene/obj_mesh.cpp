@@ -172,20 +172,6 @@ void check_mtl(const std::filesystem::path& file) {
     });
 }
 
-// tinyobjloader's messages end in newlines, sometimes several; one line is wanted.
-std::string one_line(const std::string& message) {
-    std::string out;
-    for (char c : message) {
-        if (c == '\n' || c == '\r') {
-            if (!out.empty() && out.back() != ' ') out += ' ';
-        } else {
-            out += c;
-        }
-    }
-    while (!out.empty() && out.back() == ' ') out.pop_back();
-    return out;
-}
-
 // An MTL material as vkrt's Phong material: Kd the diffuse colour, Ks the
 // specular one (ks 1 when it is not black), Ns the exponent, Ke the emission.
 // What vkrt cannot show yet is said once per material and feature.

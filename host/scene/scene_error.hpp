@@ -11,4 +11,19 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+// A library's message (tinyobjloader's, OpenImageIO's), which may end in or hold
+// newlines, as part of a SceneError's one line.
+inline std::string one_line(const std::string& message) {
+    std::string out;
+    for (char c : message) {
+        if (c == '\n' || c == '\r') {
+            if (!out.empty() && out.back() != ' ') out += ' ';
+        } else {
+            out += c;
+        }
+    }
+    while (!out.empty() && out.back() == ' ') out.pop_back();
+    return out;
+}
+
 }  // namespace vkrt

@@ -48,7 +48,7 @@ TextureImage read_texture(ImageFileReader& in, Encoding encoding, const std::str
                          kMaxTextureSide));
     }
     std::vector<float> values(std::size_t(spec.width) * spec.height * channels);
-    if (!in.read_floats(values.data())) fail(fmt::format("cannot read its pixels: {}", in.error()));
+    if (!in.read_floats(values.data())) fail(fmt::format("cannot read its pixels: {}", one_line(in.error())));
     const bool floats = spec.types.front() == ChannelType::Float || spec.types.front() == ChannelType::Half;
     const bool decode = encoding == Encoding::SrgbUnlessFloat && !floats;
     TextureImage t;
@@ -84,9 +84,9 @@ TextureImage load_texture_file(const std::filesystem::path& file, Encoding encod
     try {
         in = image_files().open(file.string(), error);
     } catch (const ImageError& e) {
-        throw SceneError(fmt::format("{}: texture {}: {}", element, file.string(), e.what()));
+        throw SceneError(fmt::format("{}: texture {}: {}", element, file.string(), one_line(e.what())));
     }
-    if (!in) throw SceneError(fmt::format("{}: texture {}: cannot read it as an image: {}", element, file.string(), error));
+    if (!in) throw SceneError(fmt::format("{}: texture {}: cannot read it as an image: {}", element, file.string(), one_line(error)));
     return read_texture(*in, encoding, file.string(), element);
 }
 
@@ -97,9 +97,9 @@ TextureImage load_texture_memory(const unsigned char* data, std::size_t size, co
     try {
         in = image_files().open_memory(data, size, format, error);
     } catch (const ImageError& e) {
-        throw SceneError(fmt::format("{}: {}", element, e.what()));
+        throw SceneError(fmt::format("{}: {}", element, one_line(e.what())));
     }
-    if (!in) throw SceneError(fmt::format("{}: cannot read the image it holds: {}", element, error));
+    if (!in) throw SceneError(fmt::format("{}: cannot read the image it holds: {}", element, one_line(error)));
     return read_texture(*in, encoding, element, element);
 }
 
