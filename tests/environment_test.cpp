@@ -114,25 +114,33 @@ std::filesystem::path random_image(std::uint32_t w, std::uint32_t h) {
     return write_environment("random", w, h, [&](std::uint32_t x, std::uint32_t y) { return texels[y * w + x]; });
 }
 
-// The weight the sampler is documented to give texel (x, y), in double: the largest
-// luminance of its 3 x 3 neighbourhood (columns wrapping, rows clamped) times the
+// The weight the sampler is documented to give texel (x, y), in double: the mean
+// over the texel's square of the bilinear interpolation of luminance (columns
+// wrapping, rows clamped), here by the midpoint rule on 16 x 16 points, times the
 // sine of its row centre's angle from the pole.
 std::vector<double> expected_weights(const TextureImage& image) {
+    const std::int64_t w = image.width, h = image.height;
     const auto lum = [&](std::int64_t x, std::int64_t y) {
-        const glm::vec4& c = image.texels[std::size_t(y) * image.width + std::size_t(x)];
+        const glm::vec4& c = image.texels[std::size_t(std::clamp<std::int64_t>(y, 0, h - 1)) * image.width +
+                                          std::size_t((x % w + w) % w)];
         return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
     };
-    const std::int64_t w = image.width, h = image.height;
+    // The bilinear interpolation at continuous image position (px, py), in texels.
+    const auto bilinear = [&](double px, double py) {
+        const double fx = px - 0.5, fy = py - 0.5;
+        const auto x0 = std::int64_t(std::floor(fx)), y0 = std::int64_t(std::floor(fy));
+        const double ax = fx - double(x0), ay = fy - double(y0);
+        return (1 - ay) * ((1 - ax) * lum(x0, y0) + ax * lum(x0 + 1, y0)) +
+               ay * ((1 - ax) * lum(x0, y0 + 1) + ax * lum(x0 + 1, y0 + 1));
+    };
     std::vector<double> out;
     for (std::int64_t y = 0; y < h; ++y) {
         for (std::int64_t x = 0; x < w; ++x) {
-            double peak = 0.0;
-            for (std::int64_t dy = -1; dy <= 1; ++dy) {
-                for (std::int64_t dx = -1; dx <= 1; ++dx) {
-                    peak = std::max(peak, lum((x + dx + w) % w, std::clamp<std::int64_t>(y + dy, 0, h - 1)));
-                }
+            double mean = 0.0;
+            for (int j = 0; j < 16; ++j) {
+                for (int i = 0; i < 16; ++i) mean += bilinear(x + (i + 0.5) / 16, y + (j + 0.5) / 16) / 256.0;
             }
-            out.push_back(peak * std::sin(kPi * (y + 0.5) / h));
+            out.push_back(mean * std::sin(kPi * (y + 0.5) / h));
         }
     }
     return out;

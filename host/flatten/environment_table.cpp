@@ -58,19 +58,22 @@ std::vector<double> environment_weights(const Environment& env) {
     const std::uint32_t w = env.image.width, h = env.image.height;
     std::vector<double> lum(std::size_t(w) * h);
     for (std::size_t i = 0; i < lum.size(); ++i) lum[i] = luminance(env.image.texels[i]);
+    // Over a texel's square, bilinear interpolation averages each axis's neighbours
+    // with weights 1/8, 3/4, 1/8 (the integral of the tent between texel centres).
+    constexpr double tap[3] = {0.125, 0.75, 0.125};
     std::vector<double> weights(lum.size());
     for (std::uint32_t y = 0; y < h; ++y) {
         const double sin_theta = std::sin(std::numbers::pi * (y + 0.5) / h);
         for (std::uint32_t x = 0; x < w; ++x) {
-            double peak = 0.0;
+            double mean = 0.0;
             for (int dy = -1; dy <= 1; ++dy) {
                 const std::uint32_t sy = std::uint32_t(std::clamp<std::int64_t>(std::int64_t(y) + dy, 0, h - 1));
                 for (int dx = -1; dx <= 1; ++dx) {
                     const std::uint32_t sx = std::uint32_t((std::int64_t(x) + dx + w) % w);
-                    peak = std::max(peak, lum[std::size_t(sy) * w + sx]);
+                    mean += tap[dy + 1] * tap[dx + 1] * lum[std::size_t(sy) * w + sx];
                 }
             }
-            weights[std::size_t(y) * w + x] = peak * sin_theta;
+            weights[std::size_t(y) * w + x] = mean * sin_theta;
         }
     }
     return weights;

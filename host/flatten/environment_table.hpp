@@ -15,9 +15,10 @@ namespace vkrt {
 glm::dmat3 environment_frame(const Environment& env);
 
 // The weight by which directions are drawn, per texel (x, y), rows from the top:
-// the largest luminance among the texel and its eight neighbours (longitude
-// wraps, latitude stops at the poles) times the sine of the row centre's angle
-// from the pole.
+// the mean luminance over the texel's square of the bilinearly interpolated image
+// (its 3 x 3 neighbourhood weighted 1/8, 3/4, 1/8 per axis; longitude wraps,
+// latitude stops at the poles) times the sine of the row centre's angle from the
+// pole.
 std::vector<double> environment_weights(const Environment& env);
 
 // Appends the environment's header, texels (times its intensity) and cumulative

@@ -16,10 +16,10 @@
 // Blender's equirectangular mapping, with its z up as our y (a glTF file's axes).
 //
 // A direction is drawn with the density of a piecewise-constant function over the
-// texels: the brightest luminance of each texel's neighbourhood (bilinear lookups
-// blend it with its neighbours, so the density is positive wherever the radiance
-// is) times sin(theta) at the row's centre, which the mapping's stretch toward the
-// poles would otherwise overweight (Pharr, Jakob and Humphreys, Physically Based
+// texels: the mean luminance of the bilinearly looked-up image over each texel's
+// square (a blend of its 3 x 3 neighbourhood, so the density is positive wherever
+// the radiance is) times sin(theta) at the row's centre, which the mapping's
+// stretch toward the poles would otherwise overweight (Pharr, Jakob and Humphreys, Physically Based
 // Rendering, 4th ed., sections A.5 and 12.5). Arithmetic is `precise` (no fused
 // multiply-add), so that both backends get the same bits.
 
