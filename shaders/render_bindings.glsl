@@ -33,13 +33,14 @@ TEXEL_BINDING(4, pixel_texels, rgba32ui, restrict)    // PIXEL_TEXELS per pixel 
 STORAGE_BINDING(5, scene_storage, readonly)           // the scene buffer as a storage buffer
 STORAGE_BINDING(6, pixel_storage, restrict)           // the pixels as a storage buffer
 
+// The device choices' constant ids start at 64, clear of the features' (0 up).
 // Scene and pixels in storage buffers instead of texel buffers: where a texel
 // buffer would be too small for them (maxTexelBufferElements; at least 65,536 texels).
-DEVICE_CHOICE(32, SCENE_IN_STORAGE_BUFFERS)
+DEVICE_CHOICE(64, SCENE_IN_STORAGE_BUFFERS)
 // Params from the uniform buffer instead of a texel buffer: on GPUs, where uniform
 // loads take the constant path (docs/decisions/0001-texel-buffers.md says why not on
 // lavapipe).
-DEVICE_CHOICE(33, PARAMS_IN_UNIFORM_BUFFER)
+DEVICE_CHOICE(65, PARAMS_IN_UNIFORM_BUFFER)
 
 #undef DEVICE_CHOICE
 #undef UNIFORM_BINDING
