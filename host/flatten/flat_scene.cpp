@@ -83,8 +83,8 @@ void set_texture_fields(const Material& m, kernel::Material& out) {
     const auto& a = m.uv_transform;
     const double metallic = m.metallic_roughness ? m.metallic_roughness->metallic : 0.0;
     const double roughness = m.metallic_roughness ? m.metallic_roughness->roughness : 0.0;
-    out.maps = uvec4(m.texture ? *m.texture + 1u : 0u, m.metallic_roughness_texture ? *m.metallic_roughness_texture + 1u : 0u,
-                     0u, 0u);
+    const auto map = [](const std::optional<std::uint32_t>& t) { return t ? *t + 1u : 0u; };
+    out.maps = uvec4(map(m.texture), map(m.metallic_roughness_texture), map(m.normal_map), 0u);
     out.uv_u = vec4(float(a[0]), float(a[1]), float(a[2]), float(metallic));
     out.uv_v = vec4(float(a[3]), float(a[4]), float(a[5]), float(roughness));
 }

@@ -54,6 +54,11 @@ void add_texture(Scene& scene, TextureImage texture, const std::string& element)
 std::array<double, 6> texture_transform(double offset_u, double offset_v, double rotation, double scale_u,
                                         double scale_v);
 
+// A linear normal map's texels made tangent-space vectors, as glTF defines them:
+// (2 rgb - 1) * (scale, scale, 1); alpha is kept. The kernel (normal_map.glsl)
+// filters and normalizes them.
+void decode_normal_map(TextureImage& texture, double scale);
+
 // sRGB's transfer function, decoded: an encoded value in [0, 1] to linear.
 double srgb_to_linear(double encoded);
 

@@ -59,3 +59,7 @@ FEATURE(30, HAS_TEXTURES)
 // Spot or directional lights among the `lights`: their cone and direction (lights.glsl).
 // Without it every light is a point light, read and shaded as such, at no extra cost.
 FEATURE(31, HAS_DIRECTED_LIGHTS)
+// Reserved: the environment map (another branch adds it); off until then.
+FEATURE(32, HAS_ENVIRONMENT_MAP)
+// Normal maps (normal_map.glsl): a triangle's material has one.
+FEATURE(33, HAS_NORMAL_MAPS)

@@ -24,8 +24,9 @@ vec3 hit_point(Ray ray, float t) {
     return p;
 }
 
-// Traces a path's next ray into `hit`. When it leaves the scene, adds the background
-// weighed by the path's throughput and returns false; counts the eye ray's hit.
+// Traces a path's next ray into `hit`, its shading normal normal-mapped. When it
+// leaves the scene, adds the background weighed by the path's throughput and
+// returns false; counts the eye ray's hit.
 bool path_hit(Ray ray, uint bounce, vec3 beta, INOUT(SampleResult) s, INOUT(Hit) hit) {
     hit = closest_hit(ray, INFINITY_T);
     if (!(hit.t < INFINITY_T)) {
@@ -35,6 +36,7 @@ bool path_hit(Ray ray, uint bounce, vec3 beta, INOUT(SampleResult) s, INOUT(Hit)
     if (bounce == 0u) {
         s.eye_hits = 1u;
     }
+    hit.normal = mapped_normal(hit, -ray.dir);
     return true;
 }
 
@@ -226,6 +228,7 @@ vec3 paper_gl(Ray start, uint bounces, INOUT(Rng) rng, INOUT(SampleResult) s) {
         if (!(hit.t < INFINITY_T)) {
             return attenuation * background();
         }
+        hit.normal = mapped_normal(hit, -ray.dir);
         Material m = surface_material(hit);
         if (HAS_EMISSION && hit.front_face && any(greaterThan(vec3(m.emission_fresnel), vec3(0.0f)))) {
             return attenuation * vec3(m.emission_fresnel);

@@ -69,7 +69,7 @@ struct Material {
     vec4 microfacet;         // the metallic-roughness material's rough lobe (bsdf.glsl): rgb = its
                              // reflectance at normal incidence, w = GGX alpha; w = 0: no such lobe
     uvec4 maps;              // 1 + a texture's index (texture.glsl), 0: none: x = colour, y = metallic
-                             // (blue) and roughness (green); z, w: 0
+                             // (blue) and roughness (green), z = normal map (normal_map.glsl); w: 0
     vec4 uv_u;               // the texture coordinates' transform: u' = dot(xy, uv) + z; w = metallic
     vec4 uv_v;               // v' = dot(xy, uv) + z; w = roughness
                              // (a metallic-roughness material keeps its base colour in specular_ks.rgb,
