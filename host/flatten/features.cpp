@@ -73,7 +73,8 @@ FeatureSet analyze_features(const Scene& scene) {
         refraction = refraction || is_nonzero(m.transmit);
         microfacet = microfacet || m.metallic_roughness.has_value();
         normal_maps = normal_maps || m.normal_map.has_value();
-        textures = textures || m.texture.has_value() || m.metallic_roughness_texture.has_value() || normal_maps;
+        textures = textures || m.texture.has_value() || m.metallic_roughness_texture.has_value() || normal_maps ||
+                   m.emission_texture.has_value();
     }
 
     f.set(Feature::HAS_SPHERES, !scene.spheres.empty());

@@ -141,7 +141,8 @@ private:
     }
 
     // The metallic-roughness factors and textures, the normal map, emission as
-    // emissive factor times strength; the other textures are listed as ignored.
+    // emissive factor times strength times the emissive texture; the occlusion
+    // texture is listed as ignored.
     void read_materials() {
         for (std::size_t i = 0; i < model_.materials.size(); ++i) {
             const tinygltf::Material& g = model_.materials[i];
@@ -173,7 +174,8 @@ private:
             m.metallic_roughness_texture =
                 textures_.texture(pbr.metallicRoughnessTexture, element + ".pbrMetallicRoughness.metallicRoughnessTexture",
                                   Encoding::Linear, m);
-            if (g.emissiveTexture.index >= 0) note_unsupported("emissive textures, rendered with their factors");
+            m.emission_texture =
+                textures_.texture(g.emissiveTexture, element + ".emissiveTexture", Encoding::SrgbUnlessFloat, m);
             m.normal_map = textures_.normal_texture(g.normalTexture, element + ".normalTexture", m);
             if (g.occlusionTexture.index >= 0) note_unsupported("occlusion maps (not needed by a path tracer)");
             if (g.alphaMode != "OPAQUE") note_unsupported(fmt::format("materials with alphaMode {}, rendered opaque", g.alphaMode));

@@ -96,7 +96,7 @@ std::optional<std::uint32_t> TextureReader::load(const tinygltf::TextureInfo& in
         note_("textures on texture coordinates other than TEXCOORD_0, rendered without the texture");
         return std::nullopt;
     }
-    if (m.texture || m.metallic_roughness_texture || m.normal_map) {
+    if (m.texture || m.metallic_roughness_texture || m.normal_map || m.emission_texture) {
         if (transform != m.uv_transform) {
             note_("a material's textures with different KHR_texture_transforms, rendered without the later texture");
             return std::nullopt;

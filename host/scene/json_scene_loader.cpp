@@ -230,8 +230,9 @@ void read_normal_map(const Node& n, Material& m, Scene& scene) {
 // in degrees here, like every angle of the format).
 void read_texture(const Node& n, Material& m, Scene& scene) {
     if (auto t = n.find("texture_transform")) {
-        if (!n.find("texture") && !n.find("normal_map")) {
-            n.fail_field("texture_transform", "a texture transform needs a \"texture\" or a \"normal_map\"");
+        if (!n.find("texture") && !n.find("normal_map") && !n.find("emission_texture")) {
+            n.fail_field("texture_transform",
+                         "a texture transform needs a \"texture\", a \"normal_map\" or an \"emission_texture\"");
         }
         t->allow_only({"offset", "rotation", "scale"});
         double offset[2] = {0.0, 0.0}, scale[2] = {1.0, 1.0}, rotation = 0.0;
@@ -252,11 +253,17 @@ void read_texture(const Node& n, Material& m, Scene& scene) {
         m.texture = static_cast<std::uint32_t>(scene.textures.size() - 1);
     }
     read_normal_map(n, m, scene);
+    if (auto file = n.find("emission_texture")) {
+        const std::string element = fmt::format("{}: {}", n.file(), file->path());
+        add_texture(scene, load_texture_file(file->file_path(), Encoding::SrgbUnlessFloat, element), element);
+        m.emission_texture = static_cast<std::uint32_t>(scene.textures.size() - 1);
+    }
 }
 
 Material read_material(const std::string& name, const Node& n, Scene& scene) {
     n.allow_only({"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit", "ior", "fresnel", "emission",
-                  "base_color", "metallic", "roughness", "texture", "texture_transform", "normal_map", "normal_scale"});
+                  "base_color", "metallic", "roughness", "texture", "texture_transform", "normal_map", "normal_scale",
+                  "emission_texture"});
     Material m;
     m.name = name;
     read_texture(n, m, scene);

@@ -155,7 +155,7 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
         if (HAS_EMISSION && hit.front_face) {
             float w = 1.0f;
             if (HAS_AREA_LIGHTS && pdf_prev > 0.0f) {
-                w = power_heuristic(pdf_prev, light_pdf_of_hit(ray, hit, vec3(m.emission_fresnel)));
+                w = power_heuristic(pdf_prev, light_pdf_of_hit(ray, hit));
             }
             s.radiance += beta * vec3(m.emission_fresnel) * w;
         }
