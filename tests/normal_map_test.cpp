@@ -104,6 +104,19 @@ TEST(NormalMap, FlatMapAndScaleZeroLeaveTheImageBitIdentical) {
     }
 }
 
+// Spheres have no texture coordinates: a normal-mapped material on a sphere alone,
+// beside a triangle of another material, leaves the feature off.
+TEST(NormalMap, OnlyATrianglesMaterialTurnsTheFeatureOn) {
+    const auto flat = constant_map("flat_on_sphere", glm::vec3(0.5f, 0.5f, 1.0f));
+    const Scene scene = test::scene_from_text("sphere_map", R"({
+      "camera": { "eye": [0, 0, 3], "look_at": [0, 0, 0] },
+      "materials": { "bumpy": )" + with_map(flat) + R"(, "plain": { "diffuse": [1, 1, 1] } },
+      "objects": [ { "type": "sphere", "center": [0, 0, 0], "radius": 0.5, "material": "bumpy" },
+                   { "type": "quad", "corner": [-1, -1, -1], "edge1": [2, 0, 0], "edge2": [0, 2, 0], "material": "plain" } ]
+    })");
+    EXPECT_FALSE(flatten_scene(scene).features.has(Feature::HAS_NORMAL_MAPS));
+}
+
 // A constant map tilts the whole quad's normal: under a directional light the
 // quad shows the Lambert value of the tilted normal, E kd diffuse cos in local mode
 // and diffuse / pi E cos in global mode. (0.75, 0.5, 1) decodes to (0.5, 0, 1): the
