@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <filesystem>
 #include <random>
 #include <vector>
 
@@ -16,6 +17,8 @@
 
 #include "cpu/cpu_backend.hpp"
 #include "flatten/flat_scene.hpp"
+#include "image/image.hpp"
+#include "image/image_files.hpp"
 #include "kernel/kernel.hpp"
 #include "test_support.hpp"
 
@@ -145,27 +148,36 @@ TEST(SphereCone, SolidAnglePointsAndDensity) {
 // Several kinds of lights, each sampled its own way, seen from points around them:
 // a ray toward each light sample hits the light it came from, and the density
 // light_pdf_of_hit gives that hit (what path tracing weighs a bounce with) is the
-// sample's own.
+// sample's own. Among them a rectangle and a triangle with an emission texture
+// (black and bright halves): their densities come from the texture's mean, never
+// from the radiance at the point.
 TEST(LightPdf, AHitOnALightHasTheDensityItsSampleStated) {
+    Image halves(2, 1);
+    halves.pixel(1, 0)[0] = halves.pixel(1, 0)[1] = halves.pixel(1, 0)[2] = 3.0f;
+    const std::filesystem::path glow = test::temp_dir("light_pdf_texture") / "halves.exr";
+    write_image(halves, glow);
     const Scene scene = test::scene_from_text("lights", R"({
       "camera": { "eye": [0, 0, 8], "look_at": [0, 0, 0], "width": 4, "height": 4 },
       "render": { "mode": "global" },
-      "materials": { "lamp": { "emission": [2, 1, 1] }, "dim": { "emission": [0.2, 0.2, 0.2] } },
+      "materials": { "lamp": { "emission": [2, 1, 1] }, "dim": { "emission": [0.2, 0.2, 0.2] },
+                     "glow": { "emission": [1, 0.5, 0.5], "emission_texture": ")" + glow.string() + R"(" } },
       "objects": [
         { "type": "quad", "corner": [-1, 2, -1], "edge1": [2, 0, 0], "edge2": [0, 0, 1.5], "material": "lamp" },
         { "type": "quad", "corner": [2, -1, 0], "edge1": [0, 1, 0], "edge2": [0.5, 0.5, 1], "material": "dim" },
         { "type": "sphere", "center": [-2, 0, 0], "radius": 0.5, "material": "lamp" },
         { "type": "sphere", "center": [0, -20, 0], "radius": 0.05, "material": "lamp" },
         { "type": "triangle", "vertices": [[0, -2, 0], [1, -2, 0], [0, -2, 1]], "material": "dim" },
-        { "type": "ring", "center": [0, 0, -2], "normal": [0, 0, 1], "inner": 0.2, "outer": 0.6, "material": "dim" }
+        { "type": "ring", "center": [0, 0, -2], "normal": [0, 0, 1], "inner": 0.2, "outer": 0.6, "material": "dim" },
+        { "type": "quad", "corner": [-1, -1, 2], "edge1": [0, 1.5, 0], "edge2": [2, 0, 0], "material": "glow" },
+        { "type": "triangle", "vertices": [[-2, 2, 0], [-2, 2, 1], [-1, 2, 0]], "material": "glow" }
       ]
     })");
     const FlatScene flat = flatten_scene(scene);
-    ASSERT_EQ(flat.emitters.size(), 6u);
+    ASSERT_EQ(flat.emitters.size(), 8u);
     kernel::Kernel k = make_kernel(flat);
     std::mt19937 rng(17);
     std::uniform_real_distribution<float> spread(-1.5f, 1.5f);
-    int compared = 0;
+    int compared = 0, textured = 0;
     for (int i = 0; i < 4000; ++i) {
         const vec3 o = vec3(spread(rng), spread(rng), spread(rng)) - vec3(flat.origin);
         auto r = k.rng_start(uint32_t(i), 0u, 3u);
@@ -179,11 +191,13 @@ TEST(LightPdf, AHitOnALightHasTheDensityItsSampleStated) {
         if (-glm::dot(y.normal, ray.dir) < 0.05f) continue;
         const auto hit = k.closest_hit(ray, kernel::INFINITY_T);
         if (!(std::abs(hit.t - distance) < 1e-3f * distance) || !hit.front_face) continue;  // blocked by another light
-        const float pdf = k.light_pdf_of_hit(ray, hit, y.emission);
+        const float pdf = k.light_pdf_of_hit(ray, hit);
         ASSERT_NEAR(pdf, y.pdf, 2e-3f * y.pdf) << "sample " << i;
         ++compared;
+        textured += flat.materials[hit.material].maps.w != 0u ? 1 : 0;
     }
     EXPECT_GT(compared, 2000);
+    EXPECT_GT(textured, 200);
 }
 
 // A quad whose edges are not perpendicular is a parallelogram, sampled by area.

@@ -48,7 +48,7 @@ struct OneTexture {
     Kernel k;
 
     OneTexture(std::uint32_t w, std::uint32_t h, const std::vector<vec4>& texels, std::uint32_t wrap) {
-        records.push_back(kernel::Texture(uvec4(0u, w, h, wrap)));
+        records.push_back(kernel::Texture(uvec4(0u, w, h, wrap), kernel::vec4(0.0f)));
         for (const vec4& c : texels) {
             words.push_back(glm::packHalf2x16(vec2(c.r, c.g)));
             words.push_back(glm::packHalf2x16(vec2(c.b, c.a)));
@@ -101,8 +101,8 @@ TEST(Texture, RepeatAndMirrorWrapAsTheirNamesSay) {
 // colour times the colour texture, metallic times blue, roughness times green.
 TEST(Texture, MetallicRoughnessTexturesScaleTheFactors) {
     Kernel k;
-    const std::vector<kernel::Texture> records = {kernel::Texture(uvec4(0u, 1u, 1u, 0u)),
-                                                  kernel::Texture(uvec4(2u, 1u, 1u, 0u))};
+    const std::vector<kernel::Texture> records = {kernel::Texture(uvec4(0u, 1u, 1u, 0u), kernel::vec4(0.0f)),
+                                                  kernel::Texture(uvec4(2u, 1u, 1u, 0u), kernel::vec4(0.0f))};
     const std::vector<std::uint32_t> words = {glm::packHalf2x16(vec2(0.5f, 1.0f)), glm::packHalf2x16(vec2(0.25f, 1.0f)),
                                               glm::packHalf2x16(vec2(1.0f, 0.5f)), glm::packHalf2x16(vec2(0.375f, 1.0f))};
     k.textures = records;

@@ -63,6 +63,9 @@ FeatureSet analyze_features(const Scene& scene) {
     bool refraction = false;
     bool microfacet = false;
     bool textures = false;
+    // Only triangles and quads have the texture coordinates a normal map needs.
+    bool normal_maps = false;
+    for (const auto& t : scene.triangles) normal_maps = normal_maps || scene.materials[t.material].normal_map.has_value();
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         const Material& m = scene.materials[i];
         if (!used[i]) continue;
@@ -71,7 +74,8 @@ FeatureSet analyze_features(const Scene& scene) {
         reflection = reflection || is_nonzero(m.reflect);
         refraction = refraction || is_nonzero(m.transmit);
         microfacet = microfacet || m.metallic_roughness.has_value();
-        textures = textures || m.texture.has_value() || m.metallic_roughness_texture.has_value();
+        textures = textures || m.texture.has_value() || m.metallic_roughness_texture.has_value() ||
+                   m.normal_map.has_value() || m.emission_texture.has_value();
     }
 
     f.set(Feature::HAS_SPHERES, !scene.spheres.empty());
@@ -119,6 +123,7 @@ FeatureSet analyze_features(const Scene& scene) {
     // Only triangles and quads carry texture coordinates.
     f.set(Feature::HAS_TEXTURES, textures && !scene.triangles.empty());
     f.set(Feature::HAS_ENVIRONMENT_MAP, scene.environment.has_value());
+    f.set(Feature::HAS_NORMAL_MAPS, normal_maps);
     return f;
 }
 

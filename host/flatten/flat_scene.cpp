@@ -1,6 +1,7 @@
 #include "flatten/flat_scene.hpp"
 
 #include "flatten/environment_table.hpp"
+#include "scene/texture_image.hpp"
 #include "scene/vec_math.hpp"
 
 #include <algorithm>
@@ -84,8 +85,8 @@ void set_texture_fields(const Material& m, kernel::Material& out) {
     const auto& a = m.uv_transform;
     const double metallic = m.metallic_roughness ? m.metallic_roughness->metallic : 0.0;
     const double roughness = m.metallic_roughness ? m.metallic_roughness->roughness : 0.0;
-    out.maps = uvec4(m.texture ? *m.texture + 1u : 0u, m.metallic_roughness_texture ? *m.metallic_roughness_texture + 1u : 0u,
-                     0u, 0u);
+    const auto map = [](const std::optional<std::uint32_t>& t) { return t ? *t + 1u : 0u; };
+    out.maps = uvec4(map(m.texture), map(m.metallic_roughness_texture), map(m.normal_map), map(m.emission_texture));
     out.uv_u = vec4(float(a[0]), float(a[1]), float(a[2]), float(metallic));
     out.uv_v = vec4(float(a[3]), float(a[4]), float(a[5]), float(roughness));
 }
@@ -118,7 +119,8 @@ static_assert(std::uint32_t(Wrap::Repeat) == kernel::WRAP_REPEAT && std::uint32_
 void add_textures(const Scene& scene, FlatScene& g) {
     for (const TextureImage& t : scene.textures) {
         const std::uint32_t wrap = std::uint32_t(t.wrap_s) | (std::uint32_t(t.wrap_t) << 2u);
-        g.textures.push_back(kernel::Texture(uvec4(std::uint32_t(g.texture_words.size()), t.width, t.height, wrap)));
+        g.textures.push_back(kernel::Texture(uvec4(std::uint32_t(g.texture_words.size()), t.width, t.height, wrap),
+                                             vec4(texture_mean(t))));
         for (const glm::vec4& c : t.texels) {
             g.texture_words.push_back(glm::packHalf2x16(glm::vec2(c.r, c.g)));
             g.texture_words.push_back(glm::packHalf2x16(glm::vec2(c.b, c.a)));
@@ -199,7 +201,9 @@ double mean(const dvec3& c) { return (c.x + c.y + c.z) / 3.0; }
 // The emissive primitives as area lights (kernel/emitters.glsl): one Emitter each,
 // with the running fractions of the total power (area times mean emitted radiance)
 // up to it and before it, by which the kernel picks one with probability
-// proportional to its power and reuses the number that picked it.
+// proportional to its power and reuses the number that picked it. A triangle's
+// emission texture counts by its mean (kernel emitter_weight); an emitter of no
+// power (a black texture) is left out.
 void add_emitters(const Scene& scene, FlatScene& g) {
     struct Found {
         std::uint32_t ref;
@@ -207,10 +211,14 @@ void add_emitters(const Scene& scene, FlatScene& g) {
         std::uint32_t part = 0;  // of a cylinder: kernel::CYLINDER_SIDE, _BASE_CAP, _TOP_CAP
     };
     std::vector<Found> found;
-    auto emission = [&](std::uint32_t material) { return scene.materials[material].emission; };
     auto add = [&](std::uint32_t kind, std::size_t i, double area, std::uint32_t material, std::uint32_t part = 0) {
-        if (!is_nonzero(emission(material))) return;
-        found.push_back({(kind << kernel::REF_KIND_SHIFT) | std::uint32_t(i), area * mean(emission(material)), part});
+        const Material& m = scene.materials[material];
+        dvec3 emission = m.emission;
+        if (m.emission_texture && kind == kernel::REF_TRIANGLE) {
+            emission *= dvec3(texture_mean(scene.textures[*m.emission_texture]));
+        }
+        if (!is_nonzero(emission)) return;
+        found.push_back({(kind << kernel::REF_KIND_SHIFT) | std::uint32_t(i), area * mean(emission), part});
     };
     const double pi = glm::pi<double>();
     for (std::size_t i = 0; i < scene.spheres.size(); ++i) {

@@ -26,7 +26,7 @@ static_assert(sizeof(vec4) == 16 && sizeof(uvec4) == 16);
 static_assert(sizeof(Sphere) == 32);
 static_assert(sizeof(Triangle) == 112);
 static_assert(sizeof(Material) == 144);
-static_assert(sizeof(Texture) == 16);
+static_assert(sizeof(Texture) == 32);
 static_assert(sizeof(Light) == 48);
 static_assert(sizeof(Ring) == 48);
 static_assert(sizeof(Cylinder) == 48);

@@ -170,8 +170,9 @@ private:
         }
     }
 
-    // The metallic-roughness factors and textures, emission as emissive factor times
-    // strength; the other textures are listed as ignored.
+    // The metallic-roughness factors and textures, the normal map, emission as
+    // emissive factor times strength times the emissive texture; the occlusion
+    // texture is listed as ignored.
     void read_materials() {
         for (std::size_t i = 0; i < model_.materials.size(); ++i) {
             const tinygltf::Material& g = model_.materials[i];
@@ -206,8 +207,9 @@ private:
             m.metallic_roughness_texture =
                 textures_.texture(pbr.metallicRoughnessTexture, element + ".pbrMetallicRoughness.metallicRoughnessTexture",
                                   Encoding::Linear, m);
-            if (g.emissiveTexture.index >= 0) note_unsupported("emissive textures, rendered with their factors");
-            if (g.normalTexture.index >= 0) note_unsupported("normal maps");
+            m.emission_texture =
+                textures_.texture(g.emissiveTexture, element + ".emissiveTexture", Encoding::SrgbUnlessFloat, m);
+            m.normal_map = textures_.normal_texture(g.normalTexture, element + ".normalTexture", m);
             if (g.occlusionTexture.index >= 0) note_unsupported("occlusion maps (not needed by a path tracer)");
             if (g.alphaMode != "OPAQUE") note_unsupported(fmt::format("materials with alphaMode {}, rendered opaque", g.alphaMode));
             materials_.push_back(static_cast<std::uint32_t>(scene_.materials.size()));
@@ -345,6 +347,9 @@ private:
                 fail_at(element + ".attributes.NORMAL", fmt::format("{} normals for {} positions",
                                                                     mesh.normals.size(), mesh.positions.size()));
             }
+        }
+        if (prim.attributes.count("TANGENT")) {
+            note_unsupported("TANGENT attributes (normal maps derive tangents from the texture coordinates)");
         }
         const auto texcoord = prim.attributes.find("TEXCOORD_0");
         if (texcoord != prim.attributes.end()) {

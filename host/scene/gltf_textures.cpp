@@ -1,5 +1,7 @@
 #include "scene/gltf_textures.hpp"
 
+#include <cmath>
+
 #include <fmt/format.h>
 #include <tiny_gltf.h>
 
@@ -42,6 +44,23 @@ void TextureReader::fail_at(const std::string& element, const std::string& what)
 
 std::optional<std::uint32_t> TextureReader::texture(const tinygltf::TextureInfo& info, const std::string& element,
                                                     Encoding encoding, Material& m) {
+    return load(info, element, encoding, std::nullopt, m);
+}
+
+std::optional<std::uint32_t> TextureReader::normal_texture(const tinygltf::NormalTextureInfo& info,
+                                                           const std::string& element, Material& m) {
+    if (!std::isfinite(info.scale) || std::abs(info.scale) > 1e6) {
+        fail_at(element + ".scale", fmt::format("expected a number from -1e6 to 1e6, got {}", info.scale));
+    }
+    tinygltf::TextureInfo plain;
+    plain.index = info.index;
+    plain.texCoord = info.texCoord;
+    plain.extensions = info.extensions;
+    return load(plain, element, Encoding::Linear, info.scale, m);
+}
+
+std::optional<std::uint32_t> TextureReader::load(const tinygltf::TextureInfo& info, const std::string& element,
+                                                 Encoding encoding, std::optional<double> normal_scale, Material& m) {
     if (info.index < 0) return std::nullopt;
     if (static_cast<std::size_t>(info.index) >= model_.textures.size()) {
         fail_at(element + ".index", fmt::format("texture {} does not exist (the file has {})", info.index,
@@ -77,7 +96,7 @@ std::optional<std::uint32_t> TextureReader::texture(const tinygltf::TextureInfo&
         note_("textures on texture coordinates other than TEXCOORD_0, rendered without the texture");
         return std::nullopt;
     }
-    if (m.texture || m.metallic_roughness_texture) {
+    if (m.texture || m.metallic_roughness_texture || m.normal_map || m.emission_texture) {
         if (transform != m.uv_transform) {
             note_("a material's textures with different KHR_texture_transforms, rendered without the later texture");
             return std::nullopt;
@@ -96,7 +115,7 @@ std::optional<std::uint32_t> TextureReader::texture(const tinygltf::TextureInfo&
         fail_at(where + ".sampler", fmt::format("sampler {} does not exist (the file has {})", texture.sampler,
                                                 model_.samplers.size()));
     }
-    const auto key = std::tuple{texture.source, texture.sampler, encoding};
+    const auto key = std::tuple{texture.source, texture.sampler, encoding, normal_scale};
     if (auto it = loaded_.find(key); it != loaded_.end()) return it->second;
     const tinygltf::Image& image = model_.images[static_cast<std::size_t>(texture.source)];
     const std::string image_element = fmt::format("{}: images[{}]", file_.string(), texture.source);
@@ -108,6 +127,7 @@ std::optional<std::uint32_t> TextureReader::texture(const tinygltf::TextureInfo&
         t.wrap_s = wrap_mode(s.wrapS);
         t.wrap_t = wrap_mode(s.wrapT);
     }
+    if (normal_scale) decode_normal_map(t, *normal_scale);
     add_texture(scene_, std::move(t), image_element);
     const auto index = static_cast<std::uint32_t>(scene_.textures.size() - 1);
     loaded_.emplace(key, index);

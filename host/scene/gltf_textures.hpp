@@ -18,6 +18,7 @@ namespace tinygltf {
 class Model;
 struct Image;
 struct TextureInfo;
+struct NormalTextureInfo;
 }  // namespace tinygltf
 
 namespace vkrt::gltf {
@@ -43,14 +44,22 @@ public:
     std::optional<std::uint32_t> texture(const tinygltf::TextureInfo& info, const std::string& element,
                                          Encoding encoding, Material& m);
 
+    // The same for a normalTexture: read linear and decoded with its scale
+    // (decode_normal_map, texture_image.hpp).
+    std::optional<std::uint32_t> normal_texture(const tinygltf::NormalTextureInfo& info, const std::string& element,
+                                                Material& m);
+
 private:
     [[noreturn]] void fail_at(const std::string& element, const std::string& what) const;
+    std::optional<std::uint32_t> load(const tinygltf::TextureInfo& info, const std::string& element, Encoding encoding,
+                                      std::optional<double> normal_scale, Material& m);
 
     const tinygltf::Model& model_;
     std::filesystem::path file_;
     Scene& scene_;
     Note note_;
-    std::map<std::tuple<int, int, Encoding>, std::uint32_t> loaded_;  // (image, sampler, encoding) -> scene.textures
+    // (image, sampler, encoding, a normal map's scale) -> scene.textures
+    std::map<std::tuple<int, int, Encoding, std::optional<double>>, std::uint32_t> loaded_;
 };
 
 }  // namespace vkrt::gltf

@@ -219,12 +219,36 @@ Material::MetallicRoughness read_metallic_roughness(const Node& n) {
     return pbr;
 }
 
+// A material's normal map: a linear image of tangent-space normals, glTF's encoding
+// (texture_image.hpp, decode_normal_map), its x and y scaled by normal_scale.
+void read_normal_map(const Node& n, Material& m, Scene& scene) {
+    auto scale_node = n.find("normal_scale");
+    auto file = n.find("normal_map");
+    if (!file) {
+        if (scale_node) n.fail_field("normal_scale", "a normal scale needs a \"normal_map\"");
+        return;
+    }
+    double scale = 1.0;
+    if (scale_node) {
+        scale = scale_node->number();
+        if (!(std::abs(scale) <= 1e6)) scale_node->fail(fmt::format("expected a number from -1e6 to 1e6, got {}", scale));
+    }
+    const std::string element = fmt::format("{}: {}", n.file(), file->path());
+    TextureImage t = load_texture_file(file->file_path(), Encoding::Linear, element);
+    decode_normal_map(t, scale);
+    add_texture(scene, std::move(t), element);
+    m.normal_map = static_cast<std::uint32_t>(scene.textures.size() - 1);
+}
+
 // A material's colour texture: the image file (relative to the scene file) and the
 // optional transform of its coordinates, as glTF's KHR_texture_transform (rotation
 // in degrees here, like every angle of the format).
 void read_texture(const Node& n, Material& m, Scene& scene) {
     if (auto t = n.find("texture_transform")) {
-        if (!n.find("texture")) n.fail_field("texture_transform", "a texture transform needs a \"texture\"");
+        if (!n.find("texture") && !n.find("normal_map") && !n.find("emission_texture")) {
+            n.fail_field("texture_transform",
+                         "a texture transform needs a \"texture\", a \"normal_map\" or an \"emission_texture\"");
+        }
         t->allow_only({"offset", "rotation", "scale"});
         double offset[2] = {0.0, 0.0}, scale[2] = {1.0, 1.0}, rotation = 0.0;
         for (const char* key : {"offset", "scale"}) {
@@ -238,16 +262,23 @@ void read_texture(const Node& n, Material& m, Scene& scene) {
         if (auto v = t->find("rotation")) rotation = v->number() * (std::numbers::pi / 180.0);
         m.uv_transform = texture_transform(offset[0], offset[1], rotation, scale[0], scale[1]);
     }
-    auto file = n.find("texture");
-    if (!file) return;
-    const std::string element = fmt::format("{}: {}", n.file(), file->path());
-    add_texture(scene, load_texture_file(file->file_path(), Encoding::SrgbUnlessFloat, element), element);
-    m.texture = static_cast<std::uint32_t>(scene.textures.size() - 1);
+    if (auto file = n.find("texture")) {
+        const std::string element = fmt::format("{}: {}", n.file(), file->path());
+        add_texture(scene, load_texture_file(file->file_path(), Encoding::SrgbUnlessFloat, element), element);
+        m.texture = static_cast<std::uint32_t>(scene.textures.size() - 1);
+    }
+    read_normal_map(n, m, scene);
+    if (auto file = n.find("emission_texture")) {
+        const std::string element = fmt::format("{}: {}", n.file(), file->path());
+        add_texture(scene, load_texture_file(file->file_path(), Encoding::SrgbUnlessFloat, element), element);
+        m.emission_texture = static_cast<std::uint32_t>(scene.textures.size() - 1);
+    }
 }
 
 Material read_material(const std::string& name, const Node& n, Scene& scene) {
     n.allow_only({"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit", "ior", "fresnel", "emission",
-                  "base_color", "metallic", "roughness", "texture", "texture_transform"});
+                  "base_color", "metallic", "roughness", "texture", "texture_transform", "normal_map", "normal_scale",
+                  "emission_texture"});
     Material m;
     m.name = name;
     read_texture(n, m, scene);

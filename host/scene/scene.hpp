@@ -121,6 +121,12 @@ struct Material {
     // With metallic_roughness: a linear texture whose blue channel multiplies
     // metallic and green roughness (glTF's), at the same coordinates.
     std::optional<std::uint32_t> metallic_roughness_texture;
+    // A normal map, at the same coordinates: a texture of tangent-space normals
+    // already decoded and scaled (decode_normal_map, texture_image.hpp).
+    std::optional<std::uint32_t> normal_map;
+    // An emission texture, at the same coordinates: multiplies `emission` (which
+    // must be nonzero for the material to emit at all).
+    std::optional<std::uint32_t> emission_texture;
     std::array<double, 6> uv_transform{1.0, 0.0, 0.0, 0.0, 1.0, 0.0};
 };
 

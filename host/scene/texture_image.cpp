@@ -18,6 +18,18 @@ double srgb_to_linear(double encoded) {
     return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
 }
 
+glm::dvec4 texture_mean(const TextureImage& texture) {
+    glm::dvec4 sum(0.0);
+    for (const glm::vec4& c : texture.texels) sum += glm::dvec4(c);
+    return texture.texels.empty() ? sum : sum / double(texture.texels.size());
+}
+
+void decode_normal_map(TextureImage& texture, double scale) {
+    for (glm::vec4& c : texture.texels) {
+        c = glm::vec4(float((2.0 * c.r - 1.0) * scale), float((2.0 * c.g - 1.0) * scale), float(2.0 * c.b - 1.0), c.a);
+    }
+}
+
 void add_texture(Scene& scene, TextureImage texture, const std::string& element) {
     std::uint64_t texels = texture.texels.size();
     for (const TextureImage& t : scene.textures) texels += t.texels.size();

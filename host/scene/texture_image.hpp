@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <glm/vec4.hpp>
+#include <glm/ext/vector_double4.hpp>
 
 namespace vkrt {
 
@@ -53,6 +54,15 @@ void add_texture(Scene& scene, TextureImage texture, const std::string& element)
 // clockwise in the image, whose v runs down), then offset; as Material::uv_transform.
 std::array<double, 6> texture_transform(double offset_u, double offset_v, double rotation, double scale_u,
                                         double scale_v);
+
+// The mean of a texture's texels, channel by channel (an emission texture's share
+// of its emitter's power).
+glm::dvec4 texture_mean(const TextureImage& texture);
+
+// A linear normal map's texels made tangent-space vectors, as glTF defines them:
+// (2 rgb - 1) * (scale, scale, 1); alpha is kept. The kernel (normal_map.glsl)
+// filters and normalizes them.
+void decode_normal_map(TextureImage& texture, double scale);
 
 // sRGB's transfer function, decoded: an encoded value in [0, 1] to linear.
 double srgb_to_linear(double encoded);

@@ -12,6 +12,7 @@
 #include "intersect.glsl"
 #include "terminator.glsl"
 #include "texture.glsl"
+#include "normal_map.glsl"
 #include "budget.glsl"
 #include "environment.glsl"
 #include "camera.glsl"

@@ -5,7 +5,10 @@
 // the solid angle it covers where that can be drawn (solid_angle.glsl: a sphere's
 // cone, a rectangle's spherical rectangle), else uniformly on its area. Picked so,
 // a point of an emitter of mean radiance w has density w / emitter_power() over
-// the emitting area, whichever emitter it lies on.
+// the emitting area, whichever emitter it lies on. An emitter with an emission
+// texture is picked by its mean radiance over the texture (emitter_weight) and
+// sampled uniformly as any other; the estimate takes the textured radiance at the
+// point drawn, over that density: unbiased wherever the texture is not black.
 //
 // Every draw takes exactly one slot (rng.glsl), whatever it picks: both backends then
 // consume identical streams, and the numbers a sample draws after a light sample do
@@ -14,8 +17,36 @@
 struct EmitterPoint {
     vec3 position;
     vec3 normal;     // unit geometric normal on the emitting (front) side
-    vec3 emission;   // radiance leaving the front face
+    vec3 emission;   // radiance leaving the front face, at this point
+    float weight;    // the emitter's weight (emitter_weight): its density is weight / emitter_power()
 };
+
+// The mean of an emission's channels: an emitter's power over pi times its area.
+float emission_weight(vec3 emission) {
+    return (emission.x + emission.y + emission.z) * (1.0f / 3.0f);
+}
+
+// The weight by which an emitter of material m, a primitive of `kind`, is picked:
+// its emission's, times its emission texture's mean on triangles and quads, as the
+// host weighs its power (flat_scene.cpp). Light samples' densities are built on it,
+// never on the textured radiance at a point, so that sample_light and
+// light_pdf_of_hit give one point one density.
+float emitter_weight(Material m, uint kind) {
+    vec3 e = vec3(m.emission_fresnel);
+    if (HAS_TEXTURES && m.maps.w != 0u && kind == REF_TRIANGLE) {
+        e *= vec3(load_texture(m.maps.w - 1u).mean);
+    }
+    return emission_weight(e);
+}
+
+// The radiance a triangle or quad of material m emits at the point of weights
+// (u, v) (triangle_uv): its emission, times its emission texture there.
+vec3 triangle_emission(Material m, Triangle tri, float u, float v) {
+    if (HAS_TEXTURES && m.maps.w != 0u) {
+        return textured_emission(m, material_uv(m, triangle_uv(tri, u, v)));
+    }
+    return vec3(m.emission_fresnel);
+}
 
 // The first emitter whose cumulative power fraction exceeds u in [0, 1). The last
 // fraction is exactly 1, so there always is one.
@@ -67,7 +98,8 @@ EmitterPoint emitter_point(Emitter e, float u1, float u2) {
         Sphere s = load_sphere(index);
         vec3 n = uniform_sphere_direction(u1, u2);
         precise vec3 y = vec3(s.center_radius) + s.center_radius.w * n;
-        return EmitterPoint(y, n, vec3(load_material(s.meta.x).emission_fresnel));
+        vec3 emission = vec3(load_material(s.meta.x).emission_fresnel);
+        return EmitterPoint(y, n, emission, emission_weight(emission));
     }
     if (HAS_RINGS && kind == REF_RING) {
         // Uniform by area on the annulus: r^2 uniform between inner^2 and outer^2.
@@ -79,7 +111,8 @@ EmitterPoint emitter_point(Emitter e, float u1, float u2) {
         float phi = (2.0f * PI) * u2;
         vec2 sc = sin_cos(phi);
         precise vec3 y = vec3(r.center_inner) + (radius * sc.y) * f.t + (radius * sc.x) * f.b;
-        return EmitterPoint(y, n, vec3(load_material(r.meta.x).emission_fresnel));
+        vec3 emission = vec3(load_material(r.meta.x).emission_fresnel);
+        return EmitterPoint(y, n, emission, emission_weight(emission));
     }
     if (HAS_CYLINDERS && kind == REF_CYLINDER) {
         // The side uniform in height and angle; a cap as a disc (r^2 uniform). The
@@ -95,38 +128,37 @@ EmitterPoint emitter_point(Emitter e, float u1, float u2) {
         vec3 emission = vec3(load_material(c.meta.x).emission_fresnel);
         if (e.prim.y == CYLINDER_SIDE) {
             precise vec3 y = base + u1 * axis_vector + c.base_radius.w * radial;
-            return EmitterPoint(y, radial, emission);
+            return EmitterPoint(y, radial, emission, emission_weight(emission));
         }
         bool top = e.prim.y == CYLINDER_TOP_CAP;
         precise vec3 y = (top ? vec3(c.top_capped) : base) + (c.base_radius.w * sqrt(u1)) * radial;
-        return EmitterPoint(y, top ? axis : -axis, emission);
+        return EmitterPoint(y, top ? axis : -axis, emission, emission_weight(emission));
     }
     if (HAS_TRIANGLES && kind == REF_TRIANGLE) {
         Triangle tri = load_triangle(index);
         vec3 p0 = vec3(tri.p0);
         vec3 p1 = vec3(tri.p1);
         vec3 p2 = vec3(tri.p2);
-        vec3 emission = vec3(load_material(tri.meta.x).emission_fresnel);
+        Material m = load_material(tri.meta.x);
+        float weight = emitter_weight(m, REF_TRIANGLE);
         if (HAS_QUADS && tri.meta.z != SHAPE_TRIANGLE) {
             Rect q = rect_of(tri);
             precise vec3 y = q.corner + u1 * q.ex + u2 * q.ey;
-            return EmitterPoint(y, triangle_face_normal(p0, p1, p2), emission);
+            // triangle_uv's weights are half a parallelogram's edge coordinates.
+            return EmitterPoint(y, triangle_face_normal(p0, p1, p2), triangle_emission(m, tri, 0.5f * u1, 0.5f * u2),
+                                weight);
         }
         // The square-root parameterization (Osada et al., "Shape Distributions",
         // 2002): barycentrics (1 - sqrt(u1), sqrt(u1) (1 - u2), sqrt(u1) u2) are
         // uniform by area.
         float su = sqrt(u1);
         precise vec3 y = (1.0f - su) * p0 + (su * (1.0f - u2)) * p1 + (su * u2) * p2;
-        return EmitterPoint(y, triangle_face_normal(p0, p1, p2), emission);
+        return EmitterPoint(y, triangle_face_normal(p0, p1, p2), triangle_emission(m, tri, su * (1.0f - u2), su * u2),
+                            weight);
     }
     // Not reached for a list the host built; a zero normal faces nothing, so the
     // estimator skips the point.
-    return EmitterPoint(vec3(0.0f), vec3(0.0f), vec3(0.0f));
-}
-
-// The mean of an emission's channels: an emitter's power over pi times its area.
-float emission_weight(vec3 emission) {
-    return (emission.x + emission.y + emission.z) * (1.0f / 3.0f);
+    return EmitterPoint(vec3(0.0f), vec3(0.0f), vec3(0.0f), 0.0f);
 }
 
 // A point on the lights as seen from a point o, and the density over solid angle at
@@ -212,14 +244,22 @@ LightSample sample_light_from(vec3 o, vec2 u) {
             SphericalRect sr;
             // From behind the emitting face, or far, by area below (density 0 behind).
             if (dot(o - q.corner, normal) > 0.0f && rect_by_solid_angle(o, q, sr)) {
-                vec3 emission = vec3(load_material(tri.meta.x).emission_fresnel);
-                float choice = emission_weight(emission) * rect_area(q) / emitter_power();
-                return LightSample(spherical_rect_point(sr, u.x, u.y), normal, emission, choice / sr.solid_angle);
+                Material m = load_material(tri.meta.x);
+                vec3 y = spherical_rect_point(sr, u.x, u.y);
+                vec3 emission = vec3(m.emission_fresnel);
+                if (HAS_TEXTURES && m.maps.w != 0u) {
+                    // The point's coordinates along the edges, halved as triangle_uv takes them.
+                    vec3 d = y - q.corner;
+                    emission = triangle_emission(m, tri, 0.5f * dot(d, q.ex) / dot(q.ex, q.ex),
+                                                 0.5f * dot(d, q.ey) / dot(q.ey, q.ey));
+                }
+                float choice = emitter_weight(m, REF_TRIANGLE) * rect_area(q) / emitter_power();
+                return LightSample(y, normal, emission, choice / sr.solid_angle);
             }
         }
     }
     EmitterPoint y = emitter_point(e, u.x, u.y);
-    float density = emission_weight(y.emission) / emitter_power();
+    float density = y.weight / emitter_power();
     return LightSample(y.position, y.normal, y.emission, area_to_solid_angle(density, o, y.position, y.normal));
 }
 
@@ -229,11 +269,12 @@ LightSample sample_light(vec3 o, INOUT(Rng) rng) {
 
 // The density over solid angle with which sample_light, called at the ray's origin,
 // draws the direction of a ray that hit an emitter's front face (for multiple
-// importance sampling): the same choice of technique, from the same point.
-float light_pdf_of_hit(Ray ray, Hit hit, vec3 emission) {
-    float area_density = emission_weight(emission) / emitter_power();
+// importance sampling): the same choice of technique, from the same point, and the
+// same density, from the emitter's weight rather than the radiance at the hit.
+float light_pdf_of_hit(Ray ray, Hit hit) {
     uint kind = hit.prim >> REF_KIND_SHIFT;
     uint index = hit.prim & REF_INDEX_MASK;
+    float area_density = emitter_weight(load_material(hit.material), kind) / emitter_power();
     if (HAS_SPHERES && kind == REF_SPHERE) {
         Sphere s = load_sphere(index);
         float radius = s.center_radius.w;

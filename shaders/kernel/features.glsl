@@ -62,3 +62,5 @@ FEATURE(31, HAS_DIRECTED_LIGHTS)
 // An equirectangular image around the scene instead of the one-colour background,
 // and in global mode a light that next-event estimation samples (environment.glsl).
 FEATURE(32, HAS_ENVIRONMENT_MAP)
+// Normal maps (normal_map.glsl): a triangle's material has one.
+FEATURE(33, HAS_NORMAL_MAPS)

@@ -35,11 +35,12 @@ float power_heuristic(float pdf_this, float pdf_other) {
     return 1.0f / (1.0f + r * r);
 }
 
-// Traces a path's next ray into `hit`. When it leaves the scene, adds what the sky
-// sends along it weighed by the path's throughput and returns false; counts the eye
-// ray's hit. pdf_prev is the density with which the ray was drawn by sampling the
-// smooth lobes, 0 otherwise: such a ray that finds the environment is weighed
-// against next-event estimation's drawing it (the power heuristic, as for emitters).
+// Traces a path's next ray into `hit`, its shading normal normal-mapped. When it
+// leaves the scene, adds what the sky sends along it weighed by the path's
+// throughput and returns false; counts the eye ray's hit. pdf_prev is the density
+// with which the ray was drawn by sampling the smooth lobes, 0 otherwise: such a
+// ray that finds the environment is weighed against next-event estimation's
+// drawing it (the power heuristic, as for emitters).
 bool path_hit(Ray ray, uint bounce, vec3 beta, float pdf_prev, INOUT(SampleResult) s, INOUT(Hit) hit) {
     hit = closest_hit(ray, INFINITY_T);
     if (!(hit.t < INFINITY_T)) {
@@ -53,6 +54,7 @@ bool path_hit(Ray ray, uint bounce, vec3 beta, float pdf_prev, INOUT(SampleResul
     if (bounce == 0u) {
         s.eye_hits = 1u;
     }
+    hit.normal = mapped_normal(hit, -ray.dir);
     return true;
 }
 
@@ -184,7 +186,7 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
             float w = 1.0f;
             if (HAS_AREA_LIGHTS && pdf_prev > 0.0f) {
                 float p_area = 1.0f - (HAS_ENVIRONMENT_MAP ? environment_choice() : 0.0f);
-                w = power_heuristic(pdf_prev, p_area * light_pdf_of_hit(ray, hit, vec3(m.emission_fresnel)));
+                w = power_heuristic(pdf_prev, p_area * light_pdf_of_hit(ray, hit));
             }
             s.radiance += beta * vec3(m.emission_fresnel) * w;
         }
@@ -257,6 +259,7 @@ vec3 paper_gl(Ray start, uint bounces, INOUT(Rng) rng, INOUT(SampleResult) s) {
         if (!(hit.t < INFINITY_T)) {
             return attenuation * sky(ray.dir);
         }
+        hit.normal = mapped_normal(hit, -ray.dir);
         Material m = surface_material(hit);
         if (HAS_EMISSION && hit.front_face && any(greaterThan(vec3(m.emission_fresnel), vec3(0.0f)))) {
             return attenuation * vec3(m.emission_fresnel);

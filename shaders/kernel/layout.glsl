@@ -69,7 +69,8 @@ struct Material {
     vec4 microfacet;         // the metallic-roughness material's rough lobe (bsdf.glsl): rgb = its
                              // reflectance at normal incidence, w = GGX alpha; w = 0: no such lobe
     uvec4 maps;              // 1 + a texture's index (texture.glsl), 0: none: x = colour, y = metallic
-                             // (blue) and roughness (green); z, w: 0
+                             // (blue) and roughness (green), z = normal map (normal_map.glsl), w = emission
+                             // (multiplies emission_fresnel.rgb)
     vec4 uv_u;               // the texture coordinates' transform: u' = dot(xy, uv) + z; w = metallic
     vec4 uv_v;               // v' = dot(xy, uv) + z; w = roughness
                              // (a metallic-roughness material keeps its base colour in specular_ks.rgb,
@@ -84,10 +85,13 @@ struct Material {
 // info.x on, row after row from the top (packHalf2x16 of red and green, of blue and
 // alpha, linear values); info.y = width, info.z = height, info.w = the wrap modes,
 // horizontal in bits 0-1 and vertical in bits 2-3 (WRAP_REPEAT, _CLAMP, _MIRROR).
+// mean: the mean of its texels (an emission texture's share of its emitter's power,
+// emitters.glsl).
 struct Texture {
     uvec4 info;
+    vec4 mean;
 };
-#define Texture_FROM_TEXELS(b, i) Texture(fetch_texel(b, i))
+#define Texture_FROM_TEXELS(b, i) Texture(fetch_texel(b, 2u * (i)), fetch_vec4(b, 2u * (i) + 1u))
 
 // One of the scene's `lights`: a point, spot or directional light, one record for
 // the three kinds so that the kernel loops over one list (lights.glsl).

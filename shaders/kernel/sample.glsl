@@ -95,6 +95,8 @@ Hit trace_and_shade(PendingRay r, INOUT(Rng) rng, INOUT(SampleResult) s) {
         if (r.depth == 0u) {
             s.eye_hits = 1u;
         }
+        // Shading, and the mirror and refraction rays it spawns, see the mapped normal.
+        hit.normal = mapped_normal(hit, -r.ray.dir);
         s.radiance += r.weight * shade_local(r.ray, hit, rng, s.shadow_rays);
     } else {
         s.radiance += r.weight * sky(r.ray.dir);

@@ -59,16 +59,29 @@ vec4 texture_bilinear(Texture t, vec2 uv) {
     return mix(top, bottom, f.y);
 }
 
+// Texture coordinates through the material's transform (Material.uv_u, uv_v).
+vec2 material_uv(Material m, vec2 uv) {
+    return vec2(dot(vec2(m.uv_u), uv) + m.uv_u.z, dot(vec2(m.uv_v), uv) + m.uv_v.z);
+}
+
+// An emission texture's radiance at (u, v): the emission times the texture.
+vec3 textured_emission(Material m, vec2 uv) {
+    return vec3(m.emission_fresnel) * vec3(texture_bilinear(load_texture(m.maps.w - 1u), uv));
+}
+
 // The material at a hit, textured. A Phong material's diffuse colour times the
 // colour texture; a metallic-roughness material rebuilt from its factors (flat_scene.cpp)
 // times its textures: base colour times the colour texture, metallic times the
 // metallic-roughness texture's blue channel, roughness times its green (glTF's
-// packing). Only triangles and quads have texture coordinates; other shapes keep
-// the untextured material.
+// packing); the emission times the emission texture. Only triangles and quads have
+// texture coordinates; other shapes keep the untextured material.
 Material surface_material(Hit hit) {
     Material m = load_material(hit.material);
+    if (HAS_TEXTURES && m.maps.w != 0u && (hit.prim >> REF_KIND_SHIFT) == REF_TRIANGLE) {
+        m.emission_fresnel = vec4(textured_emission(m, material_uv(m, hit.uv)), m.emission_fresnel.w);
+    }
     if (HAS_TEXTURES && (m.maps.x != 0u || m.maps.y != 0u) && (hit.prim >> REF_KIND_SHIFT) == REF_TRIANGLE) {
-        vec2 uv = vec2(dot(vec2(m.uv_u), hit.uv) + m.uv_u.z, dot(vec2(m.uv_v), hit.uv) + m.uv_v.z);
+        vec2 uv = material_uv(m, hit.uv);
         vec3 c = m.maps.x != 0u ? vec3(texture_bilinear(load_texture(m.maps.x - 1u), uv)) : vec3(1.0f);
         if (m.microfacet.w > 0.0f) {
             vec3 base = vec3(m.specular_ks) * c;

@@ -1,0 +1,74 @@
+// Normal maps (HAS_NORMAL_MAPS): a material's texture of tangent-space normals bends
+// the shading normal of triangles and quads. The host stores the map decoded, as
+// glTF defines it: (2 rgb - 1) * (scale, scale, 1), +x toward +u, +y up the image
+// (toward -v, since v runs down), +z along the surface normal
+// (host/scene/texture_image.cpp). Bilinear filtering commutes with that affine map.
+//
+// The tangent frame is derived per triangle, not read per vertex
+// (docs/decisions/0032-normal-maps.md): the tangent is dp/du of the triangle's
+// texture coordinates (after the material's transform), made perpendicular to the
+// interpolated shading normal (Gram-Schmidt); the bitangent is their cross product,
+// its sign from the handedness of the coordinates on the face, so that +y points
+// up the image on mirrored coordinates too.
+
+// A mapped normal is kept at least this cosine toward the viewer (below).
+const float MIN_MAPPED_COSINE = 0.01f;
+
+// The shading normal at a hit, normal-mapped where its material has a map and the
+// hit has texture coordinates; hit.normal otherwise. wo: unit, toward the viewer.
+// Only the shading normal bends: the geometric one still offsets rays and decides
+// the faces. A map that points straight up (x = y = 0: a flat map, or scale 0)
+// returns hit.normal itself, bit for bit; so do coordinates of zero area (no
+// tangent). A back face takes the front face's mapped normal, negated.
+vec3 mapped_normal(Hit hit, vec3 wo) {
+    if (!HAS_NORMAL_MAPS || (hit.prim >> REF_KIND_SHIFT) != REF_TRIANGLE) {
+        return hit.normal;
+    }
+    Material m = load_material(hit.material);
+    if (m.maps.z == 0u) {
+        return hit.normal;
+    }
+    vec3 ts = vec3(texture_bilinear(load_texture(m.maps.z - 1u), material_uv(m, hit.uv)));
+    if (ts.x == 0.0f && ts.y == 0.0f) {
+        return hit.normal;
+    }
+    Triangle tri = load_triangle(hit.prim & REF_INDEX_MASK);
+    vec2 t0 = material_uv(m, vec2(tri.p0.w, tri.p1.w));
+    vec2 t1 = material_uv(m, vec2(tri.p2.w, tri.n0.w));
+    vec2 t2 = material_uv(m, vec2(tri.n1.w, tri.n2.w));
+    // Edges from the first corner; a parallelogram's second edge runs p1 to p2, as
+    // its coordinates do (triangle_uv).
+    bool quad = HAS_QUADS && tri.meta.z != SHAPE_TRIANGLE;
+    vec3 e1 = vec3(tri.p1) - vec3(tri.p0);
+    vec3 e2 = quad ? vec3(tri.p2) - vec3(tri.p1) : vec3(tri.p2) - vec3(tri.p0);
+    vec2 d1 = t1 - t0;
+    vec2 d2 = quad ? t2 - t1 : t2 - t0;
+    float det = d1.x * d2.y - d2.x * d1.y;
+    if (!(abs(det) > 0.0f)) {
+        return hit.normal;
+    }
+    // p = p0 + a e1 + b e2 where uv = t0 + a d1 + b d2: dp/du = (d2.y e1 - d1.y e2) / det.
+    vec3 dpdu = (d2.y * e1 - d1.y * e2) / det;
+    float sgn = hit.front_face ? 1.0f : -1.0f;
+    vec3 n = sgn * hit.normal;  // the shading normal on the front side
+    vec3 t = dpdu - dot(dpdu, n) * n;
+    float tt = dot(t, t);
+    if (!(tt > 0.0f)) {
+        return hit.normal;
+    }
+    t = t / sqrt(tt);
+    // cross(dp/du, dp/dv) = cross(e1, e2) / det, and cross(e1, e2) is the front face's
+    // normal: det > 0 means dp/dv runs along cross(n, t), down the image, so the
+    // bitangent, up the image, is -cross(n, t).
+    vec3 b = (det > 0.0f ? -1.0f : 1.0f) * cross(n, t);
+    vec3 mapped = sgn * unit_vector(ts.x * t + ts.y * b + ts.z * n);
+    // A bent normal may turn away from the viewer (a steep bump seen at a grazing
+    // angle); shading would then see its own surface from behind. Its component along
+    // wo is then replaced by MIN_MAPPED_COSINE: it keeps its lean across the view and
+    // turns, in the plane of the two, just far enough to face the viewer.
+    float c = dot(mapped, wo);
+    if (c < MIN_MAPPED_COSINE) {
+        mapped = unit_vector(mapped + (MIN_MAPPED_COSINE - c) * wo);
+    }
+    return mapped;
+}
