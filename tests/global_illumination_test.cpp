@@ -345,6 +345,24 @@ TEST(GlobalEstimators, UnbiasedOnesAgreeOnMetallicRoughness) {
     std::printf("difference %.3g, standard error %.3g\n", diff, standard_error);
 }
 
+// Next-event estimation at nee_spp against BSDF sampling alone at bsdf_spp with
+// independent numbers (the hash sampler, another seed), which shares neither the
+// light sampling nor the sampler with it: the mean difference over the pixels
+// within 3 standard errors.
+void expect_nee_agrees_with_bsdf_alone(Scene scene, std::uint32_t nee_spp, std::uint32_t bsdf_spp) {
+    scene.render.spp = nee_spp;
+    scene.render.nee = true;
+    const PixelMeans nee = pixel_means(scene);
+    scene.render.spp = bsdf_spp;
+    scene.render.nee = false;
+    scene.render.sampler = Sampler::Hash;
+    scene.render.seed = 7919;
+    const auto [diff, standard_error] = paired_difference(pixel_means(scene), nee);
+    EXPECT_GT(standard_error, 0.0);
+    EXPECT_LT(std::abs(diff), 3.0 * standard_error) << "difference " << diff << ", standard error " << standard_error;
+    std::printf("difference %.3g, standard error %.3g\n", diff, standard_error);
+}
+
 // Under an environment image that is dark but for one bright patch, next-event
 // estimation (which draws the patch by the image's brightness, weighed by MIS) and
 // BSDF sampling alone (which finds it only by chance) give the same image: a diffuse
@@ -368,34 +386,14 @@ TEST(GlobalEstimators, LightAndBsdfSamplingAgreeUnderABrightPatch) {
                      "glossy": { "diffuse": [0.3, 0.3, 0.3], "specular": [1, 1, 1], "ks": 0.5, "shininess": 30 } },
       "objects": [ { "type": "quad", "corner": [-3, 0, 3], "edge1": [6, 0, 0], "edge2": [0, 0, -6], "material": "glossy" },
                    { "type": "sphere", "center": [0, 0.6, 0], "radius": 0.6, "material": "white" } ] })");
-    scene.render.spp = 1024;
-    scene.render.nee = true;
-    const PixelMeans nee = pixel_means(scene);
-    scene.render.spp = 8192;
-    scene.render.nee = false;
-    scene.render.sampler = Sampler::Hash;
-    scene.render.seed = 7919;
-    const auto [diff, standard_error] = paired_difference(pixel_means(scene), nee);
-    EXPECT_GT(standard_error, 0.0);
-    EXPECT_LT(std::abs(diff), 3.0 * standard_error) << "difference " << diff;
-    std::printf("difference %.3g, standard error %.3g\n", diff, standard_error);
+    expect_nee_agrees_with_bsdf_alone(scene, 1024, 8192);
 }
 
 // The same on the committed sky (a sun of 0.007 sr carrying most of the light) and
 // its four materials, glass and metal among them.
 TEST(GlobalEstimators, LightAndBsdfSamplingAgreeUnderTheSky) {
     Scene scene = test::load_at_size(test::source_dir() / "scenes" / "environment.json", 16, 12);
-    scene.render.spp = 1024;
-    scene.render.nee = true;
-    const PixelMeans nee = pixel_means(scene);
-    scene.render.spp = 8192;
-    scene.render.nee = false;
-    scene.render.sampler = Sampler::Hash;
-    scene.render.seed = 7919;
-    const auto [diff, standard_error] = paired_difference(pixel_means(scene), nee);
-    EXPECT_GT(standard_error, 0.0);
-    EXPECT_LT(std::abs(diff), 3.0 * standard_error) << "difference " << diff;
-    std::printf("difference %.3g, standard error %.3g\n", diff, standard_error);
+    expect_nee_agrees_with_bsdf_alone(scene, 1024, 8192);
 }
 
 // Each scene of the error-against-time report: next-event estimation with Sobol
@@ -406,18 +404,8 @@ class ReportScene : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(ReportScene, NextEventEstimationAgreesWithBsdfSamplingAlone) {
     Scene scene = test::load_at_size(test::source_dir() / "scenes" / "convergence" / GetParam(), 16, 12);
-    scene.render.spp = 2048;
-    scene.render.nee = true;
     scene.render.sampler = Sampler::Sobol;
-    const PixelMeans nee = pixel_means(scene);
-    scene.render.spp = 16384;
-    scene.render.nee = false;
-    scene.render.sampler = Sampler::Hash;
-    scene.render.seed = 7919;
-    const auto [diff, standard_error] = paired_difference(pixel_means(scene), nee);
-    EXPECT_GT(standard_error, 0.0);
-    EXPECT_LT(std::abs(diff), 3.0 * standard_error) << "standard error " << standard_error;
-    std::printf("difference %.3g, standard error %.3g\n", diff, standard_error);
+    expect_nee_agrees_with_bsdf_alone(scene, 2048, 16384);
 }
 
 INSTANTIATE_TEST_SUITE_P(Convergence, ReportScene,
