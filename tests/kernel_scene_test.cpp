@@ -573,6 +573,7 @@ Kernel tiny_kernel(const TestScene& scene) {
     k.HAS_JITTER = false;
     k.HAS_AMBIENT = false;
     k.HAS_GLOBAL = false;  // local mode: these tests check the paper's shading
+    k.HAS_ENVIRONMENT_MAP = false;  // rays that miss see the background colour
     return k;
 }
 
