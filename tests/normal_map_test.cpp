@@ -22,7 +22,6 @@
 #include "image/image_files.hpp"
 #include "kernel/kernel.hpp"
 #include "scene/load_scene.hpp"
-#include "scene/scene_error.hpp"
 #include "scene/texture_image.hpp"
 #include "test_support.hpp"
 
@@ -345,13 +344,7 @@ TEST(NormalMapGltf, NormalTextureIsReadWithItsScaleAndGreenUp) {
 TEST(NormalMapErrors, EachNamesTheMaterialAndTheFile) {
     const std::filesystem::path dir = test::temp_dir("normal_map_errors");
     const auto error_of = [&](const std::string& material) {
-        try {
-            test::scene_from_text("bad_normal_map", quad_scene("local", material, glm::dvec3(0, 0, 1)));
-        } catch (const SceneError& e) {
-            return std::string(e.what());
-        }
-        ADD_FAILURE() << "no error for " << material;
-        return std::string();
+        return test::scene_error_of("bad_normal_map", quad_scene("local", material, glm::dvec3(0, 0, 1)));
     };
     const std::string absent = (dir / "absent.png").string();
     test::expect_error_message(error_of(R"({"normal_map": ")" + absent + R"("})"), "",

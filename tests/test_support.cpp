@@ -18,6 +18,7 @@
 #include "gpu/vulkan_backend.hpp"
 #include "cpu/cpu_backend.hpp"
 #include "scene/load_scene.hpp"
+#include "scene/scene_error.hpp"
 
 namespace vkrt::test {
 
@@ -136,6 +137,22 @@ Scene scene_from_text(const std::string& name, const std::string& text) {
     const std::filesystem::path file = temp_dir("scene_text") / (name + ".json");
     std::ofstream(file) << text;
     return load_scene(file);
+}
+
+std::string load_error_of(const std::filesystem::path& file) {
+    try {
+        load_scene(file);
+    } catch (const SceneError& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "no error loading " << file;
+    return std::string();
+}
+
+std::string scene_error_of(const std::string& name, const std::string& text) {
+    const std::filesystem::path file = temp_dir("scene_text") / (name + ".json");
+    std::ofstream(file) << text;
+    return load_error_of(file);
 }
 
 std::size_t nonfinite_values(const Image& image) {

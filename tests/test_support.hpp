@@ -58,6 +58,11 @@ std::string expect_one_error(const ProgramRun& run, const std::vector<std::strin
 // reads files, and relative paths in the text are then relative to that directory).
 Scene scene_from_text(const std::string& name, const std::string& text);
 
+// The SceneError message that loading `file` gives; a test failure, and "", when it
+// loads. scene_error_of does the same for a JSON scene written from `text`.
+std::string load_error_of(const std::filesystem::path& file);
+std::string scene_error_of(const std::string& name, const std::string& text);
+
 // Writes `text` to `file` gzip-compressed, in one gzip member.
 void write_gzip(const std::filesystem::path& file, const std::string& text);
 
