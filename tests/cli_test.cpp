@@ -282,6 +282,10 @@ TEST(Cli, EnvironmentOptionsOverrideTheScene) {
     }
     test::expect_one_error(test::run_vkrt(render + out("x.exr") + " --environment " + sky + " --background 1", dir),
                            {"--environment", "--background"});
+    test::expect_one_error(test::run_vkrt(render + out("x.exr") + " --environment-intensity 2e6", dir),
+                           {"--environment-intensity", "2e6"});
+    test::expect_one_error(test::run_vkrt(render + out("x.exr") + " --environment-rotation ninety", dir),
+                           {"--environment-rotation", "ninety"});
     test::expect_one_error(test::run_vkrt(render + out("x.exr") + " --environment nonesuch.hdr", dir),
                            {"--environment", "nonesuch.hdr", "no such file"});
     test::expect_one_error(test::run_vkrt("render " + test::shell_quote(scene("area_light").string()) +

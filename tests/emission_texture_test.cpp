@@ -220,13 +220,7 @@ TEST(EmissionTextureGltf, EmissiveTextureMultipliesFactorAndStrength) {
     const glm::vec4 t = scene.textures.at(*m.emission_texture).texels[0];
     EXPECT_NEAR(t.r, 0.5f, 3e-3f);
     EXPECT_NEAR(t.g, 0.25f, 3e-3f);
-    scene.camera.eye = glm::dvec3(0, 0, 3);
-    scene.camera.look_at = glm::dvec3(0, 0, 0);
-    scene.camera.up = glm::dvec3(0, 1, 0);
-    scene.camera.fov = 30;
-    scene.camera.width = scene.camera.height = 16;
-    scene.render.spp = 4;
-    scene.render.background = glm::dvec3(0.0);
+    test::view_quad_head_on(scene, 16, 4, 0.0);
     const Image image = test::render_cpu(scene).image;
     const float* p = image.pixel(8, 9);
     EXPECT_NEAR(p[0], 4.0f * t.r, 1e-2f);

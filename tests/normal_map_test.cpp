@@ -321,14 +321,8 @@ TEST(NormalMapGltf, NormalTextureIsReadWithItsScaleAndGreenUp) {
     EXPECT_NEAR(t.texels[0].r, x, 1e-6);
     EXPECT_NEAR(t.texels[0].g, y, 1e-6);
     EXPECT_NEAR(t.texels[0].b, 1.0, 1e-6);
-    scene.camera.eye = glm::dvec3(0, 0, 3);
-    scene.camera.look_at = glm::dvec3(0, 0, 0);
-    scene.camera.up = glm::dvec3(0, 1, 0);
-    scene.camera.fov = 30;
-    scene.camera.width = scene.camera.height = 16;
     scene.render.mode = RenderMode::Local;
-    scene.render.spp = 4;
-    scene.render.background = glm::dvec3(0.0);
+    test::view_quad_head_on(scene, 16, 4, 0.0);
     Light light;
     light.type = LightType::Directional;
     light.direction = -glm::dvec3(0, 1, 1) / std::sqrt(2.0);

@@ -139,6 +139,16 @@ Scene scene_from_text(const std::string& name, const std::string& text) {
     return load_scene(file);
 }
 
+void view_quad_head_on(Scene& scene, std::uint32_t size, std::uint32_t spp, double background) {
+    scene.camera.eye = glm::dvec3(0, 0, 3);
+    scene.camera.look_at = glm::dvec3(0, 0, 0);
+    scene.camera.up = glm::dvec3(0, 1, 0);
+    scene.camera.fov = 30;
+    scene.camera.width = scene.camera.height = size;
+    scene.render.spp = spp;
+    scene.render.background = glm::dvec3(background);
+}
+
 std::string load_error_of(const std::filesystem::path& file) {
     try {
         load_scene(file);

@@ -34,6 +34,11 @@ std::string scene_test_name(const ::testing::TestParamInfo<std::filesystem::path
 void expect_error_message(const std::string& message, const std::string& prefix,
                           std::initializer_list<std::string_view> pieces);
 
+// Points the camera of a loaded glTF test file at the unit quad around the origin
+// in the xy plane: from (0, 0, 3), a 30-degree view, size x size pixels, `spp`
+// samples, the background `background`.
+void view_quad_head_on(Scene& scene, std::uint32_t size, std::uint32_t spp, double background);
+
 // A scene file with its image size replaced, for fast renders.
 Scene load_at_size(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height);
 

@@ -296,13 +296,7 @@ TEST(TextureGltf, BaseColourTextureOnTexcoord0WithItsTransform) {
             m.metallic_roughness.reset();
             m.diffuse = glm::dvec3(1.0);
         }
-        scene.camera.eye = glm::dvec3(0, 0, 3);
-        scene.camera.look_at = glm::dvec3(0, 0, 0);
-        scene.camera.up = glm::dvec3(0, 1, 0);
-        scene.camera.fov = 30;
-        scene.camera.width = scene.camera.height = 32;
-        scene.render.spp = 4;
-        scene.render.background = glm::dvec3(1.0);
+        test::view_quad_head_on(scene, 32, 4, 1.0);
         const RenderOutcome out = test::render_cpu(scene);
         expect_quadrants(out.image, [&](int q) { return shifted ? 3 - q : q; }, 0.01f, "cpu");
     }
