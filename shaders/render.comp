@@ -42,12 +42,12 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 // the scene buffer's device address, low word first, when it is read by address.
 layout(push_constant) uniform PassBlock {
     uvec4 pass;
-    uvec4 bases[3];
+    uvec4 bases[4];
     uvec4 scene_address;
 };
 // Copied by main(), like the params: read from push constants in the loops, they
 // took 1.14x the time on lavapipe (ten_spheres, 512x512, 32 spp).
-uvec4 g_bases[3];
+uvec4 g_bases[4];
 #define SCENE_ARRAY(id, name, Element, load, format) \
     uint name##_base() { return g_bases[id / 4][id % 4]; }
 #include "kernel/arrays.glsl"

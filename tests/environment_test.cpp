@@ -119,7 +119,7 @@ std::filesystem::path random_image(std::uint32_t w, std::uint32_t h) {
 // over the texel's square of the bilinear interpolation of luminance (columns
 // wrapping, rows clamped), here by the midpoint rule on 16 x 16 points, times the
 // sine of its row centre's angle from the pole.
-std::vector<double> expected_weights(const TextureImage& image) {
+std::vector<double> expected_weights(const LinearImage& image) {
     const std::int64_t w = image.width, h = image.height;
     const auto lum = [&](std::int64_t x, std::int64_t y) {
         const glm::vec4& c = image.texels[std::size_t(std::clamp<std::int64_t>(y, 0, h - 1)) * image.width +
@@ -254,11 +254,11 @@ TEST(EnvironmentRender, ConstantEnvironmentLightsASphereAsItsAlbedoSays) {
 
 // Each output texel is the mean of the two by two (at an odd edge, more) it replaces.
 TEST(EnvironmentImage, HalvingAveragesTexels) {
-    TextureImage image;
+    LinearImage image;
     image.width = 5;
     image.height = 3;
     for (int i = 0; i < 15; ++i) image.texels.emplace_back(float(i), 0.0f, 0.0f, 1.0f);
-    const TextureImage half = halve(image);
+    const LinearImage half = halve(image);
     ASSERT_EQ(half.width, 2u);
     ASSERT_EQ(half.height, 1u);
     // Columns 0-1 and 2-4 of all three rows.

@@ -171,13 +171,16 @@ TEST(NormalMap, TheTangentFollowsTheTextureTransform) {
 struct MappedTriangle {
     std::vector<kernel::Material> materials;
     std::vector<kernel::Triangle> triangles;
-    std::vector<kernel::Texture> records = {kernel::Texture(uvec4(0u, 1u, 1u, 0u), kernel::vec4(0.0f))};
+    // One half-float texel, scale 1.
+    std::vector<kernel::Texture> records = {kernel::Texture(uvec4(0u, 1u, 1u, 0u), kernel::vec4(1.0f, 0.0f, 0.0f, 0.0f))};
     std::vector<std::uint32_t> words;
     Kernel k;
 
-    // One texel of decoded tangent-space normal `ts`; a triangle in z = 0 facing +z.
+    // One texel of tangent-space normal `ts`, in glTF's encoding (ts + 1) / 2 (exact
+    // for these values); a triangle in z = 0 facing +z.
     MappedTriangle(vec3 ts, std::array<vec2, 3> uv) {
-        words = {glm::packHalf2x16(vec2(ts.x, ts.y)), glm::packHalf2x16(vec2(ts.z, 1.0f))};
+        const vec3 c = (ts + 1.0f) * 0.5f;
+        words = {glm::packHalf2x16(vec2(c.x, c.y)), glm::packHalf2x16(vec2(c.z, 1.0f))};
         kernel::Material m{};
         m.maps = uvec4(0u, 0u, 1u, 0u);
         m.uv_u = vec4(1.0f, 0.0f, 0.0f, 0.0f);
@@ -317,10 +320,15 @@ TEST(NormalMapGltf, NormalTextureIsReadWithItsScaleAndGreenUp) {
     const Material& m = scene.materials.at(0);
     ASSERT_TRUE(m.normal_map.has_value());
     const TextureImage& t = scene.textures.at(*m.normal_map);
+    // Kept as the file's bytes, decoded by the kernel with the texture's scale.
+    EXPECT_EQ(t.format, TexelFormat::Rgba8);
+    EXPECT_FALSE(t.srgb);
+    EXPECT_EQ(t.normal_scale, 0.5);
+    const glm::vec4 c = texel_value(t, scene.texels.words(), 0);
+    EXPECT_EQ(c.r, 128.0f / 255.0f);
+    EXPECT_EQ(c.g, 191.0f / 255.0f);
+    EXPECT_EQ(c.b, 1.0f);
     const double x = (2.0 * 128.0 / 255.0 - 1.0) * 0.5, y = (2.0 * 191.0 / 255.0 - 1.0) * 0.5;
-    EXPECT_NEAR(t.texels[0].r, x, 1e-6);
-    EXPECT_NEAR(t.texels[0].g, y, 1e-6);
-    EXPECT_NEAR(t.texels[0].b, 1.0, 1e-6);
     scene.render.mode = RenderMode::Local;
     test::view_quad_head_on(scene, 16, 4, 0.0);
     Light light;

@@ -323,8 +323,12 @@ TEST(TextureGltf, MetallicRoughnessTextureIsReadLinear) {
     EXPECT_EQ(m.texture, std::optional<std::uint32_t>(0u));
     EXPECT_EQ(m.metallic_roughness_texture, std::optional<std::uint32_t>(1u));
     // Texel (0, 0) is red 0.8 (linear), stored in the PNG as sRGB byte 231.
-    EXPECT_NEAR(scene.textures[0].texels[0].r, 0.8f, 0.005f);
-    EXPECT_NEAR(scene.textures[1].texels[0].r, 231.0f / 255.0f, 1e-6f);
+    EXPECT_NEAR(texel_value(scene.textures[0], scene.texels.words(), 0).r, 0.8f, 0.005f);
+    EXPECT_NEAR(texel_value(scene.textures[1], scene.texels.words(), 0).r, 231.0f / 255.0f, 1e-6f);
+    // One image, decoded once: the two records read the same bytes, as sRGB and as data.
+    EXPECT_EQ(scene.textures[0].first_word, scene.textures[1].first_word);
+    EXPECT_TRUE(scene.textures[0].srgb);
+    EXPECT_FALSE(scene.textures[1].srgb);
     EXPECT_TRUE(flatten_scene(scene).features.has(Feature::HAS_TEXTURES));
 }
 

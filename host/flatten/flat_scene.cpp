@@ -1,12 +1,15 @@
 #include "flatten/flat_scene.hpp"
 
+#include "flatten/emission_footprint.hpp"
 #include "flatten/environment_table.hpp"
 #include "scene/texture_image.hpp"
 #include "scene/vec_math.hpp"
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <chrono>
+#include <limits>
 #include <cmath>
 #include <span>
 
@@ -114,27 +117,33 @@ kernel::Material flatten(const Material& m) {
 
 static_assert(std::uint32_t(Wrap::Repeat) == kernel::WRAP_REPEAT && std::uint32_t(Wrap::Clamp) == kernel::WRAP_CLAMP &&
               std::uint32_t(Wrap::Mirror) == kernel::WRAP_MIRROR);
+static_assert(std::uint32_t(TexelFormat::Half) == kernel::TEXEL_HALF &&
+              std::uint32_t(TexelFormat::Rgba8) == kernel::TEXEL_RGBA8);
 
-// The textures' records and their texels, two words each (kernel::Texture).
+// The textures' records (kernel::Texture) over the scene's own texels, shared, and
+// the sRGB table at the start of table_words where a texture is sRGB-encoded.
 void add_textures(const Scene& scene, FlatScene& g) {
+    bool srgb = false;
     for (const TextureImage& t : scene.textures) {
-        const std::uint32_t wrap = std::uint32_t(t.wrap_s) | (std::uint32_t(t.wrap_t) << 2u);
-        g.textures.push_back(kernel::Texture(uvec4(std::uint32_t(g.texture_words.size()), t.width, t.height, wrap),
-                                             vec4(texture_mean(t))));
-        for (const glm::vec4& c : t.texels) {
-            g.texture_words.push_back(glm::packHalf2x16(glm::vec2(c.r, c.g)));
-            g.texture_words.push_back(glm::packHalf2x16(glm::vec2(c.b, c.a)));
-        }
+        std::uint32_t flags = std::uint32_t(t.wrap_s) | (std::uint32_t(t.wrap_t) << 2u) | (std::uint32_t(t.format) << 4u);
+        if (t.srgb) flags |= kernel::TEXTURE_SRGB_BIT;
+        srgb = srgb || t.srgb;
+        g.textures.push_back(kernel::Texture(uvec4(std::uint32_t(t.first_word), t.width, t.height, flags),
+                                             vec4(float(t.normal_scale), 0.0f, 0.0f, 0.0f)));
+    }
+    g.texture_words = SharedArray<std::uint32_t>(scene.texels.share());
+    if (srgb) {
+        for (float v : srgb_byte_table()) g.table_words.push_back(std::bit_cast<std::uint32_t>(v));
     }
 }
 
-// The environment's words after the textures', and the chance that next-event
+// The environment's words after the sRGB table, and the chance that next-event
 // estimation draws from it rather than from the emitters: where the path estimator
 // samples lights at all, one half beside emitters (their powers and the image's do
 // not compare: one is at a distance, the other not), else all.
 void add_environment(const Scene& scene, FlatScene& g) {
     bool sampled = false;
-    kernel::set_environment_first_word(g.params, append_environment(*scene.environment, g.texture_words, sampled));
+    kernel::set_environment_first_word(g.params, append_environment(*scene.environment, g.table_words, sampled));
     const RenderSettings& r = scene.render;
     const bool nee = g.features.has(Feature::HAS_GLOBAL) && r.estimator == Estimator::Path && r.nee;
     const float choice = !(nee && sampled) ? 0.0f : g.features.has(Feature::HAS_AREA_LIGHTS) ? 0.5f : 1.0f;
@@ -172,6 +181,13 @@ std::uint32_t shape_of(const Triangle& t) {
     return perpendicular ? kernel::SHAPE_RECTANGLE : kernel::SHAPE_PARALLELOGRAM;
 }
 
+// A triangle's texture coordinates at p0, p1, p2: its own, or those of the unit
+// square's corners.
+std::array<glm::dvec2, 3> texture_corners(const Triangle& t) {
+    if (t.uvs) return *t.uvs;
+    return {glm::dvec2(0, 0), glm::dvec2(1, 0), t.parallelogram ? glm::dvec2(1, 1) : glm::dvec2(0, 1)};
+}
+
 kernel::Triangle flatten(const Triangle& t, const dvec3& origin) {
     kernel::Triangle out{};
     out.p0 = to_vec4(t.vertices[0] - origin);
@@ -183,9 +199,7 @@ kernel::Triangle flatten(const Triangle& t, const dvec3& origin) {
         out.n2 = to_vec4((*t.normals)[2]);
     }
     // Texture coordinates in the w lanes (kernel::Triangle).
-    const std::array<glm::dvec2, 3> corners = {glm::dvec2(0, 0), glm::dvec2(1, 0),
-                                               t.parallelogram ? glm::dvec2(1, 1) : glm::dvec2(0, 1)};
-    const std::array<glm::dvec2, 3>& uv = t.uvs ? *t.uvs : corners;
+    const std::array<glm::dvec2, 3> uv = texture_corners(t);
     out.p0.w = float(uv[0].x);
     out.p1.w = float(uv[0].y);
     out.p2.w = float(uv[1].x);
@@ -201,9 +215,10 @@ double mean(const dvec3& c) { return (c.x + c.y + c.z) / 3.0; }
 // The emissive primitives as area lights (kernel/emitters.glsl): one Emitter each,
 // with the running fractions of the total power (area times mean emitted radiance)
 // up to it and before it, by which the kernel picks one with probability
-// proportional to its power and reuses the number that picked it. A triangle's
-// emission texture counts by its mean (kernel emitter_weight); an emitter of no
-// power (a black texture) is left out.
+// proportional to its power and reuses the number that picked it. A triangle with an
+// emission texture counts by the mean emission over its footprint, which its record
+// carries for the kernel (emission_footprint.hpp); an emitter of no power (a black
+// footprint) is left out.
 void add_emitters(const Scene& scene, FlatScene& g) {
     struct Found {
         std::uint32_t ref;
@@ -212,23 +227,34 @@ void add_emitters(const Scene& scene, FlatScene& g) {
     };
     std::vector<Found> found;
     auto add = [&](std::uint32_t kind, std::size_t i, double area, std::uint32_t material, std::uint32_t part = 0) {
-        const Material& m = scene.materials[material];
-        dvec3 emission = m.emission;
-        if (m.emission_texture && kind == kernel::REF_TRIANGLE) {
-            emission *= dvec3(texture_mean(scene.textures[*m.emission_texture]));
-        }
-        if (!is_nonzero(emission)) return;
-        found.push_back({(kind << kernel::REF_KIND_SHIFT) | std::uint32_t(i), area * mean(emission), part});
+        const double weight = mean(scene.materials[material].emission);
+        if (weight > 0.0) found.push_back({(kind << kernel::REF_KIND_SHIFT) | std::uint32_t(i), area * weight, part});
     };
+    EmissionFootprints footprints(scene);
     const double pi = glm::pi<double>();
     for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
         const Sphere& s = scene.spheres[i];
         add(kernel::REF_SPHERE, i, 4.0 * pi * s.radius * s.radius, s.material);
     }
+    const bool textured = g.features.has(Feature::HAS_TEXTURES);
     for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
         const Triangle& t = scene.triangles[i];
         const dvec3 c = glm::cross(t.vertices[1] - t.vertices[0], t.vertices[2] - t.vertices[0]);
-        add(kernel::REF_TRIANGLE, i, (t.parallelogram ? 1.0 : 0.5) * glm::length(c), t.material);
+        const double area = (t.parallelogram ? 1.0 : 0.5) * glm::length(c);
+        const Material& m = scene.materials[t.material];
+        if (!textured || !m.emission_texture) {
+            add(kernel::REF_TRIANGLE, i, area, t.material);
+            continue;
+        }
+        if (!is_nonzero(m.emission)) continue;
+        const std::array<glm::dvec2, 3> uv = texture_corners(t);
+        const std::array<glm::dvec2, 4> corners{uv[0], uv[1], uv[2], uv[0] + uv[2] - uv[1]};
+        const double weight = footprints.mean_emission(m, std::span(corners).first(t.parallelogram ? 4 : 3));
+        // The kernel reads the weight in float: one that would round to 0 is the
+        // smallest normal float instead, so that an emitting footprint stays an emitter.
+        const float bits = weight > 0.0 ? std::max(float(weight), std::numeric_limits<float>::min()) : 0.0f;
+        g.triangles[i].meta.w = std::bit_cast<std::uint32_t>(bits);
+        if (bits > 0.0f) found.push_back({(kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | std::uint32_t(i), area * bits, 0});
     }
     for (std::size_t i = 0; i < scene.rings.size(); ++i) {
         const Ring& r = scene.rings[i];
@@ -263,8 +289,8 @@ void add_emitters(const Scene& scene, FlatScene& g) {
     kernel::set_emitter_power(g.params, static_cast<float>(total));
 }
 
-template <class T>
-std::size_t bytes(const std::vector<T>& v) { return v.size() * sizeof(T); }
+template <class Array>
+std::size_t bytes(const Array& a) { return a.size() * sizeof(typename Array::value_type); }
 
 // Whether this render walks a grid, and why: the stats report the reason.
 bool want_grid(const Scene& scene, std::size_t primitives, const AccelPolicy& policy, std::string& reason) {

@@ -5,12 +5,14 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "accel/accel_policy.hpp"
 #include "accel/grid.hpp"
 #include "kernel/types.hpp"
 #include "flatten/features.hpp"
+#include "flatten/shared_array.hpp"
 #include "scene/scene.hpp"
 
 namespace vkrt {
@@ -20,6 +22,16 @@ struct BufferSize {
     std::size_t bytes;
 };
 
+// The arrays of kernel/arrays.glsl by name, for FlatArray.
+enum class ArrayId {
+#define SCENE_ARRAY(id, name, Element, load, format) name = id,
+#include "kernel/arrays.glsl"
+};
+
+// Each array is built by flattening, but for the texels, which it shares.
+template <class T, ArrayId id>
+using FlatArray = std::conditional_t<id == ArrayId::texture_words, SharedArray<T>, std::vector<T>>;
+
 struct FlatScene {
     kernel::Params params{};
     // Where the kernel's coordinates start, in the scene's (flatten_scene): every
@@ -28,8 +40,9 @@ struct FlatScene {
     dvec3 origin{0.0};
     FeatureSet features;
     // One array per line of kernel/arrays.glsl (materials, spheres, ...,
-    // grid_refs), uploaded as it is. An array only left-out features read stays empty.
-#define SCENE_ARRAY(id, name, Element, load, format) std::vector<kernel::Element> name;
+    // grid_refs), uploaded as it is. An array only left-out features read stays
+    // empty. The textures' texels are the scene's own (Scene::texels), shared.
+#define SCENE_ARRAY(id, name, Element, load, format) FlatArray<kernel::Element, ArrayId::name> name;
 #include "kernel/arrays.glsl"
     GridStats grid;
     std::uint32_t samples_per_pixel = 1;

@@ -7,10 +7,10 @@
 namespace vkrt::gpu {
 
 constexpr std::uint32_t kWorkgroupSide = 8;  // local_size_x and _y
-// Push constants: uvec4 pass, uvec4 bases[3] (scene_pack.hpp's ScenePack::bases),
+// Push constants: uvec4 pass, uvec4 bases[4] (scene_pack.hpp's ScenePack::bases),
 // then uvec4 scene_address (the scene buffer's device address in its first 8 bytes).
 constexpr std::uint32_t kPassBytes = 16;
-constexpr std::uint32_t kBaseLanes = 12;
+constexpr std::uint32_t kBaseLanes = 16;
 constexpr std::uint32_t kBasesBytes = 4 * kBaseLanes;
 constexpr std::uint32_t kAddressBytes = 16;
 constexpr std::uint32_t kPushBytes = kPassBytes + kBasesBytes + kAddressBytes;

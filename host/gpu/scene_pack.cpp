@@ -23,9 +23,9 @@ void check_size(std::uint64_t count) {
     }
 }
 
-template <typename T>
-std::uint64_t texels_of(const std::vector<T>& items) {
-    return (items.size() * sizeof(T) + 15) / 16;
+template <typename Array>
+std::uint64_t texels_of(const Array& items) {
+    return (items.size() * sizeof(typename Array::value_type) + 15) / 16;
 }
 
 }  // namespace
@@ -61,16 +61,20 @@ ScenePack pack_scene(const FlatScene& scene, std::uint32_t word_alignment) {
     pack.word_count = std::uint32_t(words);
     pack.bases[kSceneArrays] = pack.words_start;
 
-    pack.texels.assign(std::max<std::uint64_t>(words_start + (words + 3) / 4, 1), kernel::uvec4(0u));
-    auto* bytes = reinterpret_cast<unsigned char*>(pack.texels.data());
+    pack.texel_count = std::max<std::uint64_t>(words_start + (words + 3) / 4, 1);
+    return pack;
+}
+
+void write_scene(const FlatScene& scene, const ScenePack& pack, void* out) {
+    auto* bytes = static_cast<unsigned char*>(out);
+    std::memset(bytes, 0, pack.bytes());
 #define SCENE_ARRAY(id, name, Element, load, format)                                                         \
     if (!scene.name.empty()) {                                                                           \
-        const std::size_t at = kWords_##format ? words_start * 16 + std::size_t(pack.bases[id]) * 4         \
+        const std::size_t at = kWords_##format ? std::size_t(pack.words_start) * 16 + std::size_t(pack.bases[id]) * 4 \
                                                : std::size_t(pack.bases[id]) * 16;                       \
         std::memcpy(bytes + at, scene.name.data(), scene.name.size() * sizeof(scene.name[0]));           \
     }
 #include "kernel/arrays.glsl"
-    return pack;
 }
 
 }  // namespace vkrt::gpu

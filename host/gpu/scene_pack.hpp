@@ -22,19 +22,26 @@ constexpr std::uint32_t kSceneArrays = 0
     ;
 static_assert(kSceneArrays + 1 <= kBaseLanes, "kernel/arrays.glsl: more arrays than render.comp's bases hold");
 
+// Where each array goes in the buffer. The buffer is written by write_scene, straight
+// into the device's memory where it is mapped: a scene's textures are not copied
+// once more on their way.
 struct ScenePack {
-    std::vector<kernel::uvec4> texels;  // the whole buffer, at least one texel
-    std::uint32_t words_start = 0;      // texel where the r32ui arrays begin
-    std::uint32_t word_count = 0;       // words of the r32ui arrays
+    std::uint64_t texel_count = 1;  // the whole buffer, at least one texel
+    std::uint32_t words_start = 0;  // texel where the r32ui arrays begin
+    std::uint32_t word_count = 0;   // words of the r32ui arrays
     // By array id: where it starts (texels, or words from words_start); lane
     // kSceneArrays holds words_start.
     std::array<std::uint32_t, kBaseLanes> bases{};
 
-    std::uint64_t bytes() const { return texels.size() * sizeof(kernel::uvec4); }
+    std::uint64_t bytes() const { return texel_count * sizeof(kernel::uvec4); }
 };
 
 // `word_alignment` is the texel count words_start is a multiple of (a view's offset
 // must be a multiple of minTexelBufferOffsetAlignment, at most 256 bytes).
 ScenePack pack_scene(const FlatScene& scene, std::uint32_t word_alignment = 16);
+
+// The buffer's bytes (pack.bytes() of them at `out`): each array where the pack says,
+// zeros between.
+void write_scene(const FlatScene& scene, const ScenePack& pack, void* out);
 
 }  // namespace vkrt::gpu

@@ -89,7 +89,7 @@ struct DeviceState {
         : context(std::move(context_)),
           pack(pack_scene(scene, std::max(context->limits().texel_offset_alignment / 16, 1u))),
           paths(plan_data_paths(context->limits(), context->cpu_device(),
-                                {pack.texels.size(), pack.words_start, pack.word_count, scene.width(), scene.height()},
+                                {pack.texel_count, pack.words_start, pack.word_count, scene.width(), scene.height()},
                                 context->options().scene_path, context->options().params_path)),
           pipeline(make_pipeline(*context, scene.features, paths)),
           params(*context, "params", sizeof(kernel::Params), kBindingUsage),
@@ -102,7 +102,7 @@ struct DeviceState {
           pixels(*context, "pixels", slab_bytes(scene), kBindingUsage),
           timer(*context) {
         params.upload(&scene.params, sizeof(kernel::Params));
-        scene_buffer.upload(pack.texels.data(), pack.bytes());
+        scene_buffer.write(pack.bytes(), [&](void* out) { write_scene(scene, pack, out); });
         // The CPU reads the sums through its caches: where the pixel buffer is not
         // such memory, each slab's last batch copies it into a buffer that is.
         if (!pixels.host_cached()) {
@@ -226,7 +226,7 @@ public:
             // Aligned for any device: the largest alignment the specification allows.
             const ScenePack pack = pack_scene(scene, find_profile("minimum").limits.texel_offset_alignment / 16);
             const PhysicalDevice* other = device_for_scene(
-                context_->devices(), {pack.texels.size(), pack.words_start, pack.word_count, scene.width(), scene.height()});
+                context_->devices(), {pack.texel_count, pack.words_start, pack.word_count, scene.width(), scene.height()});
             if (!other || other->info.index == context_->device_index()) {
                 throw SceneDoesNotFit(std::string(e.what()) + ", and no other Vulkan device can hold it either");
             }

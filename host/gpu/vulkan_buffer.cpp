@@ -112,17 +112,21 @@ std::uint64_t VulkanBuffer::address() const {
 }
 
 void VulkanBuffer::upload(const void* data, VkDeviceSize bytes) {
+    write(bytes, [&](void* out) { std::memcpy(out, data, bytes); });
+}
+
+void VulkanBuffer::write(VkDeviceSize bytes, const std::function<void(void*)>& fill) {
     if (bytes > size_) {
         throw GpuError("upload of " + std::to_string(bytes) + " bytes into buffer '" + name_ +
                        "' of " + std::to_string(size_));
     }
     if (mapped_) {
         // Coherent memory: vkQueueSubmit makes host writes visible to later commands.
-        std::memcpy(mapped_, data, bytes);
+        fill(mapped_);
         return;
     }
     VulkanBuffer staging(*context_, name_ + " (staging)", bytes, 0, Placement::Staging);
-    staging.upload(data, bytes);
+    staging.write(bytes, fill);
     context_->submit_and_wait([&](VkCommandBuffer cmd) {
         const VkBufferCopy region{0, 0, bytes};
         vkCmdCopyBuffer(cmd, staging.get(), buffer_.get(), 1, &region);

@@ -4,6 +4,7 @@
 // GPUs), the buffer is mapped once and copies are memcpy; otherwise it lives in
 // device-local memory and copies go through a temporary staging buffer.
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "gpu/vulkan_context.hpp"
@@ -35,6 +36,9 @@ public:
 
     // Both wait for the device; they are meant for setup and the final read-back.
     void upload(const void* data, VkDeviceSize bytes);
+    // The first `bytes` bytes, written by `fill` where they are: into the mapped
+    // memory itself, or into a staging buffer that is then copied.
+    void write(VkDeviceSize bytes, const std::function<void(void*)>& fill);
     void readback(void* data, VkDeviceSize bytes) const;
 
 private:

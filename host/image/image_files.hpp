@@ -13,7 +13,7 @@
 
 namespace vkrt {
 
-enum class ChannelType : std::uint8_t { UInt8, UInt32, Float, Half, Other };
+enum class ChannelType : std::uint8_t { UInt8, UInt16, UInt32, Float, Half, Other };
 
 // An image file's layout and attributes.
 struct FileSpec {
@@ -35,7 +35,7 @@ struct FileSpec {
 };
 
 inline std::size_t channel_bytes(ChannelType type) {
-    return type == ChannelType::UInt8 ? 1 : type == ChannelType::Half ? 2 : 4;
+    return type == ChannelType::UInt8 ? 1 : type == ChannelType::Half || type == ChannelType::UInt16 ? 2 : 4;
 }
 
 class ImageFileReader {
@@ -47,6 +47,29 @@ public:
     virtual bool read_rows(std::uint32_t first, std::uint32_t end, void* pixels) = 0;
     // Every pixel, every channel converted to float.
     virtual bool read_floats(float* pixels) = 0;
+    // Every pixel as 8-bit RGBA in one word, red in the low byte: one channel spread
+    // to red, green and blue, two as grey and alpha, a missing alpha 255. Only for
+    // images whose channels are all UInt8 (false otherwise).
+    virtual bool read_rgba8(std::uint32_t* texels) {
+        const FileSpec& s = spec();
+        const std::size_t channels = s.channels.size();
+        if (channels == 0) return false;
+        for (ChannelType t : s.types) {
+            if (t != ChannelType::UInt8) return false;
+        }
+        // Row by row, so that the file's own pixels never need a buffer of their size.
+        std::vector<std::uint8_t> row(std::size_t(s.width) * channels);
+        for (std::uint32_t y = 0; y < s.height; ++y) {
+            if (!read_rows(y, y + 1, row.data())) return false;
+            for (std::uint32_t x = 0; x < s.width; ++x) {
+                const std::uint8_t* v = &row[std::size_t(x) * channels];
+                const std::uint32_t r = v[0], g = channels >= 3 ? v[1] : r, b = channels >= 3 ? v[2] : r;
+                const std::uint32_t a = channels == 2 ? v[1] : channels >= 4 ? v[3] : 255u;
+                texels[std::size_t(y) * s.width + x] = r | g << 8 | b << 16 | a << 24;
+            }
+        }
+        return true;
+    }
     virtual std::string error() const = 0;
 };
 

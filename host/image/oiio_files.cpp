@@ -11,6 +11,7 @@ namespace {
 OIIO::TypeDesc oiio_type(ChannelType type) {
     switch (type) {
     case ChannelType::UInt8: return OIIO::TypeDesc::UINT8;
+    case ChannelType::UInt16: return OIIO::TypeDesc::UINT16;
     case ChannelType::UInt32: return OIIO::TypeDesc::UINT32;
     case ChannelType::Half: return OIIO::TypeDesc::HALF;
     default: return OIIO::TypeDesc::FLOAT;
@@ -19,6 +20,7 @@ OIIO::TypeDesc oiio_type(ChannelType type) {
 
 ChannelType channel_type(OIIO::TypeDesc type) {
     if (type == OIIO::TypeDesc::UINT8) return ChannelType::UInt8;
+    if (type == OIIO::TypeDesc::UINT16) return ChannelType::UInt16;
     if (type == OIIO::TypeDesc::UINT32) return ChannelType::UInt32;
     if (type == OIIO::TypeDesc::FLOAT) return ChannelType::Float;
     if (type == OIIO::TypeDesc::HALF) return ChannelType::Half;

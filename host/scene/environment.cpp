@@ -6,8 +6,8 @@
 
 namespace vkrt {
 
-TextureImage halve(const TextureImage& image) {
-    TextureImage out;
+LinearImage halve(const LinearImage& image) {
+    LinearImage out;
     out.name = image.name;
     out.width = std::max<std::uint32_t>(1, image.width / 2);
     out.height = std::max<std::uint32_t>(1, image.height / 2);
@@ -30,7 +30,7 @@ TextureImage halve(const TextureImage& image) {
 Environment load_environment(const std::filesystem::path& file, const std::string& element,
                              std::vector<std::string>& warnings) {
     Environment env;
-    env.image = load_texture_file(file, Encoding::SrgbUnlessFloat, element);
+    env.image = load_linear_image(file, Encoding::SrgbUnlessFloat, element);
     std::size_t negative = 0;
     for (glm::vec4& t : env.image.texels) {
         for (int c = 0; c < 3; ++c) {

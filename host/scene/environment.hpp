@@ -14,7 +14,7 @@
 namespace vkrt {
 
 struct Environment {
-    TextureImage image;                   // linear rgb, rows from the top (toward `up`)
+    LinearImage image;                    // linear rgb, rows from the top (toward `up`)
     double intensity = 1.0;               // multiplies the image's values
     double rotation = 0.0;                // degrees, right-handed about `up`
     glm::dvec3 up{0.0, 1.0, 0.0};         // unit: where the image's top row looks
@@ -34,6 +34,6 @@ Environment load_environment(const std::filesystem::path& file, const std::strin
 
 // The image halved in each direction, each texel the mean of the two by two it
 // replaces (an odd last row or column is averaged with fewer).
-TextureImage halve(const TextureImage& image);
+LinearImage halve(const LinearImage& image);
 
 }  // namespace vkrt

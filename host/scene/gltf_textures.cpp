@@ -1,5 +1,6 @@
 #include "scene/gltf_textures.hpp"
 
+#include <array>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -44,7 +45,7 @@ void TextureReader::fail_at(const std::string& element, const std::string& what)
 
 std::optional<std::uint32_t> TextureReader::texture(const tinygltf::TextureInfo& info, const std::string& element,
                                                     Encoding encoding, Material& m) {
-    return load(info, element, encoding, std::nullopt, m);
+    return request(info, element, encoding, 1.0, false, m);
 }
 
 std::optional<std::uint32_t> TextureReader::normal_texture(const tinygltf::NormalTextureInfo& info,
@@ -56,11 +57,11 @@ std::optional<std::uint32_t> TextureReader::normal_texture(const tinygltf::Norma
     plain.index = info.index;
     plain.texCoord = info.texCoord;
     plain.extensions = info.extensions;
-    return load(plain, element, Encoding::Linear, info.scale, m);
+    return request(plain, element, Encoding::Linear, info.scale, true, m);
 }
 
-std::optional<std::uint32_t> TextureReader::load(const tinygltf::TextureInfo& info, const std::string& element,
-                                                 Encoding encoding, std::optional<double> normal_scale, Material& m) {
+std::optional<std::uint32_t> TextureReader::request(const tinygltf::TextureInfo& info, const std::string& element,
+                                                    Encoding encoding, double normal_scale, bool normal, Material& m) {
     if (info.index < 0) return std::nullopt;
     if (static_cast<std::size_t>(info.index) >= model_.textures.size()) {
         fail_at(element + ".index", fmt::format("texture {} does not exist (the file has {})", info.index,
@@ -115,23 +116,56 @@ std::optional<std::uint32_t> TextureReader::load(const tinygltf::TextureInfo& in
         fail_at(where + ".sampler", fmt::format("sampler {} does not exist (the file has {})", texture.sampler,
                                                 model_.samplers.size()));
     }
-    const auto key = std::tuple{texture.source, texture.sampler, encoding, normal_scale};
-    if (auto it = loaded_.find(key); it != loaded_.end()) return it->second;
+    const auto key = std::tuple{texture.source, texture.sampler, encoding, normal, normal ? normal_scale : 1.0};
+    if (auto it = ticket_of_.find(key); it != ticket_of_.end()) return it->second;
     const tinygltf::Image& image = model_.images[static_cast<std::size_t>(texture.source)];
-    const std::string image_element = fmt::format("{}: images[{}]", file_.string(), texture.source);
     if (image.image.empty()) fail_at(fmt::format("images[{}]", texture.source), "the image holds no bytes");
-    TextureImage t = load_texture_memory(image.image.data(), image.image.size(), format_name(image), encoding,
-                                         image_element);
+    auto [at, added] = image_of_.try_emplace(texture.source, images_.size());
+    if (added) {
+        images_.push_back({image.image.data(), image.image.size(), format_name(image), encoding,
+                           fmt::format("{}: images[{}]", file_.string(), texture.source)});
+    }
+    Ticket ticket;
+    ticket.image = at->second;
+    ticket.encoding = encoding;
     if (texture.sampler >= 0) {
         const tinygltf::Sampler& s = model_.samplers[static_cast<std::size_t>(texture.sampler)];
-        t.wrap_s = wrap_mode(s.wrapS);
-        t.wrap_t = wrap_mode(s.wrapT);
+        ticket.wrap_s = wrap_mode(s.wrapS);
+        ticket.wrap_t = wrap_mode(s.wrapT);
     }
-    if (normal_scale) decode_normal_map(t, *normal_scale);
-    add_texture(scene_, std::move(t), image_element);
-    const auto index = static_cast<std::uint32_t>(scene_.textures.size() - 1);
-    loaded_.emplace(key, index);
+    ticket.normal_scale = normal_scale;
+    tickets_.push_back(ticket);
+    const auto index = static_cast<std::uint32_t>(tickets_.size() - 1);
+    ticket_of_.emplace(key, index);
     return index;
+}
+
+std::vector<std::uint32_t> TextureReader::resolve() {
+    std::vector<TextureImage> decoded = decode_textures(images_, scene_);
+    // An image decoded to half floats in one encoding and wanted in the other as well
+    // (a 16-bit PNG as colour and as data) is decoded again in that one.
+    std::vector<EncodedImage> again;
+    std::map<std::size_t, std::size_t> again_of;  // images_ -> its second decoding in `decoded`
+    for (const Ticket& ticket : tickets_) {
+        const EncodedImage& image = images_[ticket.image];
+        if (ticket.encoding == image.encoding || decoded[ticket.image].format != TexelFormat::Half) continue;
+        if (again_of.try_emplace(ticket.image, decoded.size() + again.size()).second) {
+            again.push_back(image);
+            again.back().encoding = ticket.encoding;
+        }
+    }
+    for (TextureImage& t : decode_textures(again, scene_)) decoded.push_back(std::move(t));
+    std::vector<std::uint32_t> out;
+    for (const Ticket& ticket : tickets_) {
+        const bool other = ticket.encoding != images_[ticket.image].encoding;
+        TextureImage t = decoded[other && again_of.count(ticket.image) ? again_of[ticket.image] : ticket.image];
+        if (t.format == TexelFormat::Rgba8) t.srgb = ticket.encoding == Encoding::SrgbUnlessFloat;
+        t.wrap_s = ticket.wrap_s;
+        t.wrap_t = ticket.wrap_t;
+        t.normal_scale = ticket.normal_scale;
+        out.push_back(add_texture_record(scene_, std::move(t)));
+    }
+    return out;
 }
 
 }  // namespace vkrt::gltf

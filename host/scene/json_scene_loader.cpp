@@ -220,7 +220,7 @@ Material::MetallicRoughness read_metallic_roughness(const Node& n) {
 }
 
 // A material's normal map: a linear image of tangent-space normals, glTF's encoding
-// (texture_image.hpp, decode_normal_map), its x and y scaled by normal_scale.
+// (TextureImage::normal_scale), its x and y scaled by normal_scale.
 void read_normal_map(const Node& n, Material& m, Scene& scene) {
     auto scale_node = n.find("normal_scale");
     auto file = n.find("normal_map");
@@ -234,10 +234,8 @@ void read_normal_map(const Node& n, Material& m, Scene& scene) {
         if (!(std::abs(scale) <= 1e6)) scale_node->fail(fmt::format("expected a number from -1e6 to 1e6, got {}", scale));
     }
     const std::string element = fmt::format("{}: {}", n.file(), file->path());
-    TextureImage t = load_texture_file(file->file_path(), Encoding::Linear, element);
-    decode_normal_map(t, scale);
-    add_texture(scene, std::move(t), element);
-    m.normal_map = static_cast<std::uint32_t>(scene.textures.size() - 1);
+    m.normal_map = load_texture(scene, file->file_path(), Encoding::Linear, element);
+    scene.textures[*m.normal_map].normal_scale = scale;
 }
 
 // A material's colour texture: the image file (relative to the scene file) and the
@@ -264,14 +262,12 @@ void read_texture(const Node& n, Material& m, Scene& scene) {
     }
     if (auto file = n.find("texture")) {
         const std::string element = fmt::format("{}: {}", n.file(), file->path());
-        add_texture(scene, load_texture_file(file->file_path(), Encoding::SrgbUnlessFloat, element), element);
-        m.texture = static_cast<std::uint32_t>(scene.textures.size() - 1);
+        m.texture = load_texture(scene, file->file_path(), Encoding::SrgbUnlessFloat, element);
     }
     read_normal_map(n, m, scene);
     if (auto file = n.find("emission_texture")) {
         const std::string element = fmt::format("{}: {}", n.file(), file->path());
-        add_texture(scene, load_texture_file(file->file_path(), Encoding::SrgbUnlessFloat, element), element);
-        m.emission_texture = static_cast<std::uint32_t>(scene.textures.size() - 1);
+        m.emission_texture = load_texture(scene, file->file_path(), Encoding::SrgbUnlessFloat, element);
     }
 }
 

@@ -402,9 +402,7 @@ void read_mesh(const json::Node& n, const MaterialLookup& material, Scene& scene
         if (const std::string& texture = mesh.material_textures.at(i); !texture.empty()) {
             const std::string element = fmt::format("{}: {}: material {} map_Kd", n.file(), file.path(),
                                                     json::quote_user(mesh.materials[i].name));
-            add_texture(scene, load_texture_file(path.parent_path() / texture, Encoding::SrgbUnlessFloat, element),
-                        element);
-            named.texture = static_cast<std::uint32_t>(scene.textures.size() - 1);
+            named.texture = load_texture(scene, path.parent_path() / texture, Encoding::SrgbUnlessFloat, element);
         }
         scene.materials.push_back(std::move(named));
     }

@@ -32,6 +32,9 @@ struct Camera {
     // view axis (unset: at look_at).
     double lens_radius = 0.0;
     std::optional<double> focus_distance;
+    // Placed by frame_scene (a glTF file without a camera, gltf_loader.hpp), which
+    // must place it again when the image's shape changes.
+    bool framed = false;
 };
 
 // Local: the paper's ray tracer (Phong from lights, the mirror/glass ray tree).
@@ -121,8 +124,8 @@ struct Material {
     // With metallic_roughness: a linear texture whose blue channel multiplies
     // metallic and green roughness (glTF's), at the same coordinates.
     std::optional<std::uint32_t> metallic_roughness_texture;
-    // A normal map, at the same coordinates: a texture of tangent-space normals
-    // already decoded and scaled (decode_normal_map, texture_image.hpp).
+    // A normal map, at the same coordinates: a texture of tangent-space normals in
+    // glTF's encoding, with its scale (TextureImage::normal_scale).
     std::optional<std::uint32_t> normal_map;
     // An emission texture, at the same coordinates: multiplies `emission` (which
     // must be nonzero for the material to emit at all).
@@ -207,8 +210,11 @@ struct Scene {
     std::vector<Ring> rings;
     std::vector<Cylinder> cylinders;
     std::vector<TextureImage> textures;  // Material::texture indexes them
+    TexelStore texels;                   // every texture's texels (TextureImage::first_word)
     // The image around the scene; without it rays that leave see render.background.
     std::optional<Environment> environment;
+    // Wall-clock seconds the loader spent decoding texture images (for the stats).
+    double texture_decode_seconds = 0.0;
     // What the loader accepted but the renderer will not show as the file means it
     // (e.g. an NFF mirror before mirrors exist); printed as warnings before rendering.
     std::vector<std::string> warnings;

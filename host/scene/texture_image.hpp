@@ -1,33 +1,86 @@
 #pragma once
-// Texture images: read through OpenImageIO (image/image_files.hpp), held as linear
-// RGBA floats for the flattening stage to pack (kernel/texture.glsl samples them).
+// Texture images: decoded once (PNG and JPEG in this process, anything else through
+// OpenImageIO: image/image_readers.hpp) and kept in the compact form the kernel
+// reads (kernel/texture.glsl): 8-bit files stay 8-bit, four bytes a texel; only
+// float and 16-bit files take half floats. All of a scene's texels live in one
+// array, Scene::texels, which the flattened scene shares rather than copies.
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
+#include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include <glm/vec4.hpp>
-#include <glm/ext/vector_double4.hpp>
 
 namespace vkrt {
 
 enum class Wrap : std::uint8_t { Repeat, Clamp, Mirror };  // kernel WRAP_REPEAT, _CLAMP, _MIRROR
 
-struct TextureImage {
-    std::string name;  // the file, or where in a file the image was
-    std::uint32_t width = 0;
-    std::uint32_t height = 0;
-    std::vector<glm::vec4> texels;  // linear, rows from the top
-    Wrap wrap_s = Wrap::Repeat;
-    Wrap wrap_t = Wrap::Repeat;
-};
+// How a texture's texels are stored, row after row from the top:
+//   Rgba8: one word a texel, red in the low byte, alpha in the high one; the value
+//          of a byte b is b / 255, or for red, green and blue of an sRGB-encoded
+//          texture sRGB's decoding of it (TextureImage::srgb). 8-bit files.
+//   Half:  two words a texel, half floats of (red, green) and of (blue, alpha), low
+//          half first, linear. Float files, and 16-bit ones decoded to linear.
+enum class TexelFormat : std::uint8_t { Half, Rgba8 };  // kernel TEXEL_HALF, TEXEL_RGBA8
 
 // How a file's values become linear: colour textures in 8- or 16-bit formats are
 // sRGB-encoded (glTF's base colour, PNG and JPEG by convention); float formats
 // (.exr, .hdr) hold linear values already.
 enum class Encoding : std::uint8_t { SrgbUnlessFloat, Linear };
+
+// One image's texels, decoded.
+struct DecodedImage {
+    std::uint32_t width = 0;
+    std::uint32_t height = 0;
+    TexelFormat format = TexelFormat::Rgba8;
+    bool srgb = false;                 // Rgba8: red, green and blue are sRGB-encoded
+    std::vector<std::uint32_t> words;  // as TexelFormat says
+};
+
+// A scene's texture: where its texels are in Scene::texels, and how to read them.
+struct TextureImage {
+    std::string name;  // the file, or where in a file the image was
+    std::uint32_t width = 0;
+    std::uint32_t height = 0;
+    TexelFormat format = TexelFormat::Rgba8;
+    bool srgb = false;
+    std::uint64_t first_word = 0;  // in Scene::texels
+    Wrap wrap_s = Wrap::Repeat;
+    Wrap wrap_t = Wrap::Repeat;
+    // A normal map holds glTF's encoding c of tangent-space normals; the kernel bends
+    // the shading normal by (2 c - 1) * (normal_scale, normal_scale, 1)
+    // (kernel/normal_map.glsl). Unused by other textures.
+    double normal_scale = 1.0;
+
+    std::size_t texel_count() const { return std::size_t(width) * height; }
+    std::size_t word_count() const { return texel_count() * (format == TexelFormat::Half ? 2 : 1); }
+};
+
+// Every texel of a scene, one array; copies of a Scene share it, and appending to a
+// shared one copies it first, so a copy never sees another's textures change.
+class TexelStore {
+public:
+    // Appends the words and returns where they start.
+    std::uint64_t append(std::vector<std::uint32_t>&& words);
+    // Room for `count` more words, zeroed, at the end; returns where it starts. For
+    // decoders that write in place (mutable_words).
+    std::uint64_t grow(std::size_t count);
+    std::span<std::uint32_t> mutable_words(std::uint64_t first, std::size_t count);
+
+    std::span<const std::uint32_t> words() const;
+    std::size_t size() const { return words_ ? words_->size() : 0; }
+    // The array itself, for the flattened scene to share (null when empty).
+    std::shared_ptr<const std::vector<std::uint32_t>> share() const { return words_; }
+
+private:
+    std::vector<std::uint32_t>& own();
+    std::shared_ptr<std::vector<std::uint32_t>> words_;
+};
 
 // The most texels one texture, and all of a scene's together, may hold.
 inline constexpr std::uint32_t kMaxTextureSide = 16384;
@@ -36,18 +89,52 @@ inline constexpr std::uint64_t kMaxTextureTexels = std::uint64_t(1) << 26;
 // The image file `file`; `element` names where the scene asked for it. Throws
 // SceneError naming both when it cannot be read or is empty, too large or has
 // no channels.
-TextureImage load_texture_file(const std::filesystem::path& file, Encoding encoding, const std::string& element);
+DecodedImage load_texture_file(const std::filesystem::path& file, Encoding encoding, const std::string& element);
 
 // The same from a file's bytes held in memory (an image inside a .glb); `format`
 // is a file name whose extension says what the bytes are (e.g. "image.png").
-TextureImage load_texture_memory(const unsigned char* data, std::size_t size, const std::string& format,
+DecodedImage load_texture_memory(const unsigned char* data, std::size_t size, const std::string& format,
                                  Encoding encoding, const std::string& element);
+
+// An image in linear float RGBA, rows from the top (an environment image).
+struct LinearImage {
+    std::string name;
+    std::uint32_t width = 0;
+    std::uint32_t height = 0;
+    std::vector<glm::vec4> texels;
+};
+
+// The image file `file` as linear floats (8- and 16-bit formats sRGB-decoded with
+// Encoding::SrgbUnlessFloat); throws SceneError as load_texture_file does.
+LinearImage load_linear_image(const std::filesystem::path& file, Encoding encoding, const std::string& element);
+
+// An image file's bytes held in memory, to be decoded with others (decode_textures).
+struct EncodedImage {
+    const unsigned char* data = nullptr;
+    std::size_t size = 0;
+    std::string format;   // as load_texture_memory's
+    Encoding encoding = Encoding::SrgbUnlessFloat;
+    std::string element;  // for messages
+};
 
 struct Scene;
 
-// Appends a texture to the scene; throws SceneError naming `element` when the
-// scene's textures would together pass kMaxTextureTexels.
-void add_texture(Scene& scene, TextureImage texture, const std::string& element);
+// Decodes the images on all hardware threads straight into the scene's texels, each
+// once, and returns each one's TextureImage (not yet in scene.textures: callers add
+// the records they need with add_texture_record). Throws SceneError as
+// load_texture_memory does, for the first image (in order) that fails.
+std::vector<TextureImage> decode_textures(const std::vector<EncodedImage>& images, Scene& scene);
+
+// The image file `file` decoded (load_texture_file) and added to the scene
+// (add_texture), its decoding timed into Scene::texture_decode_seconds; its index.
+std::uint32_t load_texture(Scene& scene, const std::filesystem::path& file, Encoding encoding, const std::string& element);
+
+// Appends a decoded texture to the scene; throws SceneError naming `element` when the
+// scene's textures would together pass kMaxTextureTexels. Returns its index.
+std::uint32_t add_texture(Scene& scene, DecodedImage image, const std::string& name, const std::string& element);
+
+// Appends a record of texels already in Scene::texels (decode_textures); returns its index.
+std::uint32_t add_texture_record(Scene& scene, TextureImage texture);
 
 // The affine map of texture coordinates that glTF's KHR_texture_transform
 // describes: scaled, rotated by `rotation` radians (counter-clockwise in (u, v),
@@ -55,16 +142,15 @@ void add_texture(Scene& scene, TextureImage texture, const std::string& element)
 std::array<double, 6> texture_transform(double offset_u, double offset_v, double rotation, double scale_u,
                                         double scale_v);
 
-// The mean of a texture's texels, channel by channel (an emission texture's share
-// of its emitter's power).
-glm::dvec4 texture_mean(const TextureImage& texture);
-
-// A linear normal map's texels made tangent-space vectors, as glTF defines them:
-// (2 rgb - 1) * (scale, scale, 1); alpha is kept. The kernel (normal_map.glsl)
-// filters and normalizes them.
-void decode_normal_map(TextureImage& texture, double scale);
+// Texel i (row y, column x: y * width + x) as the kernel reads it: linear, in float,
+// bit for bit (texel_at in kernel/texture.glsl); a normal map's encoding undecoded.
+glm::vec4 texel_value(const TextureImage& texture, std::span<const std::uint32_t> texels, std::size_t i);
 
 // sRGB's transfer function, decoded: an encoded value in [0, 1] to linear.
 double srgb_to_linear(double encoded);
+
+// The 256 values of an sRGB-encoded byte, decoded and rounded to float: the table
+// the kernel looks them up in.
+const std::array<float, 256>& srgb_byte_table();
 
 }  // namespace vkrt

@@ -22,6 +22,7 @@ SCENE_ARRAY(6, emitters, Emitter, load_emitter, rgba32ui)          // empty with
 SCENE_ARRAY(7, textures, Texture, load_texture, rgba32ui)         // empty without textures
 SCENE_ARRAY(8, grid_nodes, uint, load_grid_node, r32ui)           // cells + 1 offsets into grid_refs;
 SCENE_ARRAY(9, grid_refs, uint, load_ref, r32ui)                   // both empty without the grid
-SCENE_ARRAY(10, texture_words, uint, load_texture_word, r32ui)     // the textures' texels
+SCENE_ARRAY(10, texture_words, uint, load_texture_word, r32ui)     // the textures' texels (Texture)
+SCENE_ARRAY(11, table_words, uint, load_table_word, r32ui)         // the sRGB table, the environment
 
 #undef SCENE_ARRAY

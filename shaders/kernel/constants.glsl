@@ -77,6 +77,15 @@ const uint WRAP_REPEAT = 0u;
 const uint WRAP_CLAMP = 1u;
 const uint WRAP_MIRROR = 2u;
 
+// How a texture's texels are stored (Texture.info.w bits 4-5; texture.glsl).
+const uint TEXEL_HALF = 0u;   // two words a texel: half floats (r, g), (b, a), linear
+const uint TEXEL_RGBA8 = 1u;  // one word a texel: bytes r, g, b, a from the lowest
+// Texture.info.w bit 6: an RGBA8 texture's r, g and b are sRGB-encoded, decoded
+// through the table at the start of table_words (SRGB_TABLE_WORDS words, one float
+// per byte value).
+const uint TEXTURE_SRGB_BIT = 64u;
+const uint SRGB_TABLE_WORDS = 256u;
+
 // Mesa's lavapipe stops an invocation's loops silently after 65,535 iterations in
 // total (docs/architecture.md). The kernel counts its own iterations the way lavapipe does
 // (budget.glsl) against a budget below that cap, with room to spare.

@@ -5,10 +5,12 @@
 // the solid angle it covers where that can be drawn (solid_angle.glsl: a sphere's
 // cone, a rectangle's spherical rectangle), else uniformly on its area. Picked so,
 // a point of an emitter of mean radiance w has density w / emitter_power() over
-// the emitting area, whichever emitter it lies on. An emitter with an emission
-// texture is picked by its mean radiance over the texture (emitter_weight) and
-// sampled uniformly as any other; the estimate takes the textured radiance at the
-// point drawn, over that density: unbiased wherever the texture is not black.
+// the emitting area, whichever emitter it lies on. A triangle with an emission
+// texture is an emitter only where its own footprint in the texture emits, picked by
+// its mean radiance over that footprint (triangle_emitter_weight), and sampled
+// uniformly as any other; the estimate takes the textured radiance at the point
+// drawn, over that density: unbiased, since the host counts a footprint black only
+// where every texel the triangle's filtered look-ups can reach is black.
 //
 // Every draw takes exactly one slot (rng.glsl), whatever it picks: both backends then
 // consume identical streams, and the numbers a sample draws after a light sample do
@@ -18,7 +20,7 @@ struct EmitterPoint {
     vec3 position;
     vec3 normal;     // unit geometric normal on the emitting (front) side
     vec3 emission;   // radiance leaving the front face, at this point
-    float weight;    // the emitter's weight (emitter_weight): its density is weight / emitter_power()
+    float weight;    // the emitter's weight: its density is weight / emitter_power()
 };
 
 // The mean of an emission's channels: an emitter's power over pi times its area.
@@ -26,17 +28,13 @@ float emission_weight(vec3 emission) {
     return (emission.x + emission.y + emission.z) * (1.0f / 3.0f);
 }
 
-// The weight by which an emitter of material m, a primitive of `kind`, is picked:
-// its emission's, times its emission texture's mean on triangles and quads, as the
-// host weighs its power (flat_scene.cpp). Light samples' densities are built on it,
-// never on the textured radiance at a point, so that sample_light and
-// light_pdf_of_hit give one point one density.
-float emitter_weight(Material m, uint kind) {
-    vec3 e = vec3(m.emission_fresnel);
-    if (HAS_TEXTURES && m.maps.w != 0u && kind == REF_TRIANGLE) {
-        e *= vec3(load_texture(m.maps.w - 1u).mean);
-    }
-    return emission_weight(e);
+// The weight by which a triangle or quad of material m is picked, as the host
+// weighs its power (flat_scene.cpp): its emission's, or with an emission texture
+// the mean textured emission over its footprint, which the host stores in the record.
+// Light samples' densities are built on it, never on the textured radiance at a
+// point, so that sample_light and light_pdf_of_hit give one point one density.
+float triangle_emitter_weight(Material m, Triangle tri) {
+    return HAS_TEXTURES && m.maps.w != 0u ? uintBitsToFloat(tri.meta.w) : emission_weight(vec3(m.emission_fresnel));
 }
 
 // The radiance a triangle or quad of material m emits at the point of weights
@@ -140,7 +138,7 @@ EmitterPoint emitter_point(Emitter e, float u1, float u2) {
         vec3 p1 = vec3(tri.p1);
         vec3 p2 = vec3(tri.p2);
         Material m = load_material(tri.meta.x);
-        float weight = emitter_weight(m, REF_TRIANGLE);
+        float weight = triangle_emitter_weight(m, tri);
         if (HAS_QUADS && tri.meta.z != SHAPE_TRIANGLE) {
             Rect q = rect_of(tri);
             precise vec3 y = q.corner + u1 * q.ex + u2 * q.ey;
@@ -253,7 +251,7 @@ LightSample sample_light_from(vec3 o, vec2 u) {
                     emission = triangle_emission(m, tri, 0.5f * dot(d, q.ex) / dot(q.ex, q.ex),
                                                  0.5f * dot(d, q.ey) / dot(q.ey, q.ey));
                 }
-                float choice = emitter_weight(m, REF_TRIANGLE) * rect_area(q) / emitter_power();
+                float choice = triangle_emitter_weight(m, tri) * rect_area(q) / emitter_power();
                 return LightSample(y, normal, emission, choice / sr.solid_angle);
             }
         }
@@ -274,7 +272,12 @@ LightSample sample_light(vec3 o, INOUT(Rng) rng) {
 float light_pdf_of_hit(Ray ray, Hit hit) {
     uint kind = hit.prim >> REF_KIND_SHIFT;
     uint index = hit.prim & REF_INDEX_MASK;
-    float area_density = emitter_weight(load_material(hit.material), kind) / emitter_power();
+    Material m = load_material(hit.material);
+    float weight = emission_weight(vec3(m.emission_fresnel));
+    if (HAS_TEXTURES && HAS_TRIANGLES && kind == REF_TRIANGLE && m.maps.w != 0u) {
+        weight = uintBitsToFloat(load_triangle(index).meta.w);
+    }
+    float area_density = weight / emitter_power();
     if (HAS_SPHERES && kind == REF_SPHERE) {
         Sphere s = load_sphere(index);
         float radius = s.center_radius.w;

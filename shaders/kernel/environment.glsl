@@ -3,7 +3,7 @@
 // in global mode, sampled as a light by its own brightness. Without it the
 // background is one colour, background().
 //
-// The image is held in texture_words from environment_first_word() on, as the host
+// The image is held in table_words from environment_first_word() on, as the host
 // builds it (host/flatten/environment_table.cpp):
 //   0-8    the rotation from world directions to the environment's own frame, rows
 //   9, 10  width w and height h in texels
@@ -26,11 +26,11 @@
 const uint ENV_TEXELS = 12u;  // the first texel's word, after the header
 
 float environment_float(uint i) {
-    return uintBitsToFloat(load_texture_word(environment_first_word() + i));
+    return uintBitsToFloat(load_table_word(environment_first_word() + i));
 }
 
 uint environment_uint(uint i) {
-    return load_texture_word(environment_first_word() + i);
+    return load_table_word(environment_first_word() + i);
 }
 
 // A world direction in the environment's frame, and back (the rotation's transpose).

@@ -20,6 +20,9 @@ struct Sphere {
 // SHAPE_TRIANGLE, or SHAPE_PARALLELOGRAM / SHAPE_RECTANGLE for the parallelogram p0,
 // p1, p2, p0 + p2 - p1 (constants.glsl), which has no vertex normals. The texture
 // coordinates of p0, p1, p2 ride in the w lanes: (p0.w, p1.w), (p2.w, n0.w), (n1.w, n2.w).
+// meta.w: with an emission texture, the float bits of the triangle's emitter weight
+// (emitters.glsl, triangle_emitter_weight): the mean textured emission over its
+// footprint in the texture, 0 where the footprint is black; 0 otherwise.
 struct Triangle {
     vec4 p0;
     vec4 p1;
@@ -81,15 +84,15 @@ struct Material {
              fetch_vec4(b, 9u * (i) + 3u), fetch_vec4(b, 9u * (i) + 4u), fetch_vec4(b, 9u * (i) + 5u),  \
              fetch_texel(b, 9u * (i) + 6u), fetch_vec4(b, 9u * (i) + 7u), fetch_vec4(b, 9u * (i) + 8u))
 
-// A texture image (texture.glsl): its texels are 2 words each in texture_words from
-// info.x on, row after row from the top (packHalf2x16 of red and green, of blue and
-// alpha, linear values); info.y = width, info.z = height, info.w = the wrap modes,
-// horizontal in bits 0-1 and vertical in bits 2-3 (WRAP_REPEAT, _CLAMP, _MIRROR).
-// mean: the mean of its texels (an emission texture's share of its emitter's power,
-// emitters.glsl).
+// A texture image (texture.glsl): its texels are in texture_words from info.x on,
+// row after row from the top, as the format says; info.y = width, info.z = height,
+// info.w = the wrap modes, horizontal in bits 0-1 and vertical in bits 2-3
+// (WRAP_REPEAT, _CLAMP, _MIRROR), the format in bits 4-5 (TEXEL_HALF, TEXEL_RGBA8)
+// and TEXTURE_SRGB_BIT.
+// decode: x = a normal map's scale (normal_map.glsl); y, z, w unused.
 struct Texture {
     uvec4 info;
-    vec4 mean;
+    vec4 decode;
 };
 #define Texture_FROM_TEXELS(b, i) Texture(fetch_texel(b, 2u * (i)), fetch_vec4(b, 2u * (i) + 1u))
 

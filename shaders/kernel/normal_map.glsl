@@ -1,8 +1,9 @@
 // Normal maps (HAS_NORMAL_MAPS): a material's texture of tangent-space normals bends
-// the shading normal of triangles and quads. The host stores the map decoded, as
-// glTF defines it: (2 rgb - 1) * (scale, scale, 1), +x toward +u, +y up the image
-// (toward -v, since v runs down), +z along the surface normal
-// (host/scene/texture_image.cpp). Bilinear filtering commutes with that affine map.
+// the shading normal of triangles and quads. The map holds glTF's encoding c of a
+// tangent-space normal, decoded here as glTF defines it, after filtering (which
+// commutes with the affine map): (2 c - 1) * (scale, scale, 1) with the texture's
+// scale (Texture.decode.x), +x toward +u, +y up the image (toward -v, since v runs
+// down), +z along the surface normal.
 //
 // The tangent frame is derived per triangle, not read per vertex
 // (docs/decisions/0032-normal-maps.md): the tangent is dp/du of the triangle's
@@ -28,7 +29,11 @@ vec3 mapped_normal(Hit hit, vec3 wo) {
     if (m.maps.z == 0u) {
         return hit.normal;
     }
-    vec3 ts = vec3(texture_bilinear(load_texture(m.maps.z - 1u), material_uv(m, hit.uv)));
+    Texture map = load_texture(m.maps.z - 1u);
+    vec3 encoded = vec3(texture_bilinear(map, material_uv(m, hit.uv)));
+    float scale = map.decode.x;
+    precise vec3 ts = vec3((2.0f * encoded.x - 1.0f) * scale, (2.0f * encoded.y - 1.0f) * scale,
+                           2.0f * encoded.z - 1.0f);
     if (ts.x == 0.0f && ts.y == 0.0f) {
         return hit.normal;
     }

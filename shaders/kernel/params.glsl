@@ -61,7 +61,7 @@ PARAM(float, lens_scale, 16, x)      // the lens radius over a pixel's width on 
 PARAM(float, focus_distance, 16, y)  // along the view axis, to the plane in focus
 
 // The environment image (kernel/environment.glsl, HAS_ENVIRONMENT_MAP).
-PARAM(uint, environment_first_word, 16, z)  // where its header starts in texture_words
+PARAM(uint, environment_first_word, 16, z)  // where its header starts in table_words
 PARAM(float, environment_choice, 16, w)     // the chance next-event estimation picks it (0: never)
 
 #undef PARAM3

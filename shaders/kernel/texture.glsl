@@ -1,14 +1,42 @@
 // Colour textures (HAS_TEXTURES): a material's colour times the texture's value at
-// the hit's texture coordinates, by bilinear filtering of linear texels. Both
-// backends read the same half-float texels and do the same float arithmetic, so a
-// textured image is the same on both. No mipmaps: a pixel's samples are jittered
-// over its area, so the average over many samples filters the texture as it
-// filters edges (tests/texture_test.cpp shows a checkerboard at a distance).
+// the hit's texture coordinates, by bilinear filtering of linear texels. 8-bit
+// texels are decoded here, by the same float arithmetic on both backends (a
+// multiplication by the float nearest 1/255, or a look-up in the sRGB table the
+// host computed), so a textured image is the same on both. No mipmaps: a pixel's
+// samples are jittered over its area, so the average over many samples filters the
+// texture as it filters edges (tests/texture_test.cpp shows a checkerboard at a
+// distance).
 
-// Texel (x, y) of texture t, x and y already wrapped.
+uint texture_format(Texture t) {
+    return (t.info.w >> 4u) & 3u;
+}
+
+// The linear value of an sRGB-encoded byte.
+float srgb_byte(uint b) {
+    return uintBitsToFloat(load_table_word(b));
+}
+
+// Texel (x, y) of texture t, x and y already wrapped, linear. (One return: SPIRV-Tools
+// leaves calls of functions with early returns uninlined in places.)
 vec4 texel_at(Texture t, uint x, uint y) {
-    uint w = t.info.x + 2u * (y * t.info.y + x);
-    return vec4(unpackHalf2x16(load_texture_word(w)), unpackHalf2x16(load_texture_word(w + 1u)));
+    uint i = y * t.info.y + x;
+    vec4 c;
+    if (texture_format(t) == TEXEL_HALF) {
+        uint w = t.info.x + 2u * i;
+        c = vec4(unpackHalf2x16(load_texture_word(w)), unpackHalf2x16(load_texture_word(w + 1u)));
+    } else {
+        uint word = load_texture_word(t.info.x + i);
+        uint r = word & 255u;
+        uint g = (word >> 8u) & 255u;
+        uint b = (word >> 16u) & 255u;
+        float a = float(word >> 24u) * (1.0f / 255.0f);
+        if ((t.info.w & TEXTURE_SRGB_BIT) != 0u) {
+            c = vec4(srgb_byte(r), srgb_byte(g), srgb_byte(b), a);
+        } else {
+            c = vec4(float(r) * (1.0f / 255.0f), float(g) * (1.0f / 255.0f), float(b) * (1.0f / 255.0f), a);
+        }
+    }
+    return c;
 }
 
 // Texel index i, from -1 to 2n, on an axis of n texels, by the wrap mode. (GLSL

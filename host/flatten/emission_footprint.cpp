@@ -1,0 +1,124 @@
+#include "flatten/emission_footprint.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace vkrt {
+
+namespace {
+
+// Texel positions beyond this are no longer integers in double's grid of a
+// texture's size, nor anything the kernel's floats resolve: the whole axis.
+constexpr double kFarTexel = 1e15;
+
+// The unwrapped texel indices [lo, hi] the kernel's bilinear look-ups can reach on
+// an axis of n texels from coordinates in [cmin, cmax]: texel position c n - 0.5
+// (texture.glsl), its floor and the next, one more each side for float rounding.
+// False when some coordinate is not finite or too far: the kernel then reads
+// anywhere on the axis (it takes 0 for such coordinates).
+bool reached(double cmin, double cmax, std::uint32_t n, std::int64_t& lo, std::int64_t& hi) {
+    // The kernel ignores coordinates at or beyond 1e30 (wrap_coordinate).
+    if (!(std::abs(cmin) < 1e30 && std::abs(cmax) < 1e30)) return false;
+    const double a = cmin * n - 0.5, b = cmax * n - 0.5;
+    if (!(std::abs(a) < kFarTexel && std::abs(b) < kFarTexel)) return false;
+    lo = std::int64_t(std::floor(a)) - 1;
+    hi = std::int64_t(std::floor(b)) + 2;
+    return true;
+}
+
+std::int64_t floor_div(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+}  // namespace
+
+std::vector<TexelInterval> wrapped_intervals(std::int64_t lo, std::int64_t hi, std::uint32_t n, Wrap mode) {
+    const std::int64_t size = n;
+    const TexelInterval all{0, n - 1};
+    if (mode == Wrap::Clamp) {
+        return {{std::uint32_t(std::clamp<std::int64_t>(lo, 0, size - 1)),
+                 std::uint32_t(std::clamp<std::int64_t>(hi, 0, size - 1))}};
+    }
+    // Repeat has period n; mirror 2n, its odd periods reflected.
+    const std::int64_t period = mode == Wrap::Repeat ? size : 2 * size;
+    if (hi - lo + 1 >= period) return {all};
+    std::vector<TexelInterval> out;
+    for (std::int64_t k = floor_div(lo, size); k * size <= hi; ++k) {
+        const std::int64_t a = std::max(lo, k * size) - k * size, b = std::min(hi, k * size + size - 1) - k * size;
+        const bool reflected = mode == Wrap::Mirror && (k % 2 + 2) % 2 == 1;
+        if (reflected) {
+            out.push_back({std::uint32_t(size - 1 - b), std::uint32_t(size - 1 - a)});
+        } else {
+            out.push_back({std::uint32_t(a), std::uint32_t(b)});
+        }
+    }
+    return out;
+}
+
+std::uint64_t EmissionFootprints::Table::rect(std::uint32_t x0, std::uint32_t x1, std::uint32_t y0,
+                                              std::uint32_t y1) const {
+    const std::size_t row = std::size_t(width) + 1;
+    const auto at = [&](std::size_t x, std::size_t y) { return sums[y * row + x]; };
+    return at(x1 + 1, y1 + 1) - at(x0, y1 + 1) - at(x1 + 1, y0) + at(x0, y0);
+}
+
+const EmissionFootprints::Table& EmissionFootprints::table(std::uint32_t texture, const glm::dvec3& emission) {
+    const auto key = std::tuple{texture, emission.x, emission.y, emission.z};
+    if (auto it = tables_.find(key); it != tables_.end()) return it->second;
+    const TextureImage& t = scene_.textures[texture];
+    const std::span<const std::uint32_t> texels = scene_.texels.words();
+    // As the kernel weighs emission (emission_weight): the mean of the channels.
+    const auto emitted = [&](std::size_t i) {
+        const glm::vec4 c = texel_value(t, texels, i);
+        return std::max(0.0, (emission.x * c.r + emission.y * c.g + emission.z * c.b) / 3.0);
+    };
+    double brightest = 0.0;
+    for (std::size_t i = 0; i < t.texel_count(); ++i) brightest = std::max(brightest, emitted(i));
+    Table table;
+    table.width = t.width;
+    table.height = t.height;
+    table.unit = brightest / double(kUnits);
+    const std::size_t row = std::size_t(t.width) + 1;
+    table.sums.assign(row * (std::size_t(t.height) + 1), 0);
+    for (std::uint32_t y = 0; y < t.height; ++y) {
+        std::uint64_t running = 0;  // this row's texels so far
+        for (std::uint32_t x = 0; x < t.width; ++x) {
+            // Rounded up, so that a texel that emits at all counts at least 1.
+            const double e = emitted(std::size_t(y) * t.width + x);
+            running += e > 0.0 ? std::uint64_t(std::ceil(e / table.unit)) : 0;
+            table.sums[(std::size_t(y) + 1) * row + x + 1] = table.sums[std::size_t(y) * row + x + 1] + running;
+        }
+    }
+    return tables_.emplace(key, std::move(table)).first->second;
+}
+
+double EmissionFootprints::mean_emission(const Material& material, std::span<const glm::dvec2> uv) {
+    const TextureImage& t = scene_.textures[*material.emission_texture];
+    const auto& a = material.uv_transform;
+    glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    bool finite = true;
+    for (const glm::dvec2& p : uv) {
+        const glm::dvec2 q(a[0] * p.x + a[1] * p.y + a[2], a[3] * p.x + a[4] * p.y + a[5]);
+        finite = finite && std::isfinite(q.x) && std::isfinite(q.y);
+        lo = glm::min(lo, q);
+        hi = glm::max(hi, q);
+    }
+    std::int64_t x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+    const std::vector<TexelInterval> xs = finite && reached(lo.x, hi.x, t.width, x0, x1)
+                                              ? wrapped_intervals(x0, x1, t.width, t.wrap_s)
+                                              : std::vector<TexelInterval>{{0, t.width - 1}};
+    const std::vector<TexelInterval> ys = finite && reached(lo.y, hi.y, t.height, y0, y1)
+                                              ? wrapped_intervals(y0, y1, t.height, t.wrap_t)
+                                              : std::vector<TexelInterval>{{0, t.height - 1}};
+    const Table& sums = table(*material.emission_texture, material.emission);
+    std::uint64_t sum = 0;
+    double count = 0.0;
+    for (const TexelInterval& x : xs) {
+        for (const TexelInterval& y : ys) {
+            sum += sums.rect(x.first, x.last, y.first, y.last);
+            count += double(x.last - x.first + 1) * double(y.last - y.first + 1);
+        }
+    }
+    return double(sum) * sums.unit / count;
+}
+
+}  // namespace vkrt

@@ -1,0 +1,66 @@
+#pragma once
+// Textured emitters weighed by what they emit: a triangle (or quad) whose material
+// has an emission texture is an area light only where its own footprint in the
+// texture emits, picked with a weight equal to the mean textured emission over that
+// footprint (kernel/emitters.glsl, triangle_emitter_weight). A scanned asset's
+// emission texture is mostly black: its few lit texels light the scene, and the
+// thousands of triangles over black texels are no emitters at all.
+//
+// The footprint is the set of texels the kernel's bilinear look-ups can reach from
+// any point of the triangle: the box of its texture coordinates (after the
+// material's transform), widened by a texel for the filter and one more for float
+// rounding, wrapped as the texture wraps. Its mean comes from a summed-area table of
+// the texture times the emission, built once per texture and emission colour, so
+// that the cost is linear in texels plus triangles.
+#include <cstdint>
+#include <map>
+#include <span>
+#include <tuple>
+#include <vector>
+
+#include <glm/common.hpp>
+#include <glm/vec2.hpp>
+
+#include "scene/scene.hpp"
+
+namespace vkrt {
+
+class EmissionFootprints {
+public:
+    explicit EmissionFootprints(const Scene& scene) : scene_(scene) {}
+
+    // The mean over the footprint of the texture coordinates `uv` (3 for a triangle,
+    // 4 for a parallelogram's corners) of mean_c(emission_c * texel_c), with the
+    // texel as the kernel decodes it; 0 when every texel there is black. `material`
+    // must have an emission texture.
+    double mean_emission(const Material& material, std::span<const glm::dvec2> uv);
+
+private:
+    // Sums of the emission over texels [0, x) x [0, y), (width + 1) x (height + 1),
+    // in integer units of the brightest texel / kUnits, each texel rounded up: exact,
+    // so that a footprint's sum is 0 exactly when all its texels are black, however
+    // bright the rest of the texture (a table of doubles would cancel).
+    static constexpr std::uint64_t kUnits = std::uint64_t(1) << 20;
+    struct Table {
+        std::uint32_t width = 0;
+        std::uint32_t height = 0;
+        double unit = 0.0;
+        std::vector<std::uint64_t> sums;
+        std::uint64_t rect(std::uint32_t x0, std::uint32_t x1, std::uint32_t y0, std::uint32_t y1) const;  // inclusive
+    };
+    const Table& table(std::uint32_t texture, const glm::dvec3& emission);
+
+    const Scene& scene_;
+    std::map<std::tuple<std::uint32_t, double, double, double>, Table> tables_;
+};
+
+// The texel intervals [first, last] of an axis of n texels that the unwrapped texel
+// indices [lo, hi] reach under a wrap mode: one for clamp, up to three for repeat
+// and mirror; the whole axis once the span reaches the mode's period.
+struct TexelInterval {
+    std::uint32_t first;
+    std::uint32_t last;
+};
+std::vector<TexelInterval> wrapped_intervals(std::int64_t lo, std::int64_t hi, std::uint32_t n, Wrap mode);
+
+}  // namespace vkrt
