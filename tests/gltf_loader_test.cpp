@@ -171,10 +171,30 @@ TEST(Gltf, TheFilesCameraIsUsed) {
 
 TEST(Gltf, WithoutACameraTheSceneIsFramed) {
     const Scene s = vkrt::load_scene(write_gltf("framed", gltf_json("mesh.bin", kOneNode)));
+    EXPECT_TRUE(s.camera.framed);
     EXPECT_EQ(s.camera.look_at, dvec3(0.0));
-    // The bounding sphere (radius sqrt 3 around the box) fits in the vertical view.
-    const double distance = glm::length(s.camera.eye - s.camera.look_at);
-    EXPECT_LT(std::sqrt(3.0) / distance, std::sin(s.camera.fov / 2.0 * M_PI / 180.0));
+    EXPECT_EQ(s.camera.up, dvec3(0, 1, 0));
+    // From the front (+z), the bounding sphere (radius sqrt 3 around the box) filling
+    // the vertical view, the narrower of 800 x 600.
+    EXPECT_EQ(s.camera.eye.x, 0.0);
+    EXPECT_EQ(s.camera.eye.y, 0.0);
+    EXPECT_NEAR(std::sqrt(3.0) / s.camera.eye.z, std::sin(s.camera.fov / 2.0 * M_PI / 180.0), 1e-12);
+}
+
+// Whatever the model's size and offset, and for a portrait image the horizontal
+// angle, the narrower one, decides.
+TEST(Gltf, FramingFollowsTheModelAndTheImagesShape) {
+    Scene s = vkrt::load_scene(write_gltf("framed_far", gltf_json("mesh.bin", R"([{"mesh": 0, "translation": [1e5, -3e4, 7], "scale": [1e-4, 1e-4, 1e-4]}])")));
+    const double radius = std::sqrt(3.0) * 1e-4;
+    EXPECT_NEAR(s.camera.look_at.x, 1e5, 1e-9);
+    EXPECT_NEAR(s.camera.look_at.y, -3e4, 1e-9);
+    const double half = 20.0 * M_PI / 180.0;
+    EXPECT_NEAR(s.camera.eye.z - s.camera.look_at.z, radius / std::sin(half), 1e-9);
+    s.camera.width = 300;
+    s.camera.height = 600;
+    vkrt::frame_scene(s);
+    const double half_across = std::atan(std::tan(half) * 0.5);
+    EXPECT_NEAR(s.camera.eye.z - s.camera.look_at.z, radius / std::sin(half_across), 1e-9);
 }
 
 TEST(Gltf, PointLightsAndEmissionAreRead) {
@@ -189,9 +209,9 @@ TEST(Gltf, PointLightsAndEmissionAreRead) {
     EXPECT_EQ(s.lights[0].type, vkrt::LightType::Point);
     EXPECT_EQ(s.lights[0].position, dvec3(0, 3, 0));
     EXPECT_EQ(s.lights[0].color, dvec3(1, 0.5, 0.25));
-    EXPECT_EQ(s.lights[0].intensity, 20.0);
+    EXPECT_DOUBLE_EQ(s.lights[0].intensity, 20.0 / 683.0) << "candela to watts per steradian";
     EXPECT_EQ(s.lights[1].type, vkrt::LightType::Spot);
-    EXPECT_EQ(s.lights[1].intensity, 5.0);
+    EXPECT_DOUBLE_EQ(s.lights[1].intensity, 5.0 / 683.0);
     EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
     EXPECT_EQ(s.render.background, dvec3(0.05)) << "a dim sky beside the file's own lights";
 }
@@ -221,13 +241,13 @@ TEST(Gltf, SpotAndDirectionalLightsShineDownTheirNodesMinusZ) {
     EXPECT_NEAR(glm::length(spot.position - dvec3(1, 4, 0)), 0.0, 1e-15);
     EXPECT_EQ(spot.inner_angle, 0.2);
     EXPECT_EQ(spot.outer_angle, 0.5);
-    EXPECT_EQ(spot.intensity, 7.0);
+    EXPECT_DOUBLE_EQ(spot.intensity, 7.0 / 683.0);
     const vkrt::Light& sun = s.lights[1];
     EXPECT_EQ(sun.type, vkrt::LightType::Directional);
     // Turned 90 degrees about y: -z becomes -x.
     EXPECT_NEAR(glm::length(sun.direction - dvec3(-1, 0, 0)), 0.0, 1e-15);
     EXPECT_EQ(sun.color, dvec3(1, 0.9, 0.8));
-    EXPECT_EQ(sun.intensity, 3.0);
+    EXPECT_DOUBLE_EQ(sun.intensity, 3.0 / 683.0) << "lux to watts per square metre";
     // A matrix that stretches z: the direction stays unit. The inner angle's
     // default is 0; 1.5708 is pi/2 written short.
     EXPECT_EQ(s.lights[2].direction, dvec3(0, 0, -1));
@@ -253,6 +273,8 @@ TEST(Gltf, EmissiveStrengthScalesTheEmission) {
                  R"("metallicFactor": 0}, "emissiveFactor": [1, 0.5, 0], "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 4}}})");
     const Scene s = vkrt::load_scene(write_gltf("emissive", json));
     EXPECT_EQ(s.materials.at(s.triangles[0].material).emission, dvec3(4, 2, 0));
+    // Emission is a detail of the model, not its lighting: the sky stays white.
+    EXPECT_EQ(s.render.background, dvec3(1.0));
 }
 
 TEST(Gltf, WhatIsNotRenderedIsNamedOnce) {

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <future>
+#include <optional>
 #include <filesystem>
 #include <fstream>
 
@@ -27,6 +28,7 @@
 #include "render/sample_ranges.hpp"
 #include "render/stats_json.hpp"
 #include "scene/estimator_spec.hpp"
+#include "scene/gltf_loader.hpp"
 #include "scene/limits.hpp"
 #include "scene/load_scene.hpp"
 #include "scene/read_text.hpp"
@@ -45,6 +47,8 @@ std::unique_ptr<Backend> make_backend(const RenderArgs& args) {
 void apply_overrides(const RenderArgs& args, Scene& scene) {
     if (args.width) scene.camera.width = *args.width;
     if (args.height) scene.camera.height = *args.height;
+    // A view framed to the model frames it again for the image's new shape.
+    if (scene.camera.framed && (args.width || args.height)) frame_scene(scene);
     if (args.spp) scene.render.spp = *args.spp;
     if (args.spp && scene.render.corners) {
         fmt::print(stderr, "warning: --spp is ignored: this scene traces one ray through every pixel corner "
@@ -142,6 +146,10 @@ void print_summary(const RenderStats& s, const std::string& output, bool partial
         return names.empty() ? std::string("(none)") : fmt::format("{}", fmt::join(names, ", "));
     };
     fmt::print("features  kept: {}; left out: {}\n", list(s.features.kept()), list(s.features.left_out()));
+    if (s.triangles + s.textures + s.emitters > 0) {
+        fmt::print("scene     {} triangles, {} area lights, {} textures ({:.1f} MiB of texels)\n", s.triangles, s.emitters,
+                   s.textures, double(s.texture_bytes) / (1 << 20));
+    }
     fmt::print("rays      {} ({} eye of which {} hit, {} shadow, {} reflection, {} refraction, {} bounce), "
                "{:.2f} Mrays/s\n",
                s.rays(), s.eye_rays, s.eye_hits, s.shadow_rays, s.reflection_rays, s.refraction_rays, s.bounce_rays,
@@ -164,8 +172,10 @@ void print_summary(const RenderStats& s, const std::string& output, bool partial
     }
     fmt::print("per ray   {:.2f} cells visited, {:.2f} intersection tests\n", s.per_ray(s.cells_visited),
                s.per_ray(s.intersection_tests));
-    fmt::print("seconds   load {:.3f}, setup {:.3f}, render {:.3f}, passes {:.3f}, total {:.3f}\n", s.load_seconds,
-               s.flatten_seconds + s.setup_seconds, s.render_seconds, s.pass_seconds, s.total_seconds);
+    fmt::print("seconds   load {:.3f} (textures {:.3f}), setup {:.3f}, first pass done at {:.3f}, render {:.3f}, passes "
+               "{:.3f}, total {:.3f}\n",
+               s.load_seconds, s.decode_seconds, s.flatten_seconds + s.setup_seconds, s.first_pass_seconds,
+               s.render_seconds, s.pass_seconds, s.total_seconds);
     if (s.peak_resident_bytes > 0) fmt::print("memory    peak {:.0f} MiB resident\n", double(s.peak_resident_bytes) / (1 << 20));
     fmt::print("wrote     {}{}\n", output, partial ? " (a partial file: vkrt merge adds it up with others)" : "");
 }
@@ -245,7 +255,9 @@ int run_render(const RenderArgs& args) {
     const live::PassLabels labels{label, backend->name(), args.reference.empty() ? nullptr : &reference,
                                   args.time && !args.spp};
     auto last_checkpoint = std::chrono::steady_clock::now();
+    std::optional<double> first_pass_seconds;
     plan.after_pass = [&](const PassView& view) {
+        if (!first_pass_seconds) first_pass_seconds = seconds_since(start);
         if (server) live::feed_pass(feed, view, labels);
         if (args.checkpoint && seconds_since(last_checkpoint) >= *args.checkpoint) {
             write_output(output, args, scene, backend->name(), view.total, samples, view.samples, view.fingerprint,
@@ -265,6 +277,8 @@ int run_render(const RenderArgs& args) {
     RenderStats& s = outcome.stats;
     s.setup_seconds += backend_seconds;         // device and instance creation, while the scene loaded
     s.load_seconds = load_seconds;
+    s.decode_seconds = scene.texture_decode_seconds;
+    s.first_pass_seconds = first_pass_seconds.value_or(0.0);
     s.total_seconds = seconds_since(start);     // from loading the scene to the written image
     s.peak_resident_bytes = app::peak_resident_bytes();
     if (!args.stats_file.empty()) {

@@ -118,6 +118,10 @@ RenderStats collect_stats(const FlatScene& scene, const Backend& backend, const 
     s.tile_width = result.tile_width;
     s.tile_height = result.tile_height;
     s.device_resets = result.device_resets;
+    s.triangles = scene.triangles.size();
+    s.emitters = scene.emitters.size();
+    s.textures = scene.textures.size();
+    s.texture_bytes = scene.texture_words.size() * sizeof(std::uint32_t);
     s.features = scene.features;
     s.buffers = scene.built_buffers();
     s.validation_messages = backend.validation_messages();

@@ -44,6 +44,8 @@ struct RenderStats {
     std::uint64_t nonfinite_samples = 0;  // discarded for NaN or infinity
     std::uint64_t clamped_samples = 0;    // a channel above SUM_SAMPLE_MAX (kernel/sums.glsl), clamped
     double load_seconds = 0.0;            // reading and parsing the scene file (set by the command)
+    double decode_seconds = 0.0;          // of which decoding texture images (Scene::texture_decode_seconds)
+    double first_pass_seconds = 0.0;      // from the command's start to its first pass's sums (set by the command)
     double flatten_seconds = 0.0;         // Scene -> FlatScene
     double setup_seconds = 0.0;           // backend set-up (pipelines, uploads)
     double render_seconds = 0.0;
@@ -54,6 +56,9 @@ struct RenderStats {
     // Vulkan: the layout of the work on the device (RenderResult says more).
     std::string data_paths;
     std::uint32_t slabs = 0, tile_width = 0, tile_height = 0, device_resets = 0;
+    // What the kernel was given: triangles (and quads), the area lights among all
+    // primitives, texture records and the bytes of their texels.
+    std::size_t triangles = 0, emitters = 0, textures = 0, texture_bytes = 0;
     FeatureSet features;
     std::vector<BufferSize> buffers;
     std::uint32_t validation_messages = 0;

@@ -34,6 +34,13 @@ namespace {
 using glm::dmat4;
 using glm::dvec3;
 
+// The luminous efficacy by which glTF's photometric light units (candela, lux) become
+// the renderer's radiometric ones: the definition of the candela, at 555 nm.
+constexpr double kLumensPerWatt = 683.0;
+
+// The sky behind a file that brings its own lights: Blender's default world.
+constexpr double kLitSceneSky = 0.05;
+
 // Node placements (a node under each of its parents counts once per path): far more
 // than any asset has, few enough to walk in a moment.
 constexpr std::size_t kMaxNodeVisits = 100'000;
@@ -214,6 +221,15 @@ private:
             if (g.alphaMode != "OPAQUE") note_unsupported(fmt::format("materials with alphaMode {}, rendered opaque", g.alphaMode));
             materials_.push_back(static_cast<std::uint32_t>(scene_.materials.size()));
             scene_.materials.push_back(m);
+        }
+        // The materials hold tickets (gltf_textures.hpp) until every image is decoded.
+        const std::vector<std::uint32_t> textures = textures_.resolve();
+        for (std::uint32_t index : materials_) {
+            Material& m = scene_.materials[index];
+            for (std::optional<std::uint32_t>* t : {&m.texture, &m.metallic_roughness_texture, &m.normal_map,
+                                                    &m.emission_texture}) {
+                if (*t) *t = textures[**t];
+            }
         }
     }
 
@@ -463,11 +479,11 @@ private:
         if (p.type == LightType::Spot) read_cone(l.spot, element + ".spot", p);
         if (l.color.size() == 3) p.color = color(dvec3(l.color[0], l.color[1], l.color[2]), 1e6, element + ".color");
         if (!(l.intensity >= 0.0 && std::isfinite(l.intensity))) fail_at(element + ".intensity", "expected a number >= 0");
-        // Candela (lux for a directional light) taken as the renderer's radiant
-        // intensity (irradiance), one for one, as glTF viewers do: a point light of
-        // intensity I lights a surface facing it at distance r with I / r^2
-        // (docs/gltf.md).
-        p.intensity = l.intensity;
+        // Candela (lux for a directional light) to radiant intensity in watts per
+        // steradian (irradiance in watts per square metre) at 683 lumens per watt, as
+        // Blender's importer converts them (decision 0036): a point light of I cd
+        // lights a surface facing it at r metres with I / 683 / r^2.
+        p.intensity = l.intensity / kLumensPerWatt;
         if (l.range > 0.0) note_unsupported("light ranges (lights reach everywhere)");
         scene_.lights.push_back(p);
     }
@@ -504,8 +520,8 @@ private:
     gltf::TextureReader textures_;  // after model_, file_ and scene_, which it refers to
 };
 
-// Without a camera in the file: look at the scene's bounding box from the front and a
-// little above, at a distance that fits its bounding sphere in the view.
+}  // namespace
+
 void frame_scene(Scene& scene) {
     dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
     for (const Triangle& t : scene.triangles) {
@@ -514,20 +530,24 @@ void frame_scene(Scene& scene) {
             hi = glm::max(hi, v);
         }
     }
-    const dvec3 centre = 0.5 * (lo + hi);
-    const double radius = std::max(0.5 * glm::length(hi - lo), 1e-6);
+    const dvec3 centre = 0.5 * lo + 0.5 * hi;  // halves first: no overflow at 1e308
+    // The box's circumscribed sphere (triangles of zero area are not loaded, so it
+    // has a size; the floor only keeps the distance finite).
+    const double radius = std::max(glm::length(0.5 * hi - 0.5 * lo), 1e-12 * (1.0 + glm::length(centre)));
     Camera& cam = scene.camera;
     cam.fov = 40.0;
-    const double distance = 1.1 * radius / std::sin(glm::radians(cam.fov / 2.0));
-    cam.eye = centre + distance * glm::normalize(dvec3(0.0, 0.35, 1.0));
+    // The sphere fills the narrower of the view's two angles.
+    const double half_vertical = glm::radians(cam.fov / 2.0);
+    const double aspect = double(cam.width) / double(cam.height);
+    const double half_narrow = aspect >= 1.0 ? half_vertical : std::atan(std::tan(half_vertical) * aspect);
+    const double distance = radius / std::sin(half_narrow);
+    cam.eye = centre + dvec3(0.0, 0.0, distance);
     cam.look_at = centre;
     cam.up = dvec3(0, 1, 0);
+    cam.framed = true;
 }
 
-bool emits(const Scene& scene) {
-    return std::any_of(scene.materials.begin(), scene.materials.end(),
-                       [](const Material& m) { return is_nonzero(m.emission); });
-}
+namespace {
 
 }  // namespace
 
@@ -541,12 +561,13 @@ Scene load_gltf_scene(const std::filesystem::path& file) {
     reader.read(dmat4(1.0));
     if (!reader.has_camera()) frame_scene(scene);
     // Global mode with its defaults (docs/gltf.md): 64 samples a pixel, and a uniform
-    // sky as the environment, white when the file brings no light of its own, dim
-    // when it does.
+    // sky as the environment: white, as viewers light a model, when the file brings no
+    // lights of its own (emissive materials are details such as indicator lamps, not
+    // the scene's lighting); Blender's default world grey when it does.
     scene.render.mode = RenderMode::Global;
     scene.render.jitter = true;
     scene.render.spp = 64;
-    scene.render.background = dvec3(scene.lights.empty() && !emits(scene) ? 1.0 : 0.05);
+    scene.render.background = dvec3(scene.lights.empty() ? 1.0 : kLitSceneSky);
     return scene;
 }
 

@@ -16,6 +16,12 @@ namespace vkrt {
 // becomes one warning per kind in Scene::warnings.
 Scene load_gltf_scene(const std::filesystem::path& file);
 
+// The view of a file without a camera, as glTF viewers frame a model: from its front
+// (+z), looking down -z with +y up, 40 degrees high, the sphere around the triangles'
+// bounding box filling the narrower of the view's angles for the camera's width and
+// height, whatever the model's size or offset. Sets camera.framed.
+void frame_scene(Scene& scene);
+
 // The file's meshes with their materials, and its lights, placed by
 // `placement` and appended to `scene` (a JSON scene's "gltf" object); its camera
 // and the render defaults are not taken.
