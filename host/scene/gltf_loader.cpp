@@ -21,6 +21,7 @@
 
 #include "scene/gltf_accessor.hpp"
 #include "scene/gltf_file.hpp"
+#include "scene/gltf_spec_gloss.hpp"
 #include "scene/gltf_textures.hpp"
 #include "scene/indexed_mesh.hpp"
 #include "scene/json_reader.hpp"
@@ -197,11 +198,13 @@ private:
                 m.emission = strength * color(dvec3(g.emissiveFactor[0], g.emissiveFactor[1], g.emissiveFactor[2]), 1e6,
                                               element + ".emissiveFactor");
             }
-            m.texture = textures_.texture(pbr.baseColorTexture, element + ".pbrMetallicRoughness.baseColorTexture",
-                                          Encoding::SrgbUnlessFloat, m);
-            m.metallic_roughness_texture =
-                textures_.texture(pbr.metallicRoughnessTexture, element + ".pbrMetallicRoughness.metallicRoughnessTexture",
-                                  Encoding::Linear, m);
+            if (!read_specular_glossiness(g, element, mr)) {
+                m.texture = textures_.texture(pbr.baseColorTexture, element + ".pbrMetallicRoughness.baseColorTexture",
+                                              Encoding::SrgbUnlessFloat, m);
+                m.metallic_roughness_texture = textures_.texture(
+                    pbr.metallicRoughnessTexture, element + ".pbrMetallicRoughness.metallicRoughnessTexture",
+                    Encoding::Linear, m);
+            }
             m.emission_texture =
                 textures_.texture(g.emissiveTexture, element + ".emissiveTexture", Encoding::SrgbUnlessFloat, m);
             m.normal_map = textures_.normal_texture(g.normalTexture, element + ".normalTexture", m);
@@ -210,6 +213,22 @@ private:
             materials_.push_back(static_cast<std::uint32_t>(scene_.materials.size()));
             scene_.materials.push_back(m);
         }
+    }
+
+    // KHR_materials_pbrSpecularGlossiness, which takes the place of
+    // pbrMetallicRoughness where a material has it: its factors converted
+    // (gltf_spec_gloss.hpp). Whether the material has it.
+    bool read_specular_glossiness(const tinygltf::Material& g, const std::string& element, Material::MetallicRoughness& mr) {
+        const auto e = g.extensions.find("KHR_materials_pbrSpecularGlossiness");
+        if (e == g.extensions.end()) return false;
+        double alpha = 1.0;
+        mr = gltf::to_metallic_roughness(gltf::read_specular_glossiness(
+            e->second, element + ".extensions.KHR_materials_pbrSpecularGlossiness", file_.string(), alpha));
+        if (alpha < 1.0) note_unsupported("materials with a base colour alpha below 1, rendered opaque");
+        if (e->second.Has("diffuseTexture") || e->second.Has("specularGlossinessTexture")) {
+            note_unsupported("KHR_materials_pbrSpecularGlossiness textures (their factors alone are converted)");
+        }
+        return true;
     }
 
     double unit(double v, const std::string& element) const {
