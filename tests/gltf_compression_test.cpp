@@ -236,7 +236,9 @@ TEST_P(Variants, DecodeToTheOriginalTrianglesWithinAQuantizationStep) {
         worst_position = std::max(worst_position, found_error);
         ASSERT_EQ(t.normals.has_value(), u.normals.has_value());
         // gltfpack keeps texture coordinates only where a texture reads them.
-        if (ma.texture) ASSERT_TRUE(u.uvs.has_value());
+        if (ma.texture) {
+            ASSERT_TRUE(u.uvs.has_value());
+        }
         for (int k = 0; k < 3; ++k) {
             if (t.normals) worst_normal = std::max(worst_normal, angle((*t.normals)[k], (*u.normals)[(k + r) % 3]));
             if (t.uvs && u.uvs) {
@@ -532,7 +534,7 @@ std::array<double, 3> octahedral(const Int* in) {
 
 TEST(Meshopt, TheOctahedralFilterDecodesAsSpecified) {
     const std::vector<float> vectors = unit_vectors();
-    for (const auto [stride, bits] : {std::pair<std::size_t, int>{4, 8}, {4, 6}, {8, 16}, {8, 12}}) {
+    for (const auto& [stride, bits] : {std::pair<std::size_t, int>{4, 8}, {4, 6}, {8, 16}, {8, 12}}) {
         std::vector<unsigned char> filtered(kElements * stride);
         meshopt_encodeFilterOct(filtered.data(), kElements, stride, bits, vectors.data());
         const auto decoded = meshopt_decoded(encode_vertices(filtered, stride), kElements, stride,
@@ -672,6 +674,15 @@ TEST(Meshopt, LayoutsTheExtensionForbidsAreNamed) {
                                {kMeshoptPositions, ".buffer: buffers[1] is a fallback buffer, which holds no data"});
     test::expect_error_message(refusal("no_count", [&](nlohmann::json& v) { ext(v).erase("count"); }), "",
                                {kMeshoptPositions, ": no count"});
+}
+
+// A buffer without data that compressed views refer to is a fallback buffer,
+// marked so or not.
+TEST(Meshopt, AnUnmarkedBufferWithoutDataIsAFallbackToo) {
+    const fs::path file = edited(variant("still_life_meshopt.glb"), "meshopt_unmarked", [](Glb& g) {
+        g.json["buffers"][1]["extensions"]["EXT_meshopt_compression"]["fallback"] = "not a boolean";
+    });
+    EXPECT_EQ(vkrt::load_scene(file).triangles.size(), vkrt::load_scene(variant("still_life_meshopt.glb")).triangles.size());
 }
 
 // EXT_meshopt_compression only used, the uncompressed data in a fallback file

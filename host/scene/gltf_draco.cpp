@@ -65,13 +65,17 @@ std::unique_ptr<draco::Mesh> decode_stream(const tinygltf::Model& model, int vie
     draco::DecoderBuffer probe;
     probe.Init(data, view.byteLength);
     const auto type = draco::Decoder::GetEncodedGeometryType(&probe);
-    if (!type.ok()) fail(file, element, fmt::format("{} cannot be decoded: {}", what, type.status().error_msg_string()));
+    if (!type.ok()) {
+        fail(file, element, fmt::format("{} cannot be decoded: {}", what, one_line(type.status().error_msg_string())));
+    }
     if (type.value() != draco::TRIANGULAR_MESH) fail(file, element, fmt::format("{} holds no triangle mesh", what));
     draco::DecoderBuffer stream;
     stream.Init(data, view.byteLength);
     draco::Decoder decoder;
     auto mesh = decoder.DecodeMeshFromBuffer(&stream);
-    if (!mesh.ok()) fail(file, element, fmt::format("{} cannot be decoded: {}", what, mesh.status().error_msg_string()));
+    if (!mesh.ok()) {
+        fail(file, element, fmt::format("{} cannot be decoded: {}", what, one_line(mesh.status().error_msg_string())));
+    }
     return std::move(mesh).value();
 }
 

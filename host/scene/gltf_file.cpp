@@ -123,7 +123,7 @@ PreparedFile prepare_file(const std::filesystem::path& file) {
     prepared.draco = take_draco_primitives(root, file.string());
     prepared.meshopt = take_meshopt_views(root, prepared.binary, file.string());
     if (prepared.draco.empty() && prepared.meshopt.placeholders.empty()) return prepared;
-    std::string text = root.dump();
+    std::string text = root.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
     if (prepared.binary) {
         prepared.bytes = replace_json_chunk(bytes, *json_length, std::move(text));
     } else {

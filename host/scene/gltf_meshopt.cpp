@@ -114,7 +114,10 @@ bool is_fallback(const nlohmann::json& buffer, std::size_t i, bool binary, bool 
     const auto ext = buffer.find("extensions");
     if (ext != buffer.end() && ext->is_object()) {
         const auto own = ext->find(kName);
-        if (own != ext->end() && own->is_object() && own->value("fallback", false) == true) return true;
+        if (own != ext->end() && own->is_object()) {
+            const auto fallback = own->find("fallback");
+            if (fallback != own->end() && *fallback == true) return true;
+        }
     }
     return referred && !buffer.contains("uri") && (!binary || i > 0);
 }
