@@ -57,6 +57,23 @@ TEST(SpecularGlossiness, FactorsConvertToTheRecordsValues) {
                     dvec3(0.73471483129542658, 0.36868354047535634, 0.20296750393007035), 0.84809387246021073, 0.7);
 }
 
+// A texel multiplies each factor by its texture's value (the glossiness by the
+// specular-glossiness texture's alpha) before the conversion: the grey material
+// of above, from a texel of half the diffuse factor's colour and a specular
+// texel of 0.8 under a factor of 0.25.
+TEST(SpecularGlossiness, ATexelTimesItsFactorsConverts) {
+    const SpecularGlossiness factors{dvec3(1.0), dvec3(0.25), 1.0};
+    expect_material(vkrt::gltf::convert_texel(dvec3(0.5), glm::dvec4(0.8, 0.8, 0.8, 0.5), factors),
+                    dvec3(0.58833829360685708), 0.29179067350476734, 0.5);
+    // Absent textures count as 1: the factors' own conversion.
+    const SpecularGlossiness gold{dvec3(0.0), dvec3(1.0, 0.766, 0.336), 0.9};
+    const Material::MetallicRoughness a = vkrt::gltf::convert_texel(dvec3(1.0), glm::dvec4(1.0), gold);
+    const Material::MetallicRoughness b = to_metallic_roughness(gold);
+    EXPECT_EQ(a.base_color, b.base_color);
+    EXPECT_EQ(a.metallic, b.metallic);
+    EXPECT_EQ(a.roughness, b.roughness);
+}
+
 // In glTF's reference model the converted material reflects mix(0.04, base, m) at
 // normal incidence and has the diffuse colour 0.96 (1 - m) base: for grey factors,
 // the extension's F0 = specular and c_diff = diffuse (1 - max(specular)) exactly.

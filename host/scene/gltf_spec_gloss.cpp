@@ -77,6 +77,12 @@ Material::MetallicRoughness to_metallic_roughness(const SpecularGlossiness& sg) 
     return mr;
 }
 
+Material::MetallicRoughness convert_texel(glm::dvec3 diffuse, glm::dvec4 specular_glossiness,
+                                          const SpecularGlossiness& factors) {
+    return to_metallic_roughness({diffuse * factors.diffuse, glm::dvec3(specular_glossiness) * factors.specular,
+                                  specular_glossiness.a * factors.glossiness});
+}
+
 SpecularGlossiness read_specular_glossiness(const tinygltf::Value& extension, const std::string& element,
                                             const std::string& file, double& alpha) {
     if (!extension.IsObject()) throw SceneError(fmt::format("{}: {}: expected an object", file, element));

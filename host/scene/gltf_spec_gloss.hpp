@@ -11,6 +11,7 @@
 #include <string>
 
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "scene/scene.hpp"
 
@@ -29,6 +30,13 @@ struct SpecularGlossiness {
 // The conversion, pure, over linear values: the factors', or one texel's (a
 // texture's value times its factor).
 Material::MetallicRoughness to_metallic_roughness(const SpecularGlossiness& sg);
+
+// One texel of the extension's textures as the material's values there: the
+// diffuse texture's colour and the specular-glossiness texture's colour (both
+// sRGB-decoded to linear) and glossiness (its alpha, linear), each times its factor,
+// converted as above. Textures that are absent are given as 1.
+Material::MetallicRoughness convert_texel(glm::dvec3 diffuse, glm::dvec4 specular_glossiness,
+                                          const SpecularGlossiness& factors);
 
 // The factors of a material's extension object (defaults where absent), each
 // checked: throws SceneError naming `file` and the member under `element`. The
