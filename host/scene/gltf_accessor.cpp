@@ -110,15 +110,17 @@ T load(const unsigned char* p) {
 }
 
 // Component k of element i as a double: floats as they are, normalized integers
-// mapped to [0, 1] or [-1, 1] as the specification says (3.11).
+// mapped to [0, 1] or [-1, 1] as the specification says (3.11), other integers as
+// their values (KHR_mesh_quantization).
 double component_value(const Elements& e, std::size_t i, std::size_t k) {
     const unsigned char* p = e.data + i * e.stride + k * e.size;
+    const bool n = e.normalized;
     switch (e.component) {
         case TINYGLTF_COMPONENT_TYPE_FLOAT: return load<float>(p);
-        case TINYGLTF_COMPONENT_TYPE_BYTE: return std::max(load<std::int8_t>(p) / 127.0, -1.0);
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return load<std::uint8_t>(p) / 255.0;
-        case TINYGLTF_COMPONENT_TYPE_SHORT: return std::max(load<std::int16_t>(p) / 32767.0, -1.0);
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return load<std::uint16_t>(p) / 65535.0;
+        case TINYGLTF_COMPONENT_TYPE_BYTE: return n ? std::max(load<std::int8_t>(p) / 127.0, -1.0) : load<std::int8_t>(p);
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return n ? load<std::uint8_t>(p) / 255.0 : load<std::uint8_t>(p);
+        case TINYGLTF_COMPONENT_TYPE_SHORT: return n ? std::max(load<std::int16_t>(p) / 32767.0, -1.0) : load<std::int16_t>(p);
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return n ? load<std::uint16_t>(p) / 65535.0 : load<std::uint16_t>(p);
         default: return 0.0;
     }
 }
@@ -127,14 +129,24 @@ double component_value(const Elements& e, std::size_t i, std::size_t k) {
 
 namespace {
 
-// An accessor of `N` floats (or normalized integers) per element, each finite.
+// An accessor of `N` floats (or integers, as `integers` allows) per element, each finite.
 template <int N, typename Vec>
 std::vector<Vec> read_floats(const tinygltf::Model& model, int accessor, int type, const char* name,
-                             const Origin& origin) {
+                             const Origin& origin, Integers integers) {
     const Elements e = locate(model, accessor, type, name, origin);
-    if (e.component != TINYGLTF_COMPONENT_TYPE_FLOAT && !e.normalized) {
-        fail(origin, fmt::format("accessors[{}] holds {} values that are not normalized; expected FLOAT", accessor,
-                                 component_name(e.component)));
+    const bool short_integer = e.size < 4;  // BYTE, UNSIGNED_BYTE, SHORT, UNSIGNED_SHORT
+    if (e.component != TINYGLTF_COMPONENT_TYPE_FLOAT && !e.normalized &&
+        !(short_integer && integers == Integers::Quantized)) {
+        fail(origin, fmt::format("accessors[{}] holds {} values that are not normalized; expected FLOAT or normalized "
+                                 "integers{}",
+                                 accessor, component_name(e.component),
+                                 short_integer && integers == Integers::Quantizable
+                                     ? " (KHR_mesh_quantization allows plain ones, but the file does not use it)"
+                                     : ""));
+    }
+    if (e.normalized && e.component != TINYGLTF_COMPONENT_TYPE_FLOAT && !short_integer) {
+        fail(origin, fmt::format("accessors[{}] holds normalized {} values; glTF normalizes bytes and shorts only",
+                                 accessor, component_name(e.component)));
     }
     std::vector<Vec> out(e.count);
     for (std::size_t i = 0; i < e.count; ++i) {
@@ -149,12 +161,14 @@ std::vector<Vec> read_floats(const tinygltf::Model& model, int accessor, int typ
 
 }  // namespace
 
-std::vector<glm::dvec3> read_vec3(const tinygltf::Model& model, int accessor, const Origin& origin) {
-    return read_floats<3, glm::dvec3>(model, accessor, TINYGLTF_TYPE_VEC3, "a VEC3", origin);
+std::vector<glm::dvec3> read_vec3(const tinygltf::Model& model, int accessor, const Origin& origin,
+                                  Integers integers) {
+    return read_floats<3, glm::dvec3>(model, accessor, TINYGLTF_TYPE_VEC3, "a VEC3", origin, integers);
 }
 
-std::vector<glm::dvec2> read_vec2(const tinygltf::Model& model, int accessor, const Origin& origin) {
-    return read_floats<2, glm::dvec2>(model, accessor, TINYGLTF_TYPE_VEC2, "a VEC2", origin);
+std::vector<glm::dvec2> read_vec2(const tinygltf::Model& model, int accessor, const Origin& origin,
+                                  Integers integers) {
+    return read_floats<2, glm::dvec2>(model, accessor, TINYGLTF_TYPE_VEC2, "a VEC2", origin, integers);
 }
 
 std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int accessor, std::uint32_t limit,

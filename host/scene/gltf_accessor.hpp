@@ -22,11 +22,21 @@ struct Origin {
     std::string element;  // e.g. "meshes[2].primitives[0].attributes.POSITION"
 };
 
-// A VEC3 accessor of floats (or normalized integers) as doubles; each value finite.
-std::vector<glm::dvec3> read_vec3(const tinygltf::Model& model, int accessor, const Origin& origin);
+// Which integers an attribute may hold besides floats.
+enum class Integers {
+    Normalized,   // bytes and shorts normalized to [0, 1] or [-1, 1] (glTF 2.0, 3.7.2.1)
+    Quantizable,  // the same; the message for plain ones names KHR_mesh_quantization, not used by the file
+    Quantized,    // also plain bytes and shorts, taken as their values (KHR_mesh_quantization)
+};
+
+// A VEC3 accessor of floats (or integers, as `integers` allows) as doubles; each
+// value finite.
+std::vector<glm::dvec3> read_vec3(const tinygltf::Model& model, int accessor, const Origin& origin,
+                                  Integers integers = Integers::Normalized);
 
 // A VEC2 accessor, as read_vec3 (texture coordinates).
-std::vector<glm::dvec2> read_vec2(const tinygltf::Model& model, int accessor, const Origin& origin);
+std::vector<glm::dvec2> read_vec2(const tinygltf::Model& model, int accessor, const Origin& origin,
+                                  Integers integers = Integers::Normalized);
 
 // A SCALAR accessor of unsigned bytes, shorts or ints, each below `limit`.
 std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int accessor, std::uint32_t limit,

@@ -9,9 +9,7 @@
 #include <limits>
 #include <map>
 #include <optional>
-#include <set>
 #include <string>
-#include <string_view>
 #include <system_error>
 #include <vector>
 
@@ -22,6 +20,8 @@
 #include <tiny_gltf.h>
 
 #include "scene/gltf_accessor.hpp"
+#include "scene/gltf_file.hpp"
+#include "scene/gltf_spec_gloss.hpp"
 #include "scene/gltf_textures.hpp"
 #include "scene/indexed_mesh.hpp"
 #include "scene/json_reader.hpp"
@@ -44,10 +44,6 @@ constexpr double kLitSceneSky = 0.05;
 // Node placements (a node under each of its parents counts once per path): far more
 // than any asset has, few enough to walk in a moment.
 constexpr std::size_t kMaxNodeVisits = 100'000;
-
-// The extensions read (docs/gltf.md); any other the file uses is named in a warning.
-const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
-                                                    "KHR_texture_transform"};
 
 // A URI's percent escapes decoded (RFC 3986, 2.1), as glTF relative URIs are written.
 std::string decode_uri(const std::string& uri) {
@@ -112,12 +108,14 @@ tinygltf::Model read_model(const std::filesystem::path& file, std::vector<std::s
     reader.SetFsCallbacks({&path_exists, &tinygltf::ExpandFilePath, &read_regular_file, &tinygltf::WriteWholeFile, nullptr});
     tinygltf::Model model;
     std::string error, warning;
-    // Binary or JSON by the file's first bytes, the .glb magic "glTF", whatever its name.
-    char magic[4] = {};
-    std::ifstream(file, std::ios::binary).read(magic, 4);
-    const bool binary = std::string_view(magic, 4) == "glTF";
-    const bool ok = binary ? reader.LoadBinaryFromFile(&model, &error, &warning, file.string())
-                           : reader.LoadASCIIFromFile(&model, &error, &warning, file.string());
+    // Required extensions refused by name first; compressed parts set aside.
+    const gltf::PreparedFile prepared = gltf::prepare_file(file);
+    const bool binary = prepared.binary;
+    const std::string base_dir = file.parent_path().string();
+    const auto size = static_cast<unsigned int>(prepared.bytes.size());
+    const bool ok = binary ? reader.LoadBinaryFromMemory(&model, &error, &warning, prepared.bytes.data(), size, base_dir)
+                           : reader.LoadASCIIFromString(&model, &error, &warning,
+                                                        reinterpret_cast<const char*>(prepared.bytes.data()), size, base_dir);
     const auto lines = [](std::string text) {
         while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
         std::replace(text.begin(), text.end(), '\n', ';');
@@ -128,6 +126,7 @@ tinygltf::Model read_model(const std::filesystem::path& file, std::vector<std::s
                                      error.empty() ? "no reason given" : lines(error)));
     }
     if (!warning.empty()) warnings.push_back(fmt::format("{}: {}", file.string(), lines(warning)));
+    gltf::decode_set_aside(model, prepared, file.string());
     check_image_files(file, model);
     return model;
 }
@@ -166,14 +165,11 @@ private:
     void warn(const std::string& what) { scene_.warnings.push_back(fmt::format("{}: {}", file_.string(), what)); }
     void note_unsupported(const std::string& what) { ++unsupported_[what]; }
 
+    // Those the file requires were checked before tinygltf read it (gltf_file.hpp).
     void check_extensions() {
-        for (const std::string& name : model_.extensionsRequired) {
-            if (!kSupportedExtensions.count(name)) {
-                fail(fmt::format("the file requires the extension {}, which vkrt does not support", name));
-            }
-        }
         for (const std::string& name : model_.extensionsUsed) {
-            if (!kSupportedExtensions.count(name)) warn(fmt::format("the extension {} is not supported; ignored", name));
+            if (!gltf::reads_extension(name)) warn(fmt::format("the extension {} is not supported; ignored", name));
+            if (name == "KHR_mesh_quantization") quantized_ = true;
         }
     }
 
@@ -209,11 +205,13 @@ private:
                 m.emission = strength * color(dvec3(g.emissiveFactor[0], g.emissiveFactor[1], g.emissiveFactor[2]), 1e6,
                                               element + ".emissiveFactor");
             }
-            m.texture = textures_.texture(pbr.baseColorTexture, element + ".pbrMetallicRoughness.baseColorTexture",
-                                          Encoding::SrgbUnlessFloat, m);
-            m.metallic_roughness_texture =
-                textures_.texture(pbr.metallicRoughnessTexture, element + ".pbrMetallicRoughness.metallicRoughnessTexture",
-                                  Encoding::Linear, m);
+            if (!read_specular_glossiness(g, element, mr)) {
+                m.texture = textures_.texture(pbr.baseColorTexture, element + ".pbrMetallicRoughness.baseColorTexture",
+                                              Encoding::SrgbUnlessFloat, m);
+                m.metallic_roughness_texture = textures_.texture(
+                    pbr.metallicRoughnessTexture, element + ".pbrMetallicRoughness.metallicRoughnessTexture",
+                    Encoding::Linear, m);
+            }
             m.emission_texture =
                 textures_.texture(g.emissiveTexture, element + ".emissiveTexture", Encoding::SrgbUnlessFloat, m);
             m.normal_map = textures_.normal_texture(g.normalTexture, element + ".normalTexture", m);
@@ -231,6 +229,22 @@ private:
                 if (*t) *t = textures[**t];
             }
         }
+    }
+
+    // KHR_materials_pbrSpecularGlossiness, which takes the place of
+    // pbrMetallicRoughness where a material has it: its factors converted
+    // (gltf_spec_gloss.hpp). Whether the material has it.
+    bool read_specular_glossiness(const tinygltf::Material& g, const std::string& element, Material::MetallicRoughness& mr) {
+        const auto e = g.extensions.find("KHR_materials_pbrSpecularGlossiness");
+        if (e == g.extensions.end()) return false;
+        double alpha = 1.0;
+        mr = gltf::to_metallic_roughness(gltf::read_specular_glossiness(
+            e->second, element + ".extensions.KHR_materials_pbrSpecularGlossiness", file_.string(), alpha));
+        if (alpha < 1.0) note_unsupported("materials with a base colour alpha below 1, rendered opaque");
+        if (e->second.Has("diffuseTexture") || e->second.Has("specularGlossinessTexture")) {
+            note_unsupported("KHR_materials_pbrSpecularGlossiness textures (their factors alone are converted)");
+        }
+        return true;
     }
 
     double unit(double v, const std::string& element) const {
@@ -355,7 +369,10 @@ private:
         const auto position = prim.attributes.find("POSITION");
         if (position == prim.attributes.end()) fail_at(element + ".attributes", "no POSITION attribute");
         IndexedMesh mesh;
-        mesh.positions = gltf::read_vec3(model_, position->second, {file_.string(), element + ".attributes.POSITION"});
+        // KHR_mesh_quantization lets positions and texture coordinates be plain integers.
+        const gltf::Integers quantizable = quantized_ ? gltf::Integers::Quantized : gltf::Integers::Quantizable;
+        mesh.positions =
+            gltf::read_vec3(model_, position->second, {file_.string(), element + ".attributes.POSITION"}, quantizable);
         const auto normal = prim.attributes.find("NORMAL");
         if (normal != prim.attributes.end()) {
             mesh.normals = gltf::read_vec3(model_, normal->second, {file_.string(), element + ".attributes.NORMAL"});
@@ -369,7 +386,8 @@ private:
         }
         const auto texcoord = prim.attributes.find("TEXCOORD_0");
         if (texcoord != prim.attributes.end()) {
-            mesh.uvs = gltf::read_vec2(model_, texcoord->second, {file_.string(), element + ".attributes.TEXCOORD_0"});
+            mesh.uvs = gltf::read_vec2(model_, texcoord->second, {file_.string(), element + ".attributes.TEXCOORD_0"},
+                                       quantizable);
             if (mesh.uvs.size() != mesh.positions.size()) {
                 fail_at(element + ".attributes.TEXCOORD_0",
                         fmt::format("{} texture coordinates for {} positions", mesh.uvs.size(), mesh.positions.size()));
@@ -517,6 +535,7 @@ private:
     std::size_t triangles_read_ = 0;
     bool want_camera_ = true;
     bool camera_found_ = false;
+    bool quantized_ = false;  // the file uses KHR_mesh_quantization
     gltf::TextureReader textures_;  // after model_, file_ and scene_, which it refers to
 };
 
