@@ -214,7 +214,7 @@ def cylinder(name, radius, depth, materials, segments=24, tip=False, at=(0, 0, 0
     return finish(bm, name, materials, smooth_angle=40)
 
 
-def grid(name, size, cuts, materials, collapse=(), uv_scale=1.0):
+def grid(name, size, cuts, materials, collapse=()):
     # A plane in x, y facing +z, cuts[0] x cuts[1] quads, UVs from the position.
     # collapse: (i, j) grid vertices moved onto their right-hand neighbour with its
     # UV, as an unfinished merge leaves them: each makes zero-area triangles.
@@ -226,7 +226,7 @@ def grid(name, size, cuts, materials, collapse=(), uv_scale=1.0):
             ii = i + 1 if (i, j) in collapse else i
             x, y = (ii / nx - 0.5) * sx, (j / ny - 0.5) * sy
             verts.append((x, y, 0.0))
-            uvs.append((ii / nx * uv_scale, j / ny * uv_scale))
+            uvs.append((ii / nx, j / ny))
     faces = [(j * (nx + 1) + i, j * (nx + 1) + i + 1, (j + 1) * (nx + 1) + i + 1, (j + 1) * (nx + 1) + i)
              for j in range(ny) for i in range(nx)]
     bm = bmesh.new()
