@@ -20,8 +20,12 @@ import tempfile
 
 import bmesh
 import bpy
-import numpy as np
 from mathutils import Matrix, Vector
+
+try:
+    import numpy as np
+except ImportError:
+    sys.exit("gltf_corpus.py: needs numpy in Blender's Python: apt-get install python3-numpy")
 
 ASSETS = ["radio", "dining_set", "crates", "vase"]
 
