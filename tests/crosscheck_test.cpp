@@ -109,6 +109,9 @@ TEST_P(CrossCheck, DeviceProfilesGiveTheSameImage) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, CrossCheck, ::testing::ValuesIn(vkrt::test::repo_scenes()), test::scene_test_name);
+// The helmet-sized asset the build writes (tests/assets/make_helmet_like.cpp).
+INSTANTIATE_TEST_SUITE_P(BuiltAssets, CrossCheck, ::testing::Values(std::filesystem::path(VKRT_HELMET_LIKE)),
+                         test::scene_test_name);
 
 // At the specification's minimum a 200x150 image is rendered in slabs of 40 rows,
 // and scenes go to storage buffers when too large for 65,536 texels or when forced:

@@ -17,6 +17,7 @@
 
 #include "gpu/vulkan_backend.hpp"
 #include "cpu/cpu_backend.hpp"
+#include "scene/gltf_loader.hpp"
 #include "scene/load_scene.hpp"
 #include "scene/scene_error.hpp"
 
@@ -88,6 +89,8 @@ Scene load_at_size(const std::filesystem::path& file, std::uint32_t width, std::
     Scene scene = load_scene(file);
     scene.camera.width = width;
     scene.camera.height = height;
+    // As the command line does: a view framed to the model is framed for the new shape.
+    if (scene.camera.framed) frame_scene(scene);
     return scene;
 }
 
