@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <unistd.h>
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -13,6 +15,7 @@
 #include "probe/float_profile_table.hpp"
 #include "app/output_paths.hpp"
 #include "app/peak_memory.hpp"
+#include "app/preparation_progress.hpp"
 #include "app/progress.hpp"
 #include "gpu/float_probe.hpp"
 #include "gpu/vulkan_backend.hpp"
@@ -218,6 +221,8 @@ int run_render(const RenderArgs& args) {
         backend_seconds = seconds_since(made);
         return b;
     });
+    PreparationProgress preparing(!args.quiet, stderr, isatty(fileno(stderr)) != 0);
+    preparing.step("loading " + args.scene);
     Scene scene = load_scene(args.scene);
     const double load_seconds = seconds_since(start);
     for (const std::string& warning : scene.warnings) fmt::print(stderr, "warning: {}\n", warning);
@@ -256,8 +261,10 @@ int run_render(const RenderArgs& args) {
                                   args.time && !args.spp};
     auto last_checkpoint = std::chrono::steady_clock::now();
     std::optional<double> first_pass_seconds;
+    plan.on_step = [&](const std::string& what) { preparing.step(what); };
     plan.after_pass = [&](const PassView& view) {
         if (!first_pass_seconds) first_pass_seconds = seconds_since(start);
+        preparing.done();
         if (server) live::feed_pass(feed, view, labels);
         if (args.checkpoint && seconds_since(last_checkpoint) >= *args.checkpoint) {
             write_output(output, args, scene, backend->name(), view.total, samples, view.samples, view.fingerprint,
@@ -268,6 +275,7 @@ int run_render(const RenderArgs& args) {
     };
     ProgressReporter progress("rendering", !args.quiet);
     RenderOutcome outcome = render_scene(scene, *backend, plan, [&](const ProgressiveStatus& status) {
+        preparing.done();
         progress.update(status.fraction(), status.seconds_left, progress_detail(status));
     });
     progress.finish();

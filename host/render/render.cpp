@@ -134,9 +134,15 @@ RenderOutcome render_scene(const Scene& scene, Backend& backend, const RenderPla
                            const ProgressiveCallback& progress) {
     using clock = std::chrono::steady_clock;
     const auto start = clock::now();
+    const auto step = [&](const std::string& what) {
+        if (plan.on_step) plan.on_step(what);
+    };
+    step("flattening the scene (grid, area lights, textures)");
     const FlatScene gpu = flatten_scene(scene, backend.accel_policy());
     const auto flattened = clock::now();
+    step(std::string("setting up the ") + backend.name() + " backend (pipeline, uploads)");
     const std::unique_ptr<RenderSession> session = backend.begin(gpu);
+    step("rendering the first pass");
     const SampleRange samples{plan.first_sample, plan.samples.value_or(gpu.samples_per_pixel)};
     const std::uint64_t fingerprint = scene_fingerprint(gpu);
     ProgressiveRender render(*session, {samples, plan.seconds});

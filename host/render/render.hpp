@@ -107,6 +107,9 @@ struct RenderPlan {
     std::optional<std::uint32_t> samples;  // how many samples at most; default the scene's spp
     std::optional<double> seconds;         // a time budget (render/pass_plan.hpp)
     PassObserver after_pass;               // optional
+    // Told each step before the first pass (flattening, the backend's set-up), for
+    // progress on scenes that take long to prepare; optional.
+    std::function<void(const std::string&)> on_step;
 };
 
 // Every ray the counters hold, of all kinds (RenderStats::rays() from the sums alone).
