@@ -31,9 +31,10 @@ namespace vkrt::gltf {
 bool keep_image_bytes(tinygltf::Image* image, int index, std::string* error, std::string* warning, int width,
                       int height, const unsigned char* bytes, int size, void* user);
 
-// Materials ask for their textures first (texture, normal_texture), which checks
-// them and returns a ticket; resolve() then decodes every image asked for and turns
-// the tickets into indices of Scene::textures.
+// Materials ask for their textures first (texture, normal_texture,
+// specular_glossiness), which checks them and returns tickets; resolve() then decodes
+// every image asked for, converts what conversions ask for, and turns the tickets
+// into indices of Scene::textures.
 class TextureReader {
 public:
     using Note = std::function<void(const std::string&)>;
