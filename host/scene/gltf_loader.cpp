@@ -22,6 +22,7 @@
 #include "scene/gltf_accessor.hpp"
 #include "scene/gltf_file.hpp"
 #include "scene/gltf_spec_gloss.hpp"
+#include "scene/gltf_spec_gloss_textures.hpp"
 #include "scene/gltf_textures.hpp"
 #include "scene/indexed_mesh.hpp"
 #include "scene/json_reader.hpp"
@@ -205,7 +206,7 @@ private:
                 m.emission = strength * color(dvec3(g.emissiveFactor[0], g.emissiveFactor[1], g.emissiveFactor[2]), 1e6,
                                               element + ".emissiveFactor");
             }
-            if (!read_specular_glossiness(g, element, mr)) {
+            if (!read_specular_glossiness(g, element, m)) {
                 m.texture = textures_.texture(pbr.baseColorTexture, element + ".pbrMetallicRoughness.baseColorTexture",
                                               Encoding::SrgbUnlessFloat, m);
                 m.metallic_roughness_texture = textures_.texture(
@@ -233,16 +234,25 @@ private:
 
     // KHR_materials_pbrSpecularGlossiness, which takes the place of
     // pbrMetallicRoughness where a material has it: its factors converted
-    // (gltf_spec_gloss.hpp). Whether the material has it.
-    bool read_specular_glossiness(const tinygltf::Material& g, const std::string& element, Material::MetallicRoughness& mr) {
+    // (gltf_spec_gloss.hpp), or with textures, the textures converted texel by texel
+    // with the factors multiplied in (gltf_spec_gloss_textures.hpp), the material's
+    // own factors then 1. Whether the material has it.
+    bool read_specular_glossiness(const tinygltf::Material& g, const std::string& element, Material& m) {
         const auto e = g.extensions.find("KHR_materials_pbrSpecularGlossiness");
         if (e == g.extensions.end()) return false;
+        const std::string at = element + ".extensions.KHR_materials_pbrSpecularGlossiness";
         double alpha = 1.0;
-        mr = gltf::to_metallic_roughness(gltf::read_specular_glossiness(
-            e->second, element + ".extensions.KHR_materials_pbrSpecularGlossiness", file_.string(), alpha));
+        const gltf::SpecularGlossiness factors = gltf::read_specular_glossiness(e->second, at, file_.string(), alpha);
+        m.metallic_roughness = gltf::to_metallic_roughness(factors);
         if (alpha < 1.0) note_unsupported("materials with a base colour alpha below 1, rendered opaque");
-        if (e->second.Has("diffuseTexture") || e->second.Has("specularGlossinessTexture")) {
-            note_unsupported("KHR_materials_pbrSpecularGlossiness textures (their factors alone are converted)");
+        const auto diffuse = gltf::read_texture_info(e->second, "diffuseTexture", at, file_.string());
+        const auto specular = gltf::read_texture_info(e->second, "specularGlossinessTexture", at, file_.string());
+        const auto converted = textures_.specular_glossiness(diffuse ? &*diffuse : nullptr,
+                                                             specular ? &*specular : nullptr, at, factors, alpha, m);
+        if (converted) {
+            m.metallic_roughness = Material::MetallicRoughness{dvec3(1.0), 1.0, 1.0};
+            m.texture = converted->base_color;
+            m.metallic_roughness_texture = converted->metallic_roughness;
         }
         return true;
     }

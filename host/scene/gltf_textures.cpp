@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <tiny_gltf.h>
 
+#include "scene/gltf_spec_gloss_textures.hpp"
 #include "scene/scene_error.hpp"
 #include "scene/texture_image.hpp"
 
@@ -60,8 +61,8 @@ std::optional<std::uint32_t> TextureReader::normal_texture(const tinygltf::Norma
     return request(plain, element, Encoding::Linear, info.scale, true, m);
 }
 
-std::optional<std::uint32_t> TextureReader::request(const tinygltf::TextureInfo& info, const std::string& element,
-                                                    Encoding encoding, double normal_scale, bool normal, Material& m) {
+std::optional<TextureReader::Source> TextureReader::source(const tinygltf::TextureInfo& info, const std::string& element,
+                                                          bool has_transform, Material& m) {
     if (info.index < 0) return std::nullopt;
     if (static_cast<std::size_t>(info.index) >= model_.textures.size()) {
         fail_at(element + ".index", fmt::format("texture {} does not exist (the file has {})", info.index,
@@ -97,11 +98,9 @@ std::optional<std::uint32_t> TextureReader::request(const tinygltf::TextureInfo&
         note_("textures on texture coordinates other than TEXCOORD_0, rendered without the texture");
         return std::nullopt;
     }
-    if (m.texture || m.metallic_roughness_texture || m.normal_map || m.emission_texture) {
-        if (transform != m.uv_transform) {
-            note_("a material's textures with different KHR_texture_transforms, rendered without the later texture");
-            return std::nullopt;
-        }
+    if (has_transform && transform != m.uv_transform) {
+        note_("a material's textures with different KHR_texture_transforms, rendered without the later texture");
+        return std::nullopt;
     }
     m.uv_transform = transform;
     if (texture.source < 0 || static_cast<std::size_t>(texture.source) >= model_.images.size()) {
@@ -112,27 +111,44 @@ std::optional<std::uint32_t> TextureReader::request(const tinygltf::TextureInfo&
         fail_at(where + ".source", fmt::format("image {} does not exist (the file has {})", texture.source,
                                                model_.images.size()));
     }
-    if (texture.sampler >= 0 && static_cast<std::size_t>(texture.sampler) >= model_.samplers.size()) {
-        fail_at(where + ".sampler", fmt::format("sampler {} does not exist (the file has {})", texture.sampler,
-                                                model_.samplers.size()));
-    }
-    const auto key = std::tuple{texture.source, texture.sampler, encoding, normal, normal ? normal_scale : 1.0};
-    if (auto it = ticket_of_.find(key); it != ticket_of_.end()) return it->second;
-    const tinygltf::Image& image = model_.images[static_cast<std::size_t>(texture.source)];
-    if (image.image.empty()) fail_at(fmt::format("images[{}]", texture.source), "the image holds no bytes");
-    auto [at, added] = image_of_.try_emplace(texture.source, images_.size());
-    if (added) {
-        images_.push_back({image.image.data(), image.image.size(), format_name(image), encoding,
-                           fmt::format("{}: images[{}]", file_.string(), texture.source)});
-    }
-    Ticket ticket;
-    ticket.image = at->second;
-    ticket.encoding = encoding;
+    Source out;
+    out.image = texture.source;
+    out.sampler = texture.sampler;
     if (texture.sampler >= 0) {
+        if (static_cast<std::size_t>(texture.sampler) >= model_.samplers.size()) {
+            fail_at(where + ".sampler", fmt::format("sampler {} does not exist (the file has {})", texture.sampler,
+                                                    model_.samplers.size()));
+        }
         const tinygltf::Sampler& s = model_.samplers[static_cast<std::size_t>(texture.sampler)];
-        ticket.wrap_s = wrap_mode(s.wrapS);
-        ticket.wrap_t = wrap_mode(s.wrapT);
+        out.wrap_s = wrap_mode(s.wrapS);
+        out.wrap_t = wrap_mode(s.wrapT);
     }
+    return out;
+}
+
+std::size_t TextureReader::encoded_image(int index, Encoding encoding) {
+    auto [at, added] = image_of_.try_emplace(index, images_.size());
+    if (added) {
+        const tinygltf::Image& image = model_.images[static_cast<std::size_t>(index)];
+        if (image.image.empty()) fail_at(fmt::format("images[{}]", index), "the image holds no bytes");
+        images_.push_back({image.image.data(), image.image.size(), format_name(image), encoding,
+                           fmt::format("{}: images[{}]", file_.string(), index)});
+    }
+    return at->second;
+}
+
+std::optional<std::uint32_t> TextureReader::request(const tinygltf::TextureInfo& info, const std::string& element,
+                                                    Encoding encoding, double normal_scale, bool normal, Material& m) {
+    const bool has_transform = m.texture || m.metallic_roughness_texture || m.normal_map || m.emission_texture;
+    const std::optional<Source> s = source(info, element, has_transform, m);
+    if (!s) return std::nullopt;
+    const auto key = std::tuple{s->image, s->sampler, encoding, normal, normal ? normal_scale : 1.0};
+    if (auto it = ticket_of_.find(key); it != ticket_of_.end()) return it->second;
+    Ticket ticket;
+    ticket.image = encoded_image(s->image, encoding);
+    ticket.encoding = encoding;
+    ticket.wrap_s = s->wrap_s;
+    ticket.wrap_t = s->wrap_t;
     ticket.normal_scale = normal_scale;
     tickets_.push_back(ticket);
     const auto index = static_cast<std::uint32_t>(tickets_.size() - 1);
@@ -140,32 +156,160 @@ std::optional<std::uint32_t> TextureReader::request(const tinygltf::TextureInfo&
     return index;
 }
 
+std::optional<TextureReader::Converted> TextureReader::specular_glossiness(const tinygltf::TextureInfo* diffuse,
+                                                                          const tinygltf::TextureInfo* specular_glossiness,
+                                                                          const std::string& element,
+                                                                          const SpecularGlossiness& factors,
+                                                                          double alpha, Material& m) {
+    const bool has_transform = m.texture || m.metallic_roughness_texture || m.normal_map || m.emission_texture;
+    std::optional<Source> d, s;
+    if (diffuse) d = source(*diffuse, element + ".diffuseTexture", has_transform, m);
+    if (specular_glossiness) {
+        s = source(*specular_glossiness, element + ".specularGlossinessTexture", has_transform || d, m);
+    }
+    if (!d && !s) return std::nullopt;
+    if (d && s && (d->wrap_s != s->wrap_s || d->wrap_t != s->wrap_t)) {
+        note_("KHR_materials_pbrSpecularGlossiness textures with different wrap modes, both converted with the "
+              "diffuse texture's");
+    }
+    const std::array<double, 8> values{factors.diffuse.r,  factors.diffuse.g,  factors.diffuse.b, factors.specular.r,
+                                       factors.specular.g, factors.specular.b, factors.glossiness, alpha};
+    const auto key = std::tuple{d ? d->image : -1, d ? d->sampler : -1, s ? s->image : -1, s ? s->sampler : -1, values};
+    if (auto it = conversion_of_.find(key); it != conversion_of_.end()) return Converted{it->second, it->second + 1};
+    // The extension's colours are sRGB, its glossiness (alpha) linear.
+    const auto input = [&](const Source& source) {
+        return Input{encoded_image(source.image, Encoding::SrgbUnlessFloat), source.wrap_s, source.wrap_t};
+    };
+    Conversion c;
+    if (d) c.diffuse = input(*d);
+    if (s) c.specular_glossiness = input(*s);
+    c.factors = factors;
+    c.alpha = alpha;
+    c.element = element;
+    c.ticket = static_cast<std::uint32_t>(tickets_.size());
+    Ticket ticket;
+    ticket.conversion = conversions_.size();
+    tickets_.push_back(ticket);
+    tickets_.push_back(ticket);
+    conversions_.push_back(std::move(c));
+    conversion_of_.emplace(key, conversions_.back().ticket);
+    return Converted{conversions_.back().ticket, conversions_.back().ticket + 1};
+}
+
 std::vector<std::uint32_t> TextureReader::resolve() {
-    std::vector<TextureImage> decoded = decode_textures(images_, scene_);
+    // The images plain tickets use are decoded into the scene's texels; those only
+    // conversions read are decoded apart (convert) and leave no texels behind.
+    constexpr std::size_t kNone = ~std::size_t(0);
+    std::vector<std::size_t> stored_at(images_.size(), kNone);  // images_ -> `stored`
+    std::vector<EncodedImage> to_store;
+    for (const Ticket& ticket : tickets_) {
+        if (ticket.conversion || stored_at[ticket.image] != kNone) continue;
+        stored_at[ticket.image] = to_store.size();
+        to_store.push_back(images_[ticket.image]);
+    }
+    std::vector<TextureImage> stored = decode_textures(to_store, scene_);
     // An image decoded to half floats in one encoding and wanted in the other as well
     // (a 16-bit PNG as colour and as data) is decoded again in that one.
     std::vector<EncodedImage> again;
-    std::map<std::size_t, std::size_t> again_of;  // images_ -> its second decoding in `decoded`
+    std::vector<std::size_t> again_at(images_.size(), kNone);  // images_ -> its second decoding in `stored`
     for (const Ticket& ticket : tickets_) {
+        if (ticket.conversion) continue;
         const EncodedImage& image = images_[ticket.image];
-        if (ticket.encoding == image.encoding || decoded[ticket.image].format != TexelFormat::Half) continue;
-        if (again_of.try_emplace(ticket.image, decoded.size() + again.size()).second) {
+        if (ticket.encoding == image.encoding || stored[stored_at[ticket.image]].format != TexelFormat::Half) continue;
+        if (again_at[ticket.image] == kNone) {
+            again_at[ticket.image] = stored.size() + again.size();
             again.push_back(image);
             again.back().encoding = ticket.encoding;
         }
     }
-    for (TextureImage& t : decode_textures(again, scene_)) decoded.push_back(std::move(t));
-    std::vector<std::uint32_t> out;
-    for (const Ticket& ticket : tickets_) {
+    for (TextureImage& t : decode_textures(again, scene_)) stored.push_back(std::move(t));
+    std::vector<std::uint32_t> out(tickets_.size());
+    for (std::size_t i = 0; i < tickets_.size(); ++i) {
+        const Ticket& ticket = tickets_[i];
+        if (ticket.conversion) continue;
         const bool other = ticket.encoding != images_[ticket.image].encoding;
-        TextureImage t = decoded[other && again_of.count(ticket.image) ? again_of[ticket.image] : ticket.image];
+        TextureImage t = stored[other && again_at[ticket.image] != kNone ? again_at[ticket.image] : stored_at[ticket.image]];
         if (t.format == TexelFormat::Rgba8) t.srgb = ticket.encoding == Encoding::SrgbUnlessFloat;
         t.wrap_s = ticket.wrap_s;
         t.wrap_t = ticket.wrap_t;
         t.normal_scale = ticket.normal_scale;
-        out.push_back(add_texture_record(scene_, std::move(t)));
+        out[i] = add_texture_record(scene_, std::move(t));
     }
+    // Where in `stored` each image is as the conversions read it (sRGB colour): an
+    // 8-bit one in any encoding, a half-float one decoded with its colours sRGB-decoded.
+    std::vector<std::size_t> as_srgb(images_.size(), kNone);
+    for (std::size_t i = 0; i < images_.size(); ++i) {
+        if (stored_at[i] == kNone) continue;
+        if (stored[stored_at[i]].format == TexelFormat::Rgba8 || images_[i].encoding == Encoding::SrgbUnlessFloat) {
+            as_srgb[i] = stored_at[i];
+        } else if (again_at[i] != kNone) {
+            as_srgb[i] = again_at[i];
+        }
+    }
+    convert(stored, as_srgb, out);
     return out;
+}
+
+void TextureReader::convert(const std::vector<TextureImage>& stored, const std::vector<std::size_t>& stored_as_srgb,
+                            std::vector<std::uint32_t>& out) {
+    if (conversions_.empty()) return;
+    // The images no plain ticket has put in the store, decoded apart, each once, and
+    // each dropped when the last conversion that reads it is done.
+    constexpr std::size_t kNone = ~std::size_t(0);
+    std::vector<std::size_t> apart_at(images_.size(), kNone);
+    std::vector<EncodedImage> to_decode;
+    std::vector<std::size_t> readers;  // conversions still to read each image apart
+    for (const Conversion& c : conversions_) {
+        for (const std::optional<Input>& in : {c.diffuse, c.specular_glossiness}) {
+            if (!in || stored_as_srgb[in->image] != kNone) continue;
+            if (apart_at[in->image] == kNone) {
+                apart_at[in->image] = to_decode.size();
+                to_decode.push_back(images_[in->image]);
+                to_decode.back().encoding = Encoding::SrgbUnlessFloat;
+                readers.push_back(0);
+            }
+            ++readers[apart_at[in->image]];
+        }
+    }
+    std::vector<DecodedImage> apart = decode_images(to_decode, scene_);
+    for (const Conversion& c : conversions_) {
+        const auto source = [&](const std::optional<Input>& in) -> std::optional<SourceTexture> {
+            if (!in) return std::nullopt;
+            SourceTexture s;
+            if (const std::size_t at = stored_as_srgb[in->image]; at != kNone) {
+                s.texture = stored[at];
+                s.texture.srgb = s.texture.format == TexelFormat::Rgba8;
+                s.words = scene_.texels.words();
+            } else {
+                const DecodedImage& image = apart[apart_at[in->image]];
+                s.texture.width = image.width;
+                s.texture.height = image.height;
+                s.texture.format = image.format;
+                s.texture.srgb = image.srgb;
+                s.words = image.words;
+            }
+            s.texture.wrap_s = in->wrap_s;
+            s.texture.wrap_t = in->wrap_t;
+            return s;
+        };
+        const std::optional<SourceTexture> d = source(c.diffuse), sg = source(c.specular_glossiness);
+        ConvertedTextures converted = convert_textures(d ? &*d : nullptr, sg ? &*sg : nullptr, c.factors, c.alpha);
+        for (const std::optional<Input>& in : {c.diffuse, c.specular_glossiness}) {
+            if (in && apart_at[in->image] != kNone && --readers[apart_at[in->image]] == 0) {
+                apart[apart_at[in->image]] = DecodedImage();
+            }
+        }
+        const Input& wraps = c.diffuse ? *c.diffuse : *c.specular_glossiness;
+        const auto add = [&](DecodedImage&& image, const char* what) {
+            const std::string name = fmt::format("{}: {} ({})", file_.string(), c.element, what);
+            const std::uint32_t index = add_texture(scene_, std::move(image), name, name);
+            scene_.textures[index].wrap_s = wraps.wrap_s;
+            scene_.textures[index].wrap_t = wraps.wrap_t;
+            return index;
+        };
+        out[c.ticket] = add(std::move(converted.base_color), "converted to a base colour");
+        out[c.ticket + 1] = add(std::move(converted.metallic_roughness), "converted to metallic-roughness");
+    }
 }
 
 }  // namespace vkrt::gltf

@@ -3,6 +3,7 @@
 // their files (PNG, JPEG, ... inside the .glb, in a data URI or beside the file),
 // decoded when a material uses them, each once and all in parallel, with their
 // samplers' wrap modes and KHR_texture_transform.
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -13,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "scene/gltf_spec_gloss.hpp"
 #include "scene/scene.hpp"
 
 namespace tinygltf {
@@ -29,9 +31,10 @@ namespace vkrt::gltf {
 bool keep_image_bytes(tinygltf::Image* image, int index, std::string* error, std::string* warning, int width,
                       int height, const unsigned char* bytes, int size, void* user);
 
-// Materials ask for their textures first (texture, normal_texture), which checks
-// them and returns a ticket; resolve() then decodes every image asked for and turns
-// the tickets into indices of Scene::textures.
+// Materials ask for their textures first (texture, normal_texture,
+// specular_glossiness), which checks them and returns tickets; resolve() then decodes
+// every image asked for, converts what conversions ask for, and turns the tickets
+// into indices of Scene::textures.
 class TextureReader {
 public:
     using Note = std::function<void(const std::string&)>;
@@ -51,8 +54,25 @@ public:
     std::optional<std::uint32_t> normal_texture(const tinygltf::NormalTextureInfo& info, const std::string& element,
                                                 Material& m);
 
-    // Decodes the images the tickets need and returns, for each ticket, its texture's
-    // index in Scene::textures.
+    // A KHR_materials_pbrSpecularGlossiness material's diffuse and specular-glossiness
+    // textures (either may be null), to be converted with its factors and diffuse
+    // alpha into a base colour and a metallic-roughness texture
+    // (gltf_spec_gloss_textures.hpp): their two tickets, or none when neither texture
+    // can be used. A texture left out (another transform, other texture coordinates)
+    // counts as absent: its factor alone is converted. The converted textures take the
+    // diffuse texture's wrap modes, else the other's; differing ones are named.
+    // `element` is the extension object's place.
+    struct Converted {
+        std::uint32_t base_color = 0;
+        std::uint32_t metallic_roughness = 0;
+    };
+    std::optional<Converted> specular_glossiness(const tinygltf::TextureInfo* diffuse,
+                                                 const tinygltf::TextureInfo* specular_glossiness,
+                                                 const std::string& element, const SpecularGlossiness& factors,
+                                                 double alpha, Material& m);
+
+    // Decodes the images the tickets need, converts what conversions ask for, and
+    // returns, for each ticket, its texture's index in Scene::textures.
     std::vector<std::uint32_t> resolve();
 
 private:
@@ -60,13 +80,43 @@ private:
     std::optional<std::uint32_t> request(const tinygltf::TextureInfo& info, const std::string& element,
                                          Encoding encoding, double normal_scale, bool normal, Material& m);
 
+    // A textureInfo checked, its transform made the material's (or, when the material
+    // has one already and this differs, the texture left out, and said so): its image,
+    // sampler and wrap modes, or none when vkrt cannot use it.
+    struct Source {
+        int image = -1;
+        int sampler = -1;
+        Wrap wrap_s = Wrap::Repeat;
+        Wrap wrap_t = Wrap::Repeat;
+    };
+    std::optional<Source> source(const tinygltf::TextureInfo& info, const std::string& element, bool has_transform,
+                                 Material& m);
+    std::size_t encoded_image(int image, Encoding encoding);  // its place in images_, added once
+
     struct Ticket {
-        std::size_t image;  // in images_
+        std::size_t image = 0;  // in images_
         Encoding encoding = Encoding::SrgbUnlessFloat;
         Wrap wrap_s = Wrap::Repeat;
         Wrap wrap_t = Wrap::Repeat;
         double normal_scale = 1.0;
+        std::optional<std::size_t> conversion;  // a converted texture instead: conversions_
     };
+
+    // A specular-glossiness material's conversion; its tickets are `ticket` (base
+    // colour) and the next (metallic-roughness).
+    struct Input {
+        std::size_t image;  // in images_
+        Wrap wrap_s, wrap_t;
+    };
+    struct Conversion {
+        std::optional<Input> diffuse, specular_glossiness;
+        SpecularGlossiness factors;
+        double alpha = 1.0;
+        std::string element;
+        std::uint32_t ticket = 0;
+    };
+    void convert(const std::vector<TextureImage>& stored, const std::vector<std::size_t>& stored_as_srgb,
+                 std::vector<std::uint32_t>& out);
 
     const tinygltf::Model& model_;
     std::filesystem::path file_;
@@ -80,6 +130,10 @@ private:
     std::vector<Ticket> tickets_;
     // (image, sampler, encoding, normal map, its scale) -> tickets_
     std::map<std::tuple<int, int, Encoding, bool, double>, std::uint32_t> ticket_of_;
+    std::vector<Conversion> conversions_;
+    // (diffuse image, sampler, specular-glossiness image, sampler, factors and alpha)
+    // -> the conversion's first ticket: materials that differ only elsewhere share it.
+    std::map<std::tuple<int, int, int, int, std::array<double, 8>>, std::uint32_t> conversion_of_;
 };
 
 }  // namespace vkrt::gltf

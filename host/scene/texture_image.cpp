@@ -255,30 +255,53 @@ std::vector<TextureImage> decode_textures(const std::vector<EncodedImage>& image
         slices.push_back(scene.texels.mutable_words(first, plans[i].words));
         first += plans[i].words;
     }
-    // Each worker takes the next image until none is left; an image's error is kept
-    // and the first (in order) thrown after all have stopped.
+    // An image's error is kept and the first (in order) thrown after all have stopped.
     std::vector<std::string> errors(images.size());
-    std::atomic<std::size_t> next{0};
-    const auto work = [&] {
-        for (std::size_t i; (i = next.fetch_add(1)) < images.size();) {
-            try {
-                decode(*readers[i], images[i].encoding, plans[i], slices[i], images[i].element, images[i].element);
-            } catch (const SceneError& e) {
-                errors[i] = e.what();
-            }
-            readers[i].reset();  // its decoded pixels, where it kept any
+    parallel_for(images.size(), [&](std::size_t i) {
+        try {
+            decode(*readers[i], images[i].encoding, plans[i], slices[i], images[i].element, images[i].element);
+        } catch (const SceneError& e) {
+            errors[i] = e.what();
         }
-    };
-    const std::size_t workers = std::min<std::size_t>(images.size(), std::max(1u, std::thread::hardware_concurrency()));
-    std::vector<std::jthread> threads;
-    for (std::size_t w = 1; w < workers; ++w) threads.emplace_back(work);
-    work();
-    threads.clear();
+        readers[i].reset();  // its decoded pixels, where it kept any
+    });
     for (const std::string& e : errors) {
         if (!e.empty()) throw SceneError(e);
     }
     scene.texture_decode_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
+}
+
+std::vector<DecodedImage> decode_images(const std::vector<EncodedImage>& images, Scene& scene) {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<DecodedImage> out(images.size());
+    std::vector<std::string> errors(images.size());
+    parallel_for(images.size(), [&](std::size_t i) {
+        const EncodedImage& image = images[i];
+        try {
+            out[i] = load_texture_memory(image.data, image.size, image.format, image.encoding, image.element);
+        } catch (const SceneError& e) {
+            errors[i] = e.what();
+        }
+    });
+    for (const std::string& e : errors) {
+        if (!e.empty()) throw SceneError(e);
+    }
+    scene.texture_decode_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+void parallel_for(std::size_t count, const std::function<void(std::size_t)>& work) {
+    // Each worker takes the next index until none is left: images and rows differ
+    // widely in cost, so no fixed split.
+    std::atomic<std::size_t> next{0};
+    const auto worker = [&] {
+        for (std::size_t i; (i = next.fetch_add(1)) < count;) work(i);
+    };
+    const std::size_t workers = std::min<std::size_t>(count, std::max(1u, std::thread::hardware_concurrency()));
+    std::vector<std::jthread> threads;
+    for (std::size_t w = 1; w < workers; ++w) threads.emplace_back(worker);
+    worker();
 }
 
 std::uint32_t load_texture(Scene& scene, const std::filesystem::path& file, Encoding encoding, const std::string& element) {

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -124,6 +125,15 @@ struct Scene;
 // the records they need with add_texture_record). Throws SceneError as
 // load_texture_memory does, for the first image (in order) that fails.
 std::vector<TextureImage> decode_textures(const std::vector<EncodedImage>& images, Scene& scene);
+
+// The same decoding, on all hardware threads, into images of their own rather than
+// the scene's texels: for images only read to make others from (a specular-glossiness
+// material's textures, converted), which then need not stay in the scene. Timed into
+// Scene::texture_decode_seconds; throws as decode_textures does.
+std::vector<DecodedImage> decode_images(const std::vector<EncodedImage>& images, Scene& scene);
+
+// Calls work(i) for every i below `count`, on all hardware threads; `work` must not throw.
+void parallel_for(std::size_t count, const std::function<void(std::size_t)>& work);
 
 // The image file `file` decoded (load_texture_file) and added to the scene
 // (add_texture), its decoding timed into Scene::texture_decode_seconds; its index.
