@@ -91,10 +91,12 @@ TEST(EmissionFootprint, TheMeanIsOverTheTexelsTheFilterReaches) {
     // In texel (2, 3)'s square: columns 0 to 3 and rows 1 to 4 reach (3, 3), one of 16.
     const double one_of_16 = 1.5 / 16.0;
     EXPECT_NEAR(at({{0.26, 0.39}, {0.30, 0.39}, {0.26, 0.42}}), one_of_16, 1e-6 * one_of_16);
-    // The whole texture: the mean over 64 texels of (0.9 + 0.3) * 2.
-    EXPECT_NEAR(at({{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}}), 2.0 / 64.0, 1e-6);
+    // The whole texture: the mean over 64 texels of 1.5 + 0.5, each lit texel
+    // rounded up by less than a unit of the table (the brightest, 1.5, / 2^11).
+    const double units = 2.0 * 1.5 / 2048.0 / 64.0;
+    EXPECT_NEAR(at({{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}}), 2.0 / 64.0, units);
     // Coordinates that are not finite read anywhere: the whole texture too.
-    EXPECT_NEAR(at({{NAN, 0.0}, {1.0, 0.0}, {0.0, 1.0}}), 2.0 / 64.0, 1e-6);
+    EXPECT_NEAR(at({{NAN, 0.0}, {1.0, 0.0}, {0.0, 1.0}}), 2.0 / 64.0, units);
     // Far beyond [0, 1] with repeat: the same texels as inside.
     EXPECT_NEAR(at({{1000.26, -999.61}, {1000.30, -999.61}, {1000.26, -999.58}}), one_of_16, 1e-6 * one_of_16);
 }
@@ -108,6 +110,40 @@ TEST(EmissionFootprint, TheMaterialsTransformMovesTheFootprint) {
     EXPECT_EQ(EmissionFootprints(scene).mean_emission(m, uv), 0.0);
     m.uv_transform = texture_transform(-0.5, 0.0, 0.0, 1.0, 1.0);
     EXPECT_NEAR(EmissionFootprints(scene).mean_emission(m, uv), 1.5 / 16.0, 1e-7);
+}
+
+// An 8-bit texture larger than the table's pieces (2100 x 1100 texels, white but
+// for a black block of 1000 x 500 at the top left), on a quad of emission (1, 1, 1):
+// each white texel counts kUnits exactly, so the whole texture's sum, far past
+// 2^32 units, shows whether the pieces add up; the black block sums to 0 exactly.
+TEST(EmissionFootprint, LargeEightBitTexturesSumExactlyPieceByPiece) {
+    constexpr int w = 2100, h = 1100, bw = 1000, bh = 500;
+    Image img(w, h);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const float v = x < bw && y < bh ? 0.0f : 1.0f;
+            for (int c = 0; c < 3; ++c) img.pixel(x, y)[c] = v;
+        }
+    }
+    const std::filesystem::path file = test::temp_dir("emission_footprint_large") / "large.png";
+    write_image(img, file);
+    const Scene scene = test::scene_from_text("large", R"({
+      "camera": { "eye": [0, 0, 3], "look_at": [0, 0, 0] },
+      "materials": { "lamp": { "emission": [1, 1, 1], "emission_texture": ")" + file.string() + R"(" } },
+      "objects": [ { "type": "quad", "corner": [-1, -1, 0], "edge1": [2, 0, 0], "edge2": [0, 2, 0], "material": "lamp" } ]
+    })");
+    ASSERT_EQ(scene.textures.at(0).format, TexelFormat::Rgba8);
+    EmissionFootprints footprints(scene);
+    const Material& m = scene.materials.at(0);
+    const auto at = [&](std::vector<glm::dvec2> uv) { return footprints.mean_emission(m, uv); };
+    const double white = double(w) * h - double(bw) * bh;
+    EXPECT_DOUBLE_EQ(at({{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}}), white / (double(w) * h));
+    // Well inside the black block (texels 100 to 400 across, 100 to 300 down).
+    EXPECT_EQ(at({{100.0 / w, 100.0 / h}, {400.0 / w, 100.0 / h}, {100.0 / w, 300.0 / h}}), 0.0);
+    // Across its right edge: texel positions 897.5 to 1099.5 reach columns 896 to
+    // 1101, 102 of them lit; rows 98 to 301.
+    const double reached = 206.0 * 204.0, lit = 102.0 * 204.0;
+    EXPECT_DOUBLE_EQ(at({{898.0 / w, 100.0 / h}, {1100.0 / w, 100.0 / h}, {898.0 / w, 300.0 / h}}), lit / reached);
 }
 
 // An emitter of 16 x 16 cells, two triangles each, at z = 1 facing down, over

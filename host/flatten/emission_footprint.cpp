@@ -1,6 +1,7 @@
 #include "flatten/emission_footprint.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -58,7 +59,50 @@ std::uint64_t EmissionFootprints::Table::rect(std::uint32_t x0, std::uint32_t x1
                                               std::uint32_t y1) const {
     const std::size_t row = std::size_t(width) + 1;
     const auto at = [&](std::size_t x, std::size_t y) { return sums[y * row + x]; };
-    return at(x1 + 1, y1 + 1) - at(x0, y1 + 1) - at(x1 + 1, y0) + at(x0, y0);
+    std::uint64_t sum = 0;
+    for (std::uint32_t py = y0; py <= y1; py += std::min(kPieceSide, y1 - py + 1)) {
+        const std::uint32_t qy = std::min(y1, py + (kPieceSide - 1));
+        for (std::uint32_t px = x0; px <= x1; px += std::min(kPieceSide, x1 - px + 1)) {
+            const std::uint32_t qx = std::min(x1, px + (kPieceSide - 1));
+            // Unsigned arithmetic wraps modulo 2^32, as the table does.
+            const std::uint32_t piece = at(qx + 1, qy + 1) - at(px, qy + 1) - at(qx + 1, py) + at(px, py);
+            sum += piece;
+        }
+    }
+    return sum;
+}
+
+template <class Emitted>
+void EmissionFootprints::fill_sums(Table& table, double brightest, const Emitted& emitted) {
+    // Each texel rounded up, so that one that emits at all counts at least 1 unit.
+    // (With a bound of the brightest texel the units are coarser, never too fine to
+    // hold a texel in kUnits + 1.)
+    table.unit = brightest / double(kUnits);
+    const double per_unit = brightest > 0.0 ? 1.0 / table.unit : 0.0;
+    const std::size_t row = std::size_t(table.width) + 1;
+    table.sums.resize(row * (std::size_t(table.height) + 1));  // each word written below
+    std::fill_n(table.sums.begin(), row, 0u);
+    // Each row's running sums, rows in parallel; then, columns in parallel, each
+    // row adds the one above.
+    parallel_for(table.height, [&](std::size_t y) {
+        std::uint32_t* out = table.sums.data() + (y + 1) * row;
+        std::uint32_t running = 0;
+        out[0] = 0;
+        for (std::size_t x = 0; x < table.width; ++x) {
+            const double e = emitted(y * table.width + x);
+            running += e > 0.0 ? std::uint32_t(std::ceil(e * per_unit)) : 0u;
+            out[x + 1] = running;
+        }
+    });
+    constexpr std::size_t kColumns = 256;
+    parallel_for((row + kColumns - 1) / kColumns, [&](std::size_t block) {
+        const std::size_t first = block * kColumns, last = std::min(row, first + kColumns);
+        for (std::size_t y = 2; y <= table.height; ++y) {
+            std::uint32_t* out = table.sums.data() + y * row;
+            const std::uint32_t* above = out - row;
+            for (std::size_t x = first; x < last; ++x) out[x] += above[x];
+        }
+    });
 }
 
 const EmissionFootprints::Table& EmissionFootprints::table(std::uint32_t texture, const glm::dvec3& emission) {
@@ -66,27 +110,34 @@ const EmissionFootprints::Table& EmissionFootprints::table(std::uint32_t texture
     if (auto it = tables_.find(key); it != tables_.end()) return it->second;
     const TextureImage& t = scene_.textures[texture];
     const std::span<const std::uint32_t> texels = scene_.texels.words();
-    // As the kernel weighs emission (emission_weight): the mean of the channels.
-    const auto emitted = [&](std::size_t i) {
-        const glm::vec4 c = texel_value(t, texels, i);
-        return std::max(0.0, (emission.x * c.r + emission.y * c.g + emission.z * c.b) / 3.0);
-    };
-    double brightest = 0.0;
-    for (std::size_t i = 0; i < t.texel_count(); ++i) brightest = std::max(brightest, emitted(i));
     Table table;
     table.width = t.width;
     table.height = t.height;
-    table.unit = brightest / double(kUnits);
-    const std::size_t row = std::size_t(t.width) + 1;
-    table.sums.assign(row * (std::size_t(t.height) + 1), 0);
-    for (std::uint32_t y = 0; y < t.height; ++y) {
-        std::uint64_t running = 0;  // this row's texels so far
-        for (std::uint32_t x = 0; x < t.width; ++x) {
-            // Rounded up, so that a texel that emits at all counts at least 1.
-            const double e = emitted(std::size_t(y) * t.width + x);
-            running += e > 0.0 ? std::uint64_t(std::ceil(e / table.unit)) : 0;
-            table.sums[(std::size_t(y) + 1) * row + x + 1] = table.sums[std::size_t(y) * row + x + 1] + running;
+    // As the kernel weighs emission (emission_weight): the mean over the channels
+    // of emission times texel, never below 0.
+    if (t.format == TexelFormat::Rgba8) {
+        // An 8-bit texel's channels each take one of 256 values: the products come
+        // from a table per channel, and the largest sum of the three tables' maxima
+        // bounds the brightest texel without a pass over the texels.
+        std::array<std::array<double, 256>, 3> product{};
+        double bound = 0.0;
+        for (int c = 0; c < 3; ++c) {
+            for (std::uint32_t b = 0; b < 256; ++b) product[c][b] = emission[c] * colour_byte_value(t, b);
+            bound += *std::max_element(product[c].begin(), product[c].end());
         }
+        fill_sums(table, std::max(0.0, bound / 3.0), [&](std::size_t i) {
+            const std::uint32_t word = texels[t.first_word + i];
+            return std::max(0.0, (product[0][word & 255u] + product[1][(word >> 8) & 255u] +
+                                  product[2][(word >> 16) & 255u]) / 3.0);
+        });
+    } else {
+        const auto emitted = [&](std::size_t i) {
+            const glm::vec4 c = texel_value(t, texels, i);
+            return std::max(0.0, (emission.x * c.r + emission.y * c.g + emission.z * c.b) / 3.0);
+        };
+        double brightest = 0.0;
+        for (std::size_t i = 0; i < t.texel_count(); ++i) brightest = std::max(brightest, emitted(i));
+        fill_sums(table, brightest, emitted);
     }
     return tables_.emplace(key, std::move(table)).first->second;
 }

@@ -37,18 +37,25 @@ public:
 
 private:
     // Sums of the emission over texels [0, x) x [0, y), (width + 1) x (height + 1),
-    // in integer units of the brightest texel / kUnits, each texel rounded up: exact,
-    // so that a footprint's sum is 0 exactly when all its texels are black, however
-    // bright the rest of the texture (a table of doubles would cancel).
-    static constexpr std::uint64_t kUnits = std::uint64_t(1) << 20;
+    // in integer units of the brightest texel / kUnits (or of a bound of it), each
+    // texel rounded up: exact, so that a footprint's sum is 0 exactly when all its
+    // texels are black, however bright the rest of the texture (a table of doubles
+    // would cancel). Kept modulo 2^32, in half the memory of 64-bit sums: a
+    // rectangle's sum from its four corners is still exact while the true sum stays
+    // below 2^32, which kPieceSide x kPieceSide texels of at most kUnits + 1 units
+    // each do; larger rectangles are summed piece by piece.
+    static constexpr std::uint32_t kUnits = std::uint32_t(1) << 11;
+    static constexpr std::uint32_t kPieceSide = 1024;
     struct Table {
         std::uint32_t width = 0;
         std::uint32_t height = 0;
         double unit = 0.0;
-        std::vector<std::uint64_t> sums;
+        TexelWords sums;
         std::uint64_t rect(std::uint32_t x0, std::uint32_t x1, std::uint32_t y0, std::uint32_t y1) const;  // inclusive
     };
     const Table& table(std::uint32_t texture, const glm::dvec3& emission);
+    template <class Emitted>
+    static void fill_sums(Table& table, double brightest, const Emitted& emitted);
 
     const Scene& scene_;
     std::map<std::tuple<std::uint32_t, double, double, double>, Table> tables_;

@@ -15,16 +15,20 @@ public:
     using value_type = T;
 
     SharedArray() = default;
-    explicit SharedArray(std::shared_ptr<const std::vector<T>> items) : items_(std::move(items)) {}
+    // Any vector of T, whatever its allocator; kept alive as long as this is.
+    template <class Allocator>
+    explicit SharedArray(std::shared_ptr<const std::vector<T, Allocator>> items)
+        : owner_(items), items_(items ? std::span<const T>(*items) : std::span<const T>()) {}
 
-    std::size_t size() const { return items_ ? items_->size() : 0; }
-    bool empty() const { return size() == 0; }
-    const T* data() const { return items_ ? items_->data() : nullptr; }
-    const T& operator[](std::size_t i) const { return (*items_)[i]; }
-    operator std::span<const T>() const { return items_ ? std::span<const T>(*items_) : std::span<const T>(); }
+    std::size_t size() const { return items_.size(); }
+    bool empty() const { return items_.empty(); }
+    const T* data() const { return items_.empty() ? nullptr : items_.data(); }
+    const T& operator[](std::size_t i) const { return items_[i]; }
+    operator std::span<const T>() const { return items_; }
 
 private:
-    std::shared_ptr<const std::vector<T>> items_;
+    std::shared_ptr<const void> owner_;
+    std::span<const T> items_;
 };
 
 }  // namespace vkrt

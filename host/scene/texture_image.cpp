@@ -37,42 +37,41 @@ glm::vec4 texel_value(const TextureImage& texture, std::span<const std::uint32_t
     }
     const std::uint32_t word = texels[texture.first_word + i];
     const auto byte = [&](int k) { return (word >> (8 * k)) & 255u; };
+    return glm::vec4(colour_byte_value(texture, byte(0)), colour_byte_value(texture, byte(1)),
+                     colour_byte_value(texture, byte(2)), float(byte(3)) * (1.0f / 255.0f));
+}
+
+float colour_byte_value(const TextureImage& texture, std::uint32_t byte) {
     // As the kernel: a float times the float nearest 1/255, one rounding.
-    const float inv = 1.0f / 255.0f;
-    glm::vec4 c(float(byte(0)) * inv, float(byte(1)) * inv, float(byte(2)) * inv, float(byte(3)) * inv);
-    if (texture.srgb) {
-        const std::array<float, 256>& table = srgb_byte_table();
-        c = glm::vec4(table[byte(0)], table[byte(1)], table[byte(2)], c.a);
-    }
-    return c;
+    return texture.srgb ? srgb_byte_table()[byte] : float(byte) * (1.0f / 255.0f);
 }
 
 // TexelStore ----------------------------------------------------------------------
 
-std::vector<std::uint32_t>& TexelStore::own() {
+TexelWords& TexelStore::own() {
     if (!words_) {
-        words_ = std::make_shared<std::vector<std::uint32_t>>();
+        words_ = std::make_shared<TexelWords>();
     } else if (words_.use_count() > 1) {
-        words_ = std::make_shared<std::vector<std::uint32_t>>(*words_);
+        words_ = std::make_shared<TexelWords>(*words_);
     }
     return *words_;
 }
 
-std::uint64_t TexelStore::append(std::vector<std::uint32_t>&& words) {
+std::uint64_t TexelStore::append(TexelWords&& words) {
     const std::uint64_t first = size();
     if (first == 0) {
-        words_ = std::make_shared<std::vector<std::uint32_t>>(std::move(words));
+        words_ = std::make_shared<TexelWords>(std::move(words));
     } else {
-        std::vector<std::uint32_t>& w = own();
+        TexelWords& w = own();
         w.insert(w.end(), words.begin(), words.end());
     }
     return first;
 }
 
 std::uint64_t TexelStore::grow(std::size_t count) {
-    std::vector<std::uint32_t>& w = own();
+    TexelWords& w = own();
     const std::uint64_t first = w.size();
-    w.resize(w.size() + count, 0u);
+    w.resize(w.size() + count);
     return first;
 }
 

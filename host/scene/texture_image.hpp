@@ -13,6 +13,8 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -34,13 +36,39 @@ enum class TexelFormat : std::uint8_t { Half, Rgba8 };  // kernel TEXEL_HALF, TE
 // (.exr, .hdr) hold linear values already.
 enum class Encoding : std::uint8_t { SrgbUnlessFloat, Linear };
 
+// An allocator whose vectors leave new elements unset when they grow: texel arrays
+// are written whole by their decoders, and zeroing them first would touch every
+// fresh page twice, once in one thread (page faults cost as much as decoding where
+// memory is virtualized: 64 MiB of them took 0.17 s on the 2-core test machine).
+template <class T>
+struct UninitializedAllocator : std::allocator<T> {
+    template <class U>
+    struct rebind {
+        using other = UninitializedAllocator<U>;
+    };
+    UninitializedAllocator() = default;
+    template <class U>
+    UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {}
+    template <class U>
+    void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+        ::new (static_cast<void*>(p)) U;
+    }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+};
+
+// Texel words as TexelFormat says; a vector that grows without zeroing.
+using TexelWords = std::vector<std::uint32_t, UninitializedAllocator<std::uint32_t>>;
+
 // One image's texels, decoded.
 struct DecodedImage {
     std::uint32_t width = 0;
     std::uint32_t height = 0;
     TexelFormat format = TexelFormat::Rgba8;
     bool srgb = false;                 // Rgba8: red, green and blue are sRGB-encoded
-    std::vector<std::uint32_t> words;  // as TexelFormat says
+    TexelWords words;                  // as TexelFormat says
 };
 
 // A scene's texture: where its texels are in Scene::texels, and how to read them.
@@ -67,20 +95,20 @@ struct TextureImage {
 class TexelStore {
 public:
     // Appends the words and returns where they start.
-    std::uint64_t append(std::vector<std::uint32_t>&& words);
-    // Room for `count` more words, zeroed, at the end; returns where it starts. For
-    // decoders that write in place (mutable_words).
+    std::uint64_t append(TexelWords&& words);
+    // Room for `count` more words, unset, at the end; returns where it starts. For
+    // decoders that write every word in place (mutable_words).
     std::uint64_t grow(std::size_t count);
     std::span<std::uint32_t> mutable_words(std::uint64_t first, std::size_t count);
 
     std::span<const std::uint32_t> words() const;
     std::size_t size() const { return words_ ? words_->size() : 0; }
     // The array itself, for the flattened scene to share (null when empty).
-    std::shared_ptr<const std::vector<std::uint32_t>> share() const { return words_; }
+    std::shared_ptr<const TexelWords> share() const { return words_; }
 
 private:
-    std::vector<std::uint32_t>& own();
-    std::shared_ptr<std::vector<std::uint32_t>> words_;
+    TexelWords& own();
+    std::shared_ptr<TexelWords> words_;
 };
 
 // The most texels one texture, and all of a scene's together, may hold.
@@ -155,6 +183,10 @@ std::array<double, 6> texture_transform(double offset_u, double offset_v, double
 // Texel i (row y, column x: y * width + x) as the kernel reads it: linear, in float,
 // bit for bit (texel_at in kernel/texture.glsl); a normal map's encoding undecoded.
 glm::vec4 texel_value(const TextureImage& texture, std::span<const std::uint32_t> texels, std::size_t i);
+
+// A colour channel (red, green or blue) of an Rgba8 texture holding `byte`, as
+// texel_value decodes it; alpha is never sRGB-encoded.
+float colour_byte_value(const TextureImage& texture, std::uint32_t byte);
 
 // sRGB's transfer function, decoded: an encoded value in [0, 1] to linear.
 double srgb_to_linear(double encoded);
