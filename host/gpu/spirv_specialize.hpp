@@ -19,12 +19,12 @@ namespace vkrt::gpu {
 // `spirv` with each specialization constant named in `values` (by constant_id) set
 // to that boolean, every specialization constant frozen (one not named, at its
 // default: the caller names them all), spec-constant expressions folded, and dead
-// branches, functions and code removed, and the calls that can be inlined inlined
-// (SPIRV-Tools). Empty if SPIRV-Tools rejects the module,
+// branches, functions and code removed, the calls that can be inlined inlined, and
+// SPIRV-Tools' performance passes but merge-return run over the result. Empty if SPIRV-Tools rejects the module,
 // with the reason in `error`; the caller then uses `spirv` as it is.
 // Changes whenever the passes above do, so that SPIR-V cached by an earlier recipe
 // is not read back (gpu/pipeline_cache.hpp hashes it into the key).
-inline constexpr std::uint32_t kSpecializationRecipe = 2;
+inline constexpr std::uint32_t kSpecializationRecipe = 3;
 
 std::vector<std::uint32_t> specialize_spirv(std::span<const std::uint32_t> spirv,
                                             const std::unordered_map<std::uint32_t, bool>& values, std::string& error);
