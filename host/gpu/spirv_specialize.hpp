@@ -20,11 +20,11 @@ namespace vkrt::gpu {
 // to that boolean, every specialization constant frozen (one not named, at its
 // default: the caller names them all), spec-constant expressions folded, and dead
 // branches, functions and code removed, the calls that can be inlined inlined, and
-// SPIRV-Tools' performance passes but merge-return run over the result. Empty if SPIRV-Tools rejects the module,
-// with the reason in `error`; the caller then uses `spirv` as it is.
+// the copies that leaves cleaned up (SPIRV-Tools). Empty if SPIRV-Tools rejects
+// the module, with the reason in `error`; the caller then uses `spirv` as it is.
 // Changes whenever the passes above do, so that SPIR-V cached by an earlier recipe
 // is not read back (gpu/pipeline_cache.hpp hashes it into the key).
-inline constexpr std::uint32_t kSpecializationRecipe = 3;
+inline constexpr std::uint32_t kSpecializationRecipe = 4;
 
 std::vector<std::uint32_t> specialize_spirv(std::span<const std::uint32_t> spirv,
                                             const std::unordered_map<std::uint32_t, bool>& values, std::string& error);
