@@ -146,6 +146,37 @@ TEST(EmissionFootprint, LargeEightBitTexturesSumExactlyPieceByPiece) {
     EXPECT_DOUBLE_EQ(at({{898.0 / w, 100.0 / h}, {1100.0 / w, 100.0 / h}, {898.0 / w, 300.0 / h}}), lit / reached);
 }
 
+// A dim 8-bit emission texture (linear values near 0.003 and 0.0015) keeps its
+// weights' precision: the table's unit follows the brightest byte present, not the
+// brightest a byte could hold, so rounding each texel up costs under 1/2048 of it.
+TEST(EmissionFootprint, DimEightBitTexturesKeepTheirPrecision) {
+    Image img(4, 4);
+    for (int y = 0; y < 4; ++y) {
+        for (int x = 0; x < 4; ++x) {
+            for (int c = 0; c < 3; ++c) img.pixel(x, y)[c] = x == 0 && y == 0 ? 0.0015f : 0.003f;
+        }
+    }
+    const std::filesystem::path file = test::temp_dir("emission_footprint_dim") / "dim.png";
+    write_image(img, file);
+    const Scene scene = test::scene_from_text("dim", R"({
+      "camera": { "eye": [0, 0, 3], "look_at": [0, 0, 0] },
+      "materials": { "lamp": { "emission": [1, 1, 1], "emission_texture": ")" + file.string() + R"(" } },
+      "objects": [ { "type": "quad", "corner": [-1, -1, 0], "edge1": [2, 0, 0], "edge2": [0, 2, 0], "material": "lamp" } ]
+    })");
+    const TextureImage& t = scene.textures.at(0);
+    ASSERT_EQ(t.format, TexelFormat::Rgba8);
+    double expected = 0.0;
+    for (std::size_t i = 0; i < t.texel_count(); ++i) {
+        const glm::vec4 c = texel_value(t, scene.texels.words(), i);
+        expected += (double(c.r) + double(c.g) + double(c.b)) / 3.0 / double(t.texel_count());
+    }
+    ASSERT_GT(expected, 0.001);
+    ASSERT_LT(expected, 0.01);
+    const double mean = EmissionFootprints(scene).mean_emission(scene.materials.at(0), {{{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}}});
+    EXPECT_GE(mean, expected);
+    EXPECT_LT(mean, expected * (1.0 + 1.0 / 1024.0));
+}
+
 // An emitter of 16 x 16 cells, two triangles each, at z = 1 facing down, over
 // [-4, 4]^2, with texture coordinates over [0, 1]^2: each cell covers a quarter of
 // a texel, and the filter reaches a lit texel from the cells within about a texel.

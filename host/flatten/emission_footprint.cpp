@@ -117,13 +117,19 @@ const EmissionFootprints::Table& EmissionFootprints::table(std::uint32_t texture
     // of emission times texel, never below 0.
     if (t.format == TexelFormat::Rgba8) {
         // An 8-bit texel's channels each take one of 256 values: the products come
-        // from a table per channel, and the largest sum of the three tables' maxima
-        // bounds the brightest texel without a pass over the texels.
+        // from a table per channel. The brightest texel is bounded by the sum of
+        // each channel's product at its largest byte (a byte's value grows with
+        // it), found by a pass over the bytes alone.
+        std::array<std::uint32_t, 3> top{};
+        for (std::size_t i = 0; i < t.texel_count(); ++i) {
+            const std::uint32_t word = texels[t.first_word + i];
+            for (int c = 0; c < 3; ++c) top[c] = std::max(top[c], (word >> (8 * c)) & 255u);
+        }
         std::array<std::array<double, 256>, 3> product{};
         double bound = 0.0;
         for (int c = 0; c < 3; ++c) {
             for (std::uint32_t b = 0; b < 256; ++b) product[c][b] = emission[c] * colour_byte_value(t, b);
-            bound += *std::max_element(product[c].begin(), product[c].end());
+            bound += std::max(product[c][0], product[c][top[c]]);
         }
         fill_sums(table, std::max(0.0, bound / 3.0), [&](std::size_t i) {
             const std::uint32_t word = texels[t.first_word + i];
