@@ -112,6 +112,15 @@ TEST(EmissionFootprint, TheMaterialsTransformMovesTheFootprint) {
     EXPECT_NEAR(EmissionFootprints(scene).mean_emission(m, uv), 1.5 / 16.0, 1e-7);
 }
 
+// A quad of emission (1, 1, 1) times the texture `file`.
+Scene white_lamp(const std::filesystem::path& file) {
+    return test::scene_from_text(file.stem().string(), R"({
+      "camera": { "eye": [0, 0, 3], "look_at": [0, 0, 0] },
+      "materials": { "lamp": { "emission": [1, 1, 1], "emission_texture": ")" + file.string() + R"(" } },
+      "objects": [ { "type": "quad", "corner": [-1, -1, 0], "edge1": [2, 0, 0], "edge2": [0, 2, 0], "material": "lamp" } ]
+    })");
+}
+
 // An 8-bit texture larger than the table's pieces (2100 x 1100 texels, white but
 // for a black block of 1000 x 500 at the top left), on a quad of emission (1, 1, 1):
 // each white texel counts kUnits exactly, so the whole texture's sum, far past
@@ -127,11 +136,7 @@ TEST(EmissionFootprint, LargeEightBitTexturesSumExactlyPieceByPiece) {
     }
     const std::filesystem::path file = test::temp_dir("emission_footprint_large") / "large.png";
     write_image(img, file);
-    const Scene scene = test::scene_from_text("large", R"({
-      "camera": { "eye": [0, 0, 3], "look_at": [0, 0, 0] },
-      "materials": { "lamp": { "emission": [1, 1, 1], "emission_texture": ")" + file.string() + R"(" } },
-      "objects": [ { "type": "quad", "corner": [-1, -1, 0], "edge1": [2, 0, 0], "edge2": [0, 2, 0], "material": "lamp" } ]
-    })");
+    const Scene scene = white_lamp(file);
     ASSERT_EQ(scene.textures.at(0).format, TexelFormat::Rgba8);
     EmissionFootprints footprints(scene);
     const Material& m = scene.materials.at(0);
@@ -158,11 +163,7 @@ TEST(EmissionFootprint, DimEightBitTexturesKeepTheirPrecision) {
     }
     const std::filesystem::path file = test::temp_dir("emission_footprint_dim") / "dim.png";
     write_image(img, file);
-    const Scene scene = test::scene_from_text("dim", R"({
-      "camera": { "eye": [0, 0, 3], "look_at": [0, 0, 0] },
-      "materials": { "lamp": { "emission": [1, 1, 1], "emission_texture": ")" + file.string() + R"(" } },
-      "objects": [ { "type": "quad", "corner": [-1, -1, 0], "edge1": [2, 0, 0], "edge2": [0, 2, 0], "material": "lamp" } ]
-    })");
+    const Scene scene = white_lamp(file);
     const TextureImage& t = scene.textures.at(0);
     ASSERT_EQ(t.format, TexelFormat::Rgba8);
     double expected = 0.0;

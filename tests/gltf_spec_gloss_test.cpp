@@ -208,14 +208,7 @@ void write_png(const std::filesystem::path& file, const Png& png, bool sixteen_b
 // 0 and 1 clamp and repeat.
 std::filesystem::path quad_file(const std::string& name, const std::string& material, const std::vector<Png>& pngs) {
     const std::filesystem::path dir = vkrt::test::temp_dir("spec_gloss_textures");
-    const float positions[12] = {-1, 1, 0, 1, 1, 0, 1, -1, 0, -1, -1, 0};
-    const float uvs[8] = {0, 0, 1, 0, 1, 1, 0, 1};
-    const std::uint16_t indices[6] = {0, 2, 1, 0, 3, 2};
-    std::ofstream bin(dir / (name + ".bin"), std::ios::binary);
-    bin.write(reinterpret_cast<const char*>(positions), sizeof positions);
-    bin.write(reinterpret_cast<const char*>(uvs), sizeof uvs);
-    bin.write(reinterpret_cast<const char*>(indices), sizeof indices);
-    bin.close();
+    vkrt::test::write_quad_buffer(dir / (name + ".bin"));
     std::string textures, images;
     for (const Png& png : pngs) {
         write_png(dir / (png.name + ".png"), png);

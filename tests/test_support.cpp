@@ -142,6 +142,16 @@ Scene scene_from_text(const std::string& name, const std::string& text) {
     return load_scene(file);
 }
 
+void write_quad_buffer(const std::filesystem::path& file) {
+    const float positions[12] = {-1, 1, 0, 1, 1, 0, 1, -1, 0, -1, -1, 0};
+    const float uvs[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+    const std::uint16_t indices[6] = {0, 2, 1, 0, 3, 2};
+    std::ofstream bin(file, std::ios::binary);
+    bin.write(reinterpret_cast<const char*>(positions), sizeof positions);
+    bin.write(reinterpret_cast<const char*>(uvs), sizeof uvs);
+    bin.write(reinterpret_cast<const char*>(indices), sizeof indices);
+}
+
 void view_quad_head_on(Scene& scene, std::uint32_t size, std::uint32_t spp, double background) {
     scene.camera.eye = glm::dvec3(0, 0, 3);
     scene.camera.look_at = glm::dvec3(0, 0, 0);

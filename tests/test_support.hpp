@@ -39,6 +39,11 @@ void expect_error_message(const std::string& message, const std::string& prefix,
 // samples, the background `background`.
 void view_quad_head_on(Scene& scene, std::uint32_t size, std::uint32_t spp, double background);
 
+// Writes FILE, the buffer of that quad for a glTF test file: 4 positions (float3,
+// bytes 0-47), 4 TEXCOORD_0 ((0, 0) at the top left, float2, bytes 48-79), then
+// 6 unsigned-short indices (bytes 80-91).
+void write_quad_buffer(const std::filesystem::path& file);
+
 // A scene file with its image size replaced, for fast renders.
 Scene load_at_size(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height);
 

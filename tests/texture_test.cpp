@@ -250,14 +250,7 @@ std::filesystem::path textured_gltf(const std::string& name, const std::string& 
     const std::filesystem::path dir = test::temp_dir("texture_gltf");
     const std::filesystem::path exr = quadrant_texture(name);
     write_image(read_image(exr), dir / (name + ".png"));
-    const float positions[12] = {-1, 1, 0, 1, 1, 0, 1, -1, 0, -1, -1, 0};
-    const float uvs[8] = {0, 0, 1, 0, 1, 1, 0, 1};
-    const std::uint16_t indices[6] = {0, 2, 1, 0, 3, 2};
-    std::ofstream bin(dir / (name + ".bin"), std::ios::binary);
-    bin.write(reinterpret_cast<const char*>(positions), sizeof positions);
-    bin.write(reinterpret_cast<const char*>(uvs), sizeof uvs);
-    bin.write(reinterpret_cast<const char*>(indices), sizeof indices);
-    bin.close();
+    test::write_quad_buffer(dir / (name + ".bin"));
     const std::filesystem::path file = dir / (name + ".gltf");
     std::ofstream(file) << R"({
       "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
