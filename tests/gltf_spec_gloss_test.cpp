@@ -226,12 +226,7 @@ std::filesystem::path quad_file(const std::string& name, const std::string& mate
       "textures": [)" + textures + R"(],
       "samplers": [{"wrapS": 33071, "wrapT": 33071}, {"wrapS": 10497, "wrapT": 10497}],
       "images": [)" + images + R"(],
-      "buffers": [{"byteLength": 92, "uri": ")" + name + R"(.bin"}],
-      "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 32},
-                      {"buffer": 0, "byteOffset": 80, "byteLength": 12}],
-      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, -1, 0], "max": [1, 1, 0]},
-                    {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
-                    {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}]
+      )" + vkrt::test::quad_buffer_json(name + ".bin") + R"(
     })";
     return file;
 }

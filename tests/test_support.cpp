@@ -152,6 +152,15 @@ void write_quad_buffer(const std::filesystem::path& file) {
     bin.write(reinterpret_cast<const char*>(indices), sizeof indices);
 }
 
+std::string quad_buffer_json(const std::string& uri) {
+    return R"("buffers": [{"byteLength": 92, "uri": ")" + uri + R"("}],
+      "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 32},
+                      {"buffer": 0, "byteOffset": 80, "byteLength": 12}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, -1, 0], "max": [1, 1, 0]},
+                    {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
+                    {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}])";
+}
+
 void view_quad_head_on(Scene& scene, std::uint32_t size, std::uint32_t spp, double background) {
     scene.camera.eye = glm::dvec3(0, 0, 3);
     scene.camera.look_at = glm::dvec3(0, 0, 0);

@@ -43,6 +43,9 @@ void view_quad_head_on(Scene& scene, std::uint32_t size, std::uint32_t spp, doub
 // bytes 0-47), 4 TEXCOORD_0 ((0, 0) at the top left, float2, bytes 48-79), then
 // 6 unsigned-short indices (bytes 80-91).
 void write_quad_buffer(const std::filesystem::path& file);
+// The "buffers", "bufferViews" and "accessors" members of a glTF file that reads
+// that buffer from `uri`: accessors 0 (POSITION), 1 (TEXCOORD_0) and 2 (indices).
+std::string quad_buffer_json(const std::string& uri);
 
 // A scene file with its image size replaced, for fast renders.
 Scene load_at_size(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height);

@@ -260,12 +260,7 @@ std::filesystem::path textured_gltf(const std::string& name, const std::string& 
       "textures": [{"source": 0, "sampler": 0}],
       "samplers": [{"wrapS": )" + std::to_string(wrap) + R"(, "wrapT": )" + std::to_string(wrap) + R"(}],
       "images": [{"uri": ")" + name + R"(.png"}],
-      "buffers": [{"byteLength": 92, "uri": ")" + name + R"(.bin"}],
-      "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 32},
-                      {"buffer": 0, "byteOffset": 80, "byteLength": 12}],
-      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, -1, 0], "max": [1, 1, 0]},
-                    {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
-                    {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}]
+      )" + test::quad_buffer_json(name + ".bin") + R"(
     })";
     return file;
 }
