@@ -109,6 +109,25 @@ void store_pixel_texel(uint t, uvec4 value) {
 #define fetch_vec4(array, t) uintBitsToFloat(fetch_texel(array, t))
 #define uint_FROM_TEXELS(array, i) scene_word(array##_base() + (i))
 #define LOAD_ELEMENT(Element, name, i) Element##_FROM_TEXELS(name, i)
+// The kernel's invariants are checked by the reference backend (host/kernel/checks.hpp).
+#define CHECK(condition)
+
+// A material from its texels, field by field (kernel/material_fields.glsl). All its
+// texels are fetched first, so that a texel is read once however many fields it holds;
+// the driver drops those whose fields the pipeline never reads.
+Material material_from_texels(uint i) {
+    uvec4 t[MATERIAL_TEXELS];
+    [[unroll]] for (uint k = 0u; k < MATERIAL_TEXELS; ++k) {
+        t[k] = fetch_texel(materials, MATERIAL_TEXELS * i + k);
+    }
+    Material m;
+#define MATERIAL_FIELD(T, name, texel, lane) m.name = FROM_BITS_##T(t[texel].lane);
+#define MATERIAL_FIELD3(T, name, texel) m.name = FROM_BITS_##T(t[texel].xyz);
+#define MATERIAL_PAD(texel, lane) m.pad_##texel##_##lane = t[texel].lane;
+#include "kernel/material_fields.glsl"
+    return m;
+}
+#define Material_FROM_TEXELS(b, i) material_from_texels(i)
 
 #include "kernel/all.glsl"
 

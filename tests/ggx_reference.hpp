@@ -1,5 +1,5 @@
 #pragma once
-// The metallic-roughness BSDF of shaders/kernel/bsdf.glsl and microfacet.glsl written
+// The metallic-roughness BSDF of shaders/kernel/bsdf.glsl and lobes/ written
 // again in double, from the papers rather than from the kernel, for the tests to hold
 // the kernel against: GGX's distribution (Walter et al. 2007), Smith's Lambda and
 // height-correlated G2 (Heitz 2014), Schlick's Fresnel, and the diffuse coupling of

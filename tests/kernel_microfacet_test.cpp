@@ -1,4 +1,4 @@
-// The GGX lobe of the metallic-roughness material (shaders/kernel/microfacet.glsl,
+// The GGX lobe of the metallic-roughness material (shaders/kernel/lobes/ggx.glsl,
 // bsdf.glsl) against the formulas written again here in double precision: the
 // distribution's normalization, the sampled density against the evaluated one (a
 // chi-square test over the sphere), the white furnace (a lobe of reflectance 1
@@ -236,8 +236,12 @@ TEST(Ggx, WhiteFurnaceLosesOnlyTheMultipleScattering) {
 // The metallic-roughness material as bsdf.glsl assembles it.
 Kernel::Lobes lobes_of(Kernel& k, vec3 base_color, float metallic, float roughness, float cos_o) {
     const vec3 f0 = glm::mix(vec3(0.04f), base_color, metallic);
-    const vkrt::kernel::Material m{vec4((1.0f - metallic) * base_color, 1.0f), vec4(0.0f), vec4(0.0f), vec4(0.0f, 0.0f, 0.0f, 1.5f),
-                             vec4(0.0f), vec4(f0, roughness * roughness), vkrt::kernel::uvec4(0u), vec4(0.0f), vec4(0.0f)};
+    vkrt::kernel::Material m{};
+    m.diffuse = (1.0f - metallic) * base_color;
+    m.kd = 1.0f;
+    m.ior = 1.5f;
+    m.ggx_f0 = f0;
+    m.ggx_alpha = roughness * roughness;
     return k.material_lobes(m, cos_o);
 }
 

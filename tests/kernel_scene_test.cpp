@@ -365,9 +365,8 @@ glm::dvec3 paper_light_term(glm::dvec3 point, glm::dvec3 normal, glm::dvec3 eye,
     const double cos_theta = glm::dot(normal, l);
     const glm::dvec3 r = 2.0 * cos_theta * normal - l;
     const double cos_alpha = glm::dot(r, v);
-    const glm::dvec3 diffuse = double(m.diffuse_kd.w) * glm::dvec3(glm::vec3(m.diffuse_kd)) * cos_theta;
-    const glm::dvec3 specular = double(m.specular_ks.w) * glm::dvec3(glm::vec3(m.specular_ks)) *
-                                std::pow(cos_alpha, double(m.reflect_shininess.w));
+    const glm::dvec3 diffuse = double(m.kd) * glm::dvec3(m.diffuse) * cos_theta;
+    const glm::dvec3 specular = double(m.ks) * glm::dvec3(m.specular) * std::pow(cos_alpha, double(m.shininess));
     return color_times_intensity * (diffuse + specular);
 }
 
@@ -393,9 +392,11 @@ struct ShadeSetup {
 
     ShadeSetup() {
         Material m{};
-        m.diffuse_kd = vec4(0.5f, 0.25f, 1.0f, 0.5f);
-        m.specular_ks = vec4(1.0f, 0.5f, 0.25f, 0.25f);
-        m.reflect_shininess = vec4(0.0f, 0.0f, 0.0f, 3.0f);
+        m.diffuse = vec3(0.5f, 0.25f, 1.0f);
+        m.kd = 0.5f;
+        m.specular = vec3(1.0f, 0.5f, 0.25f);
+        m.ks = 0.25f;
+        m.shininess = 3.0f;
         scene.materials = {m};
         scene.spheres = {sphere(vec3(0, 0, 0), 1.0f, 0)};
         scene.lights = {point_light(vec3(light_pos), vec3(light_color * light_intensity))};
@@ -443,7 +444,7 @@ TEST(ShadeLocal, SpecularAndDiffuseAreSeparateFeatures) {
 
 TEST(ShadeLocal, AmbientAndEmissionAddToTheLight) {
     ShadeSetup s;
-    s.scene.materials[0].emission_fresnel = vec4(0.5f, 0.25f, 0.125f, 0.0f);
+    s.scene.materials[0].emission = vec3(0.5f, 0.25f, 0.125f);
     Kernel k = s.scene.kernel();  // ambient and emission on
     kernel::set_ambient_light(k.params, vec3(0.5f, 1.0f, 2.0f));
     const Kernel::Hit hit = k.closest_hit(s.eye_ray, INFINITY_T);
@@ -459,7 +460,7 @@ TEST(ShadeLocal, AmbientAndEmissionAddToTheLight) {
 TEST(ShadeLocal, EmissionIsSeenFromTheFrontFaceOnly) {
     TestScene scene;
     Material m{};
-    m.emission_fresnel = vec4(1.0f, 2.0f, 3.0f, 0.0f);
+    m.emission = vec3(1.0f, 2.0f, 3.0f);
     scene.materials = {m};
     scene.spheres = {sphere(vec3(0, 0, 0), 2.0f, 0)};
     Kernel k = scene.kernel();
@@ -553,7 +554,8 @@ const vec3 kBackground(0.25f, 0.5f, 0.75f);
 TestScene tiny_view() {
     TestScene scene;
     Material m{};
-    m.diffuse_kd = vec4(0.8f, 0.2f, 0.2f, 1.0f);
+    m.diffuse = vec3(0.8f, 0.2f, 0.2f);
+    m.kd = 1.0f;
     scene.materials = {m};
     scene.spheres = {sphere(vec3(0, 0, -3), 1.5f, 0)};
     scene.lights = {point_light(vec3(0.0f), vec3(1.0f))};

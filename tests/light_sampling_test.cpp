@@ -194,7 +194,7 @@ TEST(LightPdf, AHitOnALightHasTheDensityItsSampleStated) {
         const float pdf = k.light_pdf_of_hit(ray, hit);
         ASSERT_NEAR(pdf, y.pdf, 2e-3f * y.pdf) << "sample " << i;
         ++compared;
-        textured += flat.materials[hit.material].maps.w != 0u ? 1 : 0;
+        textured += flat.materials[hit.material].emission_map != 0u ? 1 : 0;
     }
     EXPECT_GT(compared, 2000);
     EXPECT_GT(textured, 200);

@@ -54,7 +54,7 @@ TEST(LoopBudget, SilentWhenUnderBudget) {
 TEST(LoopBudget, CountsEveryIterationAndEveryLoopEntry) {
     // 100 spheres and no lights: the eye ray's sphere loop costs 100 iterations plus
     // one for its exit test, the way lavapipe counts, and, with 100 spheres
-    // (DEFERRED_SPHERES), two more loops run once each (scene.glsl): the passes
+    // (DEFERRED_SPHERES), two more loops run once each (traversal.glsl): the passes
     // around it, and the deferred spheres' tests after it, whose body runs masked
     // when no lane has any. So 103 is exactly enough.
     Scene scene = too_many_spheres(100);

@@ -182,9 +182,9 @@ struct MappedTriangle {
         const vec3 c = (ts + 1.0f) * 0.5f;
         words = {glm::packHalf2x16(vec2(c.x, c.y)), glm::packHalf2x16(vec2(c.z, 1.0f))};
         kernel::Material m{};
-        m.maps = uvec4(0u, 0u, 1u, 0u);
-        m.uv_u = vec4(1.0f, 0.0f, 0.0f, 0.0f);
-        m.uv_v = vec4(0.0f, 1.0f, 0.0f, 0.0f);
+        m.normal_map = 1u;
+        m.uv_u = vec3(1.0f, 0.0f, 0.0f);
+        m.uv_v = vec3(0.0f, 1.0f, 0.0f);
         materials.push_back(m);
         kernel::Triangle t{};
         t.p0 = vec4(0.0f, 0.0f, 0.0f, uv[0].x);

@@ -1,4 +1,4 @@
-// Mirrors and glass (shaders/kernel/specular.glsl, sample.glsl): the Fresnel and
+// Mirrors and glass (shaders/kernel/lobes/mirror.glsl, lobes/glass.glsl, sample.glsl): the Fresnel and
 // Snell maths against closed forms, the children a hit spawns, and whole samples
 // against what optics says they must show, through the reference backend's kernel.
 // Also the decision hash the cross-check relies on, and the SPD corner sampling.

@@ -107,10 +107,20 @@ TEST(Texture, MetallicRoughnessTexturesScaleTheFactors) {
     k.textures = records;
     k.texture_words = words;
     // Factors: base (0.8, 0.6, 0.4), metallic 0.5, roughness 0.6 (as flat_scene.cpp writes them).
-    const std::vector<kernel::Material> materials = {kernel::Material(
-        vec4(0.4f, 0.3f, 0.2f, 1.0f), vec4(0.8f, 0.6f, 0.4f, 0.0f), vec4(0.0f), vec4(0.0f, 0.0f, 0.0f, 1.5f),
-        vec4(0.0f), vec4(0.42f, 0.32f, 0.22f, 0.36f), uvec4(1u, 2u, 0u, 0u), vec4(1.0f, 0.0f, 0.0f, 0.5f),
-        vec4(0.0f, 1.0f, 0.0f, 0.6f))};
+    kernel::Material pbr{};
+    pbr.diffuse = glm::vec3(0.4f, 0.3f, 0.2f);
+    pbr.kd = 1.0f;
+    pbr.ior = 1.5f;
+    pbr.ggx_f0 = glm::vec3(0.42f, 0.32f, 0.22f);
+    pbr.ggx_alpha = 0.36f;
+    pbr.color_map = 1u;
+    pbr.metal_rough_map = 2u;
+    pbr.uv_u = glm::vec3(1.0f, 0.0f, 0.0f);
+    pbr.uv_v = glm::vec3(0.0f, 1.0f, 0.0f);
+    pbr.base_color = glm::vec3(0.8f, 0.6f, 0.4f);
+    pbr.metallic = 0.5f;
+    pbr.roughness = 0.6f;
+    const std::vector<kernel::Material> materials = {pbr};
     k.materials = materials;
     Kernel::Hit hit = k.no_hit();
     hit.material = 0u;
@@ -121,13 +131,14 @@ TEST(Texture, MetallicRoughnessTexturesScaleTheFactors) {
     const float metallic = 0.1875f, alpha = 0.09f;
     const glm::vec3 base(0.4f, 0.6f, 0.1f);
     for (int c = 0; c < 3; ++c) {
-        EXPECT_NEAR(m.diffuse_kd[c], (1.0f - metallic) * base[c], 1e-6f) << c;
-        EXPECT_NEAR(m.microfacet[c], 0.04f + (base[c] - 0.04f) * metallic, 1e-6f) << c;
+        EXPECT_NEAR(m.diffuse[c], (1.0f - metallic) * base[c], 1e-6f) << c;
+        EXPECT_NEAR(m.ggx_f0[c], 0.04f + (base[c] - 0.04f) * metallic, 1e-6f) << c;
     }
-    EXPECT_NEAR(m.microfacet.w, alpha, 1e-6f);
+    EXPECT_EQ(m.kd, 1.0f);
+    EXPECT_NEAR(m.ggx_alpha, alpha, 1e-6f);
     // On a sphere the factors stand.
     hit.prim = kernel::REF_SPHERE << kernel::REF_KIND_SHIFT;
-    EXPECT_EQ(k.surface_material(hit).microfacet.w, 0.36f);
+    EXPECT_EQ(k.surface_material(hit).ggx_alpha, 0.36f);
 }
 
 TEST(Texture, TransformFollowsKhrTextureTransform) {

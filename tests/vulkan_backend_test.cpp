@@ -52,7 +52,8 @@ FlatScene tiny_scene() {
     kernel::set_max_depth(p, 5);
     scene.features.set(Feature::HAS_SPHERES, true);
     kernel::Material material{};
-    material.diffuse_kd = glm::vec4(0.8f, 0.2f, 0.2f, 1.0f);
+    material.diffuse = glm::vec3(0.8f, 0.2f, 0.2f);
+    material.kd = 1.0f;
     scene.materials.push_back(material);
     scene.spheres.push_back(kernel::Sphere{glm::vec4(0.0f, 0.0f, -3.0f, 1.5f), glm::uvec4(0)});
     scene.samples_per_pixel = 1;
@@ -296,7 +297,7 @@ FlatScene glowing_triangle_scene(bool has_triangles) {
     kernel::set_sphere_count(scene.params, 0);
     kernel::set_triangle_count(scene.params, 1);
     kernel::set_material_count(scene.params, 1);
-    scene.materials[0].emission_fresnel = glm::vec4(1.0f, 0.5f, 0.125f, 0.0f);
+    scene.materials[0].emission = glm::vec3(1.0f, 0.5f, 0.125f);
     // At z = -2 the view spans [-2, 2] in x and y; the front face, cross(p1 - p0,
     // p2 - p0) = +z, looks at the camera.
     kernel::Triangle tri{};

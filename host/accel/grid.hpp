@@ -145,7 +145,7 @@ struct GridPrimitives {
 // Builds the grid over every primitive but the loose ones (GridRequest::max_loose).
 // Within each leaf cell, and among the loose ones, the references are grouped by kind, in
 // the order spheres, triangles, rings, cylinders, each kind in index order: the
-// kernel walks a cell in one loop per kind (shaders/kernel/scene.glsl). A
+// kernel walks a cell in one loop per kind (shaders/kernel/traversal.glsl). A
 // resolution that would not fit the device is reduced until it does; `note` then
 // says so. More than 2^29 primitives of one kind (the reference's index bits) is an
 // error.

@@ -82,34 +82,44 @@ void set_camera(const Camera& cam, bool corners, const dvec3& origin, kernel::Pa
 }
 
 // The texture fields every material carries: the textures (0: none), the
-// coordinates' transform, and the metallic and roughness factors that texture.glsl
+// coordinates' transform, and the metallic-roughness factors that texture.glsl
 // rebuilds a textured metallic-roughness material from.
 void set_texture_fields(const Material& m, kernel::Material& out) {
     const auto& a = m.uv_transform;
-    const double metallic = m.metallic_roughness ? m.metallic_roughness->metallic : 0.0;
-    const double roughness = m.metallic_roughness ? m.metallic_roughness->roughness : 0.0;
     const auto map = [](const std::optional<std::uint32_t>& t) { return t ? *t + 1u : 0u; };
-    out.maps = uvec4(map(m.texture), map(m.metallic_roughness_texture), map(m.normal_map), map(m.emission_texture));
-    out.uv_u = vec4(float(a[0]), float(a[1]), float(a[2]), float(metallic));
-    out.uv_v = vec4(float(a[3]), float(a[4]), float(a[5]), float(roughness));
+    out.color_map = map(m.texture);
+    out.metal_rough_map = map(m.metallic_roughness_texture);
+    out.normal_map = map(m.normal_map);
+    out.emission_map = map(m.emission_texture);
+    out.uv_u = vec3(float(a[0]), float(a[1]), float(a[2]));
+    out.uv_v = vec3(float(a[3]), float(a[4]), float(a[5]));
 }
 
 kernel::Material flatten(const Material& m) {
-    kernel::Material out;
+    kernel::Material out{};
+    out.shininess = float(m.shininess);
+    out.ior = float(m.ior);
+    out.emission = vec3(m.emission);
     if (const auto& pbr = m.metallic_roughness) {
         // glTF 2.0 appendix B: dielectrics reflect 4% at normal incidence (ior 1.5),
-        // metals their base colour; metals have no diffuse lobe.
-        const dvec3 f0 = glm::mix(dvec3(0.04), pbr->base_color, pbr->metallic);
-        const double alpha = std::max(pbr->roughness * pbr->roughness, double(kernel::MIN_GGX_ALPHA));
-        // The base colour rides in specular_ks with ks 0: no Phong lobe, and texture.glsl
-        // can rebuild the lobes from it.
-        out = kernel::Material(to_vec4((1.0 - pbr->metallic) * pbr->base_color, 1.0), to_vec4(pbr->base_color, 0.0),
-                               to_vec4(dvec3(0.0), m.shininess), to_vec4(dvec3(0.0), m.ior), to_vec4(m.emission, 1.0),
-                               to_vec4(f0, alpha), uvec4(0u), vec4(0.0f), vec4(0.0f));
+        // metals their base colour; metals have no diffuse lobe. Fresnel splits any
+        // mirror or glass of such a material.
+        out.diffuse = vec3((1.0 - pbr->metallic) * pbr->base_color);
+        out.kd = 1.0f;
+        out.fresnel = 1u;
+        out.ggx_f0 = vec3(glm::mix(dvec3(0.04), pbr->base_color, pbr->metallic));
+        out.ggx_alpha = float(std::max(pbr->roughness * pbr->roughness, double(kernel::MIN_GGX_ALPHA)));
+        out.base_color = vec3(pbr->base_color);
+        out.metallic = float(pbr->metallic);
+        out.roughness = float(pbr->roughness);
     } else {
-        out = kernel::Material(to_vec4(m.diffuse, m.kd), to_vec4(m.specular, m.ks), to_vec4(m.reflect, m.shininess),
-                               to_vec4(m.transmit, m.ior), to_vec4(m.emission, m.fresnel ? 1.0 : 0.0), vec4(0.0f),
-                               uvec4(0u), vec4(0.0f), vec4(0.0f));
+        out.diffuse = vec3(m.diffuse);
+        out.kd = float(m.kd);
+        out.specular = vec3(m.specular);
+        out.ks = float(m.ks);
+        out.mirror = vec3(m.reflect);
+        out.transmit = vec3(m.transmit);
+        out.fresnel = m.fresnel ? 1u : 0u;
     }
     set_texture_fields(m, out);
     return out;
@@ -331,7 +341,7 @@ constexpr std::size_t kMaxStretching = 32;
 // The kinds loose as a whole (indexed by REF_SPHERE...): a kind with fewer
 // primitives than the backend's threshold, the count below which brute force beats
 // the grid on a whole scene, is listed in no cell and tested once per ray instead
-// (kernel/scene.glsl, trace). A floor of two triangles under thousands of spheres
+// (kernel/traversal.glsl, trace). A floor of two triangles under thousands of spheres
 // would otherwise be listed in every cell it spans, stretch the grid's box to its
 // own size, and cost every cell visited a pass through the triangle loop, which SIMD
 // hardware runs even when no lane has a triangle (docs/grid.md). Every kind is
@@ -501,6 +511,11 @@ FlatScene flatten_scene(const Scene& scene, const AccelPolicy& policy) {
     // primitive emits; the kernel's search must never see an empty list.
     if (g.emitters.empty()) g.features.set(Feature::HAS_AREA_LIGHTS, false);
     if (g.features.has(Feature::HAS_ENVIRONMENT_MAP)) add_environment(scene, g);
+    // Next-event estimation, once it is known what it can sample: emitters, or the
+    // environment with a nonzero chance.
+    g.features.set(Feature::HAS_NEXT_EVENT,
+                   g.features.has(Feature::HAS_GLOBAL) && scene.render.estimator == Estimator::Path && scene.render.nee &&
+                       (g.features.has(Feature::HAS_AREA_LIGHTS) || kernel::environment_choice(p) > 0.0f));
 
     g.grid.used = want_grid(scene, g.spheres.size() + g.triangles.size() + g.rings.size() + g.cylinders.size(),
                             policy, g.grid.reason);

@@ -8,12 +8,14 @@
 // thread.
 #include <span>
 
+#include "kernel/checks.hpp"
 #include "kernel/types.hpp"
 
 namespace vkrt::kernel {
 
 #define INOUT(T) T&
 #define precise
+#define CHECK(condition) VKRT_KERNEL_CHECK(condition)
 // The grid walk's small functions, which GCC otherwise leaves as calls that keep
 // the walk's state in memory.
 #define HOT [[gnu::always_inline]] inline
@@ -35,6 +37,7 @@ struct Kernel {
 };
 
 #undef HOT
+#undef CHECK
 #undef precise
 #undef INOUT
 

@@ -25,7 +25,6 @@ using uint = std::uint32_t;
 static_assert(sizeof(vec4) == 16 && sizeof(uvec4) == 16);
 static_assert(sizeof(Sphere) == 32);
 static_assert(sizeof(Triangle) == 112);
-static_assert(sizeof(Material) == 144);
 static_assert(sizeof(Texture) == 32);
 static_assert(sizeof(Light) == 48);
 static_assert(sizeof(Ring) == 48);
@@ -39,11 +38,11 @@ static_assert(sizeof(PixelSum) == 16 * PIXEL_SUM_TEXELS && sizeof(PixelSum) + si
 // The host's accessors of the per-render constants (kernel/params.glsl): name(params)
 // reads a value, set_name(params, value) writes it.
 #define PARAM(T, name, texel, lane)                                                                   \
-    inline T name(const Params& p) { return PARAM_FROM_BITS_##T(p.texels[texel].lane); }               \
-    inline void set_##name(Params& p, T value) { p.texels[texel].lane = PARAM_TO_BITS_##T(value); }
+    inline T name(const Params& p) { return FROM_BITS_##T(p.texels[texel].lane); }               \
+    inline void set_##name(Params& p, T value) { p.texels[texel].lane = TO_BITS_##T(value); }
 #define PARAM3(T, name, texel)                                                                        \
-    inline T name(const Params& p) { return PARAM_FROM_BITS_##T(uvec3(p.texels[texel])); }             \
-    inline void set_##name(Params& p, T value) { p.texels[texel] = uvec4(PARAM_TO_BITS_##T(value), 0u); }
+    inline T name(const Params& p) { return FROM_BITS_##T(uvec3(p.texels[texel])); }             \
+    inline void set_##name(Params& p, T value) { p.texels[texel] = uvec4(TO_BITS_##T(value), 0u); }
 #include "kernel/params.glsl"
 
 // No two values of params.glsl share a lane, and every lane lies inside Params.
@@ -68,6 +67,18 @@ consteval bool lanes_distinct_and_inside() {
 }
 static_assert(lanes_distinct_and_inside(), "kernel/params.glsl: two values share a lane, or a texel is out of range");
 }  // namespace param_table
+
+// Each field of kernel/material_fields.glsl sits at its texel and lane, and the
+// record is MATERIAL_TEXELS texels: the host writes the very bytes render.comp reads.
+namespace material_table {
+constexpr uint x = 0, y = 1, z = 2, w = 3;
+#define MATERIAL_FIELD(T, name, texel, lane) \
+    static_assert(offsetof(Material, name) == 16u * (texel) + 4u * (lane), "material_fields.glsl: " #name " is out of place");
+#define MATERIAL_FIELD3(T, name, texel) MATERIAL_FIELD(T, name, texel, x)
+#define MATERIAL_PAD(texel, lane) MATERIAL_FIELD(uint, pad_##texel##_##lane, texel, lane)
+#include "kernel/material_fields.glsl"
+}  // namespace material_table
+static_assert(sizeof(Material) == 16 * MATERIAL_TEXELS);
 
 inline bool operator==(const Counters& a, const Counters& b) {
     return a.rays == b.rays && a.work == b.work && a.tree == b.tree && a.paths == b.paths;

@@ -24,12 +24,12 @@ vec3 shade_area_lights(Ray ray, Hit hit, Material m, INOUT(Rng) rng, INOUT(uint)
     precise vec3 p = ray.origin + hit.t * ray.dir;
     vec3 shadow_origin = shadow_ray_origin(p, hit);
     vec3 to_eye = -ray.dir;
-    vec3 diffuse = vec3(m.diffuse_kd) * m.diffuse_kd.w;
+    vec3 diffuse = m.diffuse * m.kd;
     // A surface that reflects nothing (a lamp is often black) gets nothing from any
     // light: spare it the shadow rays. Colours are >= 0, so a zero sum means all zero.
     float reflects = diffuse.x + diffuse.y + diffuse.z;
     if (HAS_SPECULAR) {
-        reflects += (m.specular_ks.x + m.specular_ks.y + m.specular_ks.z) * m.specular_ks.w;
+        reflects += (m.specular.x + m.specular.y + m.specular.z) * m.ks;
     }
     if (!(reflects > 0.0f)) {
         return vec3(0.0f);

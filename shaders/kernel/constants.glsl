@@ -27,6 +27,29 @@ const uint PATHS_PAPER_DROPPED = 2u;  // paper-estimator samples whose gl() was 
 // most 65,536 samples: 65,000 * 65,536 < 2^32. (Only the cpu backend can lift the
 // budget, for benchmarks at one sample per pixel.)
 
+// The discrete decisions a sample hashes (note_decision, budget.glsl), one code each,
+// so that two samples that branched differently hash differently. Besides these, the
+// hash takes the primitive reference of every hit and the part of a cylinder hit.
+const uint DECISION_UNBLOCKED = 0u;          // a shadow ray reached its light (traversal.glsl)
+const uint DECISION_BLOCKED = 1u;            // ... or something blocked it
+const uint DECISION_LIGHT_BEHIND = 2u;       // the light lies behind the surface: no shadow ray (visibility.glsl)
+const uint DECISION_LIGHT_FACING = 3u;       // ... or in front of it
+const uint DECISION_RAY_QUEUED = 4u;         // a secondary ray was queued (sample.glsl)
+const uint DECISION_RAY_TOO_LIGHT = 5u;      // ... or dropped for its weight
+const uint DECISION_REFRACTED = 6u;          // the ray tree's glass refracted (sample.glsl)
+const uint DECISION_TOTAL_REFLECTION = 7u;   // ... or reflected totally
+const uint DECISION_BACK_FACE = 8u;          // a ray hit a back face (traversal.glsl)
+const uint DECISION_FRONT_FACE = 9u;         // ... or a front face
+const uint DECISION_NORMAL_KEPT = 10u;       // the shading normal was on the viewer's side (traversal.glsl)
+const uint DECISION_NORMAL_FLIPPED = 11u;    // ... or was flipped to it
+const uint DECISION_SMOOTH_LOBES = 12u;      // a path sampled the smooth lobes (global.glsl)
+const uint DECISION_MIRROR = 13u;            // ... the mirror
+const uint DECISION_GLASS_REFLECTS = 14u;    // ... the glass, which reflected
+const uint DECISION_GLASS_REFRACTS = 15u;    // ... the glass, which refracted
+const uint DECISION_ROULETTE_ENDED = 16u;    // Russian roulette ended a path (global.glsl)
+const uint DECISION_OUTSIDE_CONE = 17u;      // a point lay outside a spot light's cone (lights.glsl)
+const uint DECISION_INSIDE_CONE = 18u;       // ... or inside it
+
 // A grid cell's primitive reference: the primitive's kind in the top 3 bits, its
 // index into that kind's buffer in the low 29 (so at most 2^29 primitives of one
 // kind; host/accel/grid.cpp refuses more). Four kinds are used; REF_NONE is kind 7,
@@ -67,7 +90,7 @@ const uint SHAPE_TRIANGLE = 0u;
 const uint SHAPE_PARALLELOGRAM = 1u;
 const uint SHAPE_RECTANGLE = 2u;
 
-// The narrowest GGX lobe (bsdf.glsl, microfacet.glsl): alpha = roughness^2 down to
+// The narrowest GGX lobe (lobes/ggx.glsl): alpha = roughness^2 down to
 // this, so that a roughness of 0 (a polished metal) stays a lobe that next-event
 // estimation and MIS can weigh. Its peak, 1 / (pi alpha^2), is far inside float's range.
 const float MIN_GGX_ALPHA = 0.001f;

@@ -1,7 +1,7 @@
 // Brute force's sphere loop for rays that need the nearest hit, on SIMD hardware that
 // runs both sides of a branch (docs/decisions/0003-deferred-sphere-tests.md): spheres
 // the ray starts near, which need the error-free test, are set aside and tested after
-// the loop. Included by scene.glsl before brute_force_trace; the feature
+// the loop. Included by traversal.glsl before brute_force_trace; the feature
 // DEFERRED_SPHERES turns it on.
 
 // Few spheres need the error-free test for any one ray: the one it leaves, and

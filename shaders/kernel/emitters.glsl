@@ -34,16 +34,16 @@ float emission_weight(vec3 emission) {
 // Light samples' densities are built on it, never on the textured radiance at a
 // point, so that sample_light and light_pdf_of_hit give one point one density.
 float triangle_emitter_weight(Material m, Triangle tri) {
-    return HAS_TEXTURES && m.maps.w != 0u ? uintBitsToFloat(tri.meta.w) : emission_weight(vec3(m.emission_fresnel));
+    return HAS_TEXTURES && m.emission_map != 0u ? uintBitsToFloat(tri.meta.w) : emission_weight(m.emission);
 }
 
 // The radiance a triangle or quad of material m emits at the point of weights
 // (u, v) (triangle_uv): its emission, times its emission texture there.
 vec3 triangle_emission(Material m, Triangle tri, float u, float v) {
-    if (HAS_TEXTURES && m.maps.w != 0u) {
+    if (HAS_TEXTURES && m.emission_map != 0u) {
         return textured_emission(m, material_uv(m, triangle_uv(tri, u, v)));
     }
-    return vec3(m.emission_fresnel);
+    return m.emission;
 }
 
 // The first emitter whose cumulative power fraction exceeds u in [0, 1). The last
@@ -96,7 +96,7 @@ EmitterPoint emitter_point(Emitter e, float u1, float u2) {
         Sphere s = load_sphere(index);
         vec3 n = uniform_sphere_direction(u1, u2);
         precise vec3 y = vec3(s.center_radius) + s.center_radius.w * n;
-        vec3 emission = vec3(load_material(s.meta.x).emission_fresnel);
+        vec3 emission = load_material(s.meta.x).emission;
         return EmitterPoint(y, n, emission, emission_weight(emission));
     }
     if (HAS_RINGS && kind == REF_RING) {
@@ -109,7 +109,7 @@ EmitterPoint emitter_point(Emitter e, float u1, float u2) {
         float phi = (2.0f * PI) * u2;
         vec2 sc = sin_cos(phi);
         precise vec3 y = vec3(r.center_inner) + (radius * sc.y) * f.t + (radius * sc.x) * f.b;
-        vec3 emission = vec3(load_material(r.meta.x).emission_fresnel);
+        vec3 emission = load_material(r.meta.x).emission;
         return EmitterPoint(y, n, emission, emission_weight(emission));
     }
     if (HAS_CYLINDERS && kind == REF_CYLINDER) {
@@ -123,7 +123,7 @@ EmitterPoint emitter_point(Emitter e, float u1, float u2) {
         float phi = (2.0f * PI) * u2;
         vec2 sc = sin_cos(phi);
         vec3 radial = sc.y * f.t + sc.x * f.b;
-        vec3 emission = vec3(load_material(c.meta.x).emission_fresnel);
+        vec3 emission = load_material(c.meta.x).emission;
         if (e.prim.y == CYLINDER_SIDE) {
             precise vec3 y = base + u1 * axis_vector + c.base_radius.w * radial;
             return EmitterPoint(y, radial, emission, emission_weight(emission));
@@ -229,7 +229,7 @@ LightSample sample_light_from(vec3 o, vec2 u) {
         float omega = sphere_cone_solid_angle(cone);
         if (sampled_by_solid_angle(omega)) {
             vec3 y = sphere_cone_point(o, cone, s.center_radius.w, u.x, u.y);
-            vec3 emission = vec3(load_material(s.meta.x).emission_fresnel);
+            vec3 emission = load_material(s.meta.x).emission;
             float choice = emission_weight(emission) * sphere_area(s.center_radius.w) / emitter_power();
             return LightSample(y, unit_vector(y - center), emission, choice / omega);
         }
@@ -244,8 +244,8 @@ LightSample sample_light_from(vec3 o, vec2 u) {
             if (dot(o - q.corner, normal) > 0.0f && rect_by_solid_angle(o, q, sr)) {
                 Material m = load_material(tri.meta.x);
                 vec3 y = spherical_rect_point(sr, u.x, u.y);
-                vec3 emission = vec3(m.emission_fresnel);
-                if (HAS_TEXTURES && m.maps.w != 0u) {
+                vec3 emission = m.emission;
+                if (HAS_TEXTURES && m.emission_map != 0u) {
                     // The point's coordinates along the edges, halved as triangle_uv takes them.
                     vec3 d = y - q.corner;
                     emission = triangle_emission(m, tri, 0.5f * dot(d, q.ex) / dot(q.ex, q.ex),
@@ -273,8 +273,8 @@ float light_pdf_of_hit(Ray ray, Hit hit) {
     uint kind = hit.prim >> REF_KIND_SHIFT;
     uint index = hit.prim & REF_INDEX_MASK;
     Material m = load_material(hit.material);
-    float weight = emission_weight(vec3(m.emission_fresnel));
-    if (HAS_TEXTURES && HAS_TRIANGLES && kind == REF_TRIANGLE && m.maps.w != 0u) {
+    float weight = emission_weight(m.emission);
+    if (HAS_TEXTURES && HAS_TRIANGLES && kind == REF_TRIANGLE && m.emission_map != 0u) {
         weight = uintBitsToFloat(load_triangle(index).meta.w);
     }
     float area_density = weight / emitter_power();

@@ -18,7 +18,7 @@ FEATURE(8, HAS_JITTER)
 FEATURE(9, HAS_GRID)
 FEATURE(10, HAS_RINGS)
 FEATURE(11, HAS_CYLINDERS)
-FEATURE(12, HAS_AREA_LIGHTS)
+FEATURE(12, HAS_AREA_LIGHTS)  // the emitter list (emitters.glsl), sampled by local mode's light samples or HAS_NEXT_EVENT
 FEATURE(13, HAS_REFLECTION)   // mirror rays (material reflect)
 FEATURE(14, HAS_REFRACTION)   // refraction rays, and the reflection rays of glass (material transmit)
 FEATURE(15, HAS_GLOBAL)       // global illumination (global.glsl) instead of the local ray tree
@@ -35,7 +35,7 @@ FEATURE(21, LOOSE_TRIANGLES)
 FEATURE(22, LOOSE_RINGS)
 FEATURE(23, LOOSE_CYLINDERS)
 // Without the grid, whether the sphere loop tests the spheres a ray starts near
-// after it (scene.glsl, DeferredSpheres) rather than in place: on from
+// after it (traversal.glsl, DeferredSpheres) rather than in place: on from
 // AccelPolicy::deferred_spheres_from spheres (host/accel/accel_policy.hpp), where it
 // pays on lavapipe.
 FEATURE(24, DEFERRED_SPHERES)
@@ -51,7 +51,7 @@ FEATURE(26, GRID_SPLIT)
 FEATURE(27, HAS_TERMINATOR)
 // A thin lens instead of the pinhole (camera.glsl): the camera's lens_radius > 0.
 FEATURE(28, HAS_LENS)
-// The metallic-roughness material's GGX lobe (microfacet.glsl): global mode with a
+// The metallic-roughness material's GGX lobe (lobes/ggx.glsl): global mode with a
 // material that has one.
 FEATURE(29, HAS_MICROFACET)
 // Colour textures (texture.glsl): a material that the scene uses has one.
@@ -64,3 +64,8 @@ FEATURE(31, HAS_DIRECTED_LIGHTS)
 FEATURE(32, HAS_ENVIRONMENT_MAP)
 // Normal maps (normal_map.glsl): a triangle's material has one.
 FEATURE(33, HAS_NORMAL_MAPS)
+// Global mode's next-event estimation (global.glsl, render.nee): each vertex of a
+// path draws a point on the emitters (HAS_AREA_LIGHTS) or a direction of the
+// environment image, weighted by multiple importance sampling. Only the path
+// estimator does; the scene's `lights` are shaded at every vertex without it.
+FEATURE(34, HAS_NEXT_EVENT)

@@ -1,7 +1,6 @@
 // Global illumination (render.mode "global"): one Monte Carlo sample of the radiance
 // reaching the eye along a ray, by the paper's estimator or by path tracing
-// (estimator() and hemisphere_rule(); next-event
-// estimation is the HAS_AREA_LIGHTS feature in this mode). GLSL has
+// (estimator() and hemisphere_rule(); next-event estimation is HAS_NEXT_EVENT). GLSL has
 // no recursion: every bounce is one iteration of a loop, and one tick of the
 // invocation's loop budget.
 //
@@ -62,15 +61,9 @@ bool path_hit(Ray ray, uint bounce, vec3 beta, float pdf_prev, INOUT(SampleResul
 // light, and ending them at random would only add noise.
 const uint ROULETTE_START = 3u;
 
-// Whether next-event estimation draws directions from the environment image.
-bool sampled_environment() {
-    return HAS_ENVIRONMENT_MAP && environment_choice() > 0.0f;
-}
-
 // Direct light at a path vertex through its smooth lobes: every light of the
 // scene's `lights` (the only way to reach one: no path can hit a point, nor come
-// from exactly one direction) and, with next-event estimation
-// (HAS_AREA_LIGHTS in global mode, or an environment image that is sampled), one
+// from exactly one direction) and, with next-event estimation (HAS_NEXT_EVENT), one
 // point on the area lights or one direction of the environment, weighted by the
 // power heuristic against the BSDF sampling that could have found it too (whose
 // hits are weighted to match in path_hit and path_sample). p_smooth is the probability of
@@ -98,7 +91,7 @@ vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smoo
             }
         }
     }
-    if (HAS_AREA_LIGHTS || sampled_environment()) {
+    if (HAS_NEXT_EVENT) {
         // One slot, one shadow ray: its first number picks the environment with
         // probability environment_choice() and, rescaled to its share, draws with the
         // second as sample_light does (for a choice of 0, exactly the number drawn).
@@ -138,33 +131,33 @@ vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smoo
 // reflectance's probability (which cancels it from the weight) and refracted
 // otherwise; with "fresnel": false always refracted (total internal reflection
 // reflects). `pick` (uniform in [0, total)) chose the group, u decides within glass.
-// A refraction updates the media the path is in (specular.glsl).
+// A refraction updates the media the path is in (lobes/glass.glsl).
 Ray scatter_delta(Ray ray, Hit hit, vec3 p, Lobes lobes, float total, float pick, float u, INOUT(vec3) beta,
                   INOUT(vec4) media) {
     Ray mirrored = Ray(offset_ray_origin(p, hit.geo_normal), mirror_direction(ray.dir, hit.normal));
     // Guarded so that a pick rounded up to `total` never lands on a group of weight 0.
-    bool mirror = lobes.w_glass == 0.0f ||
-                  (lobes.w_mirror > 0.0f && pick < smooth_weight(lobes) + lobes.w_mirror);
+    bool mirror = lobes.glass.weight == 0.0f ||
+                  (lobes.mirror.weight > 0.0f && pick < smooth_weight(lobes) + lobes.mirror.weight);
     if (mirror) {
-        note_decision(13u);
-        beta *= lobes.mirror * (total / lobes.w_mirror);
+        note_decision(DECISION_MIRROR);
+        beta *= lobes.mirror.color * (total / lobes.mirror.weight);
         return mirrored;
     }
-    beta *= lobes.glass * (total / lobes.w_glass);
-    Refraction r = refract_fresnel(ray.dir, hit.normal, interface_eta(media, lobes.ior, hit.front_face));
-    float p_reflect = r.total ? 1.0f : (lobes.fresnel ? r.reflectance : 0.0f);
+    beta *= lobes.glass.color * (total / lobes.glass.weight);
+    Refraction r = refract_fresnel(ray.dir, hit.normal, interface_eta(media, lobes.glass.ior, hit.front_face));
+    float p_reflect = r.total ? 1.0f : (lobes.glass.fresnel ? r.reflectance : 0.0f);
     bool reflects = u < p_reflect;
-    note_decision(reflects ? 14u : 15u);
+    note_decision(reflects ? DECISION_GLASS_REFLECTS : DECISION_GLASS_REFRACTS);
     if (reflects) {
         return mirrored;
     }
-    media = media_after_refraction(media, lobes.ior, hit.front_face);
+    media = media_after_refraction(media, lobes.glass.ior, hit.front_face);
     return Ray(offset_ray_origin(p, -hit.geo_normal), r.dir);
 }
 
 // Unbiased path tracing with a throughput loop: emission counted where a path meets
 // an emitter's front face, one lobe group sampled per bounce, next-event estimation
-// with multiple importance sampling when HAS_AREA_LIGHTS, Russian roulette from
+// with multiple importance sampling when HAS_NEXT_EVENT, Russian roulette from
 // ROULETTE_START on (survival probability: the throughput's largest channel, at most
 // 0.95, and the throughput divided by it).
 void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
@@ -184,15 +177,16 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
         Material m = surface_material(hit);
         if (HAS_EMISSION && hit.front_face) {
             float w = 1.0f;
-            if (HAS_AREA_LIGHTS && pdf_prev > 0.0f) {
+            if (HAS_NEXT_EVENT && HAS_AREA_LIGHTS && pdf_prev > 0.0f) {
                 float p_area = 1.0f - (HAS_ENVIRONMENT_MAP ? environment_choice() : 0.0f);
                 w = power_heuristic(pdf_prev, p_area * light_pdf_of_hit(ray, hit));
             }
-            s.radiance += beta * vec3(m.emission_fresnel) * w;
+            s.radiance += beta * m.emission * w;
         }
         if (bounce >= max_bounces()) {
             return;
         }
+        CHECK(is_unit(ray.dir) && is_unit(hit.normal));
         Lobes lobes = material_lobes(m, dot(hit.normal, -ray.dir));
         float total = lobes_total(lobes);
         if (!(total > 0.0f)) {
@@ -204,7 +198,7 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
         float w_smooth = smooth_weight(lobes);
         float p_smooth = w_smooth / total;
         uint slot = SLOT_PATH + bounce * BOUNCE_SLOTS;
-        if ((HAS_POINT_LIGHTS || HAS_AREA_LIGHTS || sampled_environment()) && w_smooth > 0.0f) {
+        if ((HAS_POINT_LIGHTS || HAS_NEXT_EVENT) && w_smooth > 0.0f) {
             s.radiance += beta * next_event(hit, p, wo, lobes, frame, p_smooth, slot, rng, s);
         }
         rng_seek(rng, slot + SLOT_LOBE);
@@ -212,8 +206,9 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
         rng_seek(rng, slot + SLOT_DIRECTION);
         vec2 u = rng_2d(rng);
         if (pick < w_smooth || !(w_smooth < total)) {
-            note_decision(12u);
+            note_decision(DECISION_SMOOTH_LOBES);
             vec3 wi = sample_smooth(lobes, frame, wo, hemisphere, pick / w_smooth, u.x, u.y);
+            CHECK(is_unit(wi));
             float cos_theta = dot(wi, hit.normal);
             float pdf = p_smooth * pdf_smooth(lobes, frame, wo, wi, hemisphere);
             // Below the surface the lobes are zero: the sample adds nothing, the path ends.
@@ -221,6 +216,7 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
                 return;
             }
             beta *= eval_smooth(lobes, hit.normal, wo, wi) * (cos_theta / pdf);
+            CHECK(is_weight(beta));
             pdf_prev = pdf;
             ray = Ray(offset_ray_origin(p, hit.geo_normal), wi);
         } else {
@@ -231,7 +227,7 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
             float survive = min(max(beta.x, max(beta.y, beta.z)), 0.95f);
             rng_seek(rng, slot + SLOT_ROULETTE);
             if (!(rng_1d(rng) < survive)) {
-                note_decision(16u);
+                note_decision(DECISION_ROULETTE_ENDED);
                 s.roulette = 1u;
                 return;
             }
@@ -261,10 +257,10 @@ vec3 paper_gl(Ray start, uint bounces, INOUT(Rng) rng, INOUT(SampleResult) s) {
         }
         hit.normal = mapped_normal(hit, -ray.dir);
         Material m = surface_material(hit);
-        if (HAS_EMISSION && hit.front_face && any(greaterThan(vec3(m.emission_fresnel), vec3(0.0f)))) {
-            return attenuation * vec3(m.emission_fresnel);
+        if (HAS_EMISSION && hit.front_face && any(greaterThan(m.emission, vec3(0.0f)))) {
+            return attenuation * m.emission;
         }
-        attenuation *= vec3(m.diffuse_kd) * m.diffuse_kd.w;
+        attenuation *= m.diffuse * m.kd;
         vec2 u = rng_2d(rng);
         vec3 d = from_basis(basis_around(hit.normal), sample_hemisphere(hemisphere_rule(), u.x, u.y));
         if (!any(greaterThan(attenuation, vec3(0.0f))) || !(dot(d, hit.geo_normal) > 0.0f)) {
@@ -294,10 +290,11 @@ void paper_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
             return;
         }
         Material m = surface_material(hit);
-        if (HAS_EMISSION && hit.front_face && any(greaterThan(vec3(m.emission_fresnel), vec3(0.0f)))) {
-            s.radiance += beta * vec3(m.emission_fresnel);
+        if (HAS_EMISSION && hit.front_face && any(greaterThan(m.emission, vec3(0.0f)))) {
+            s.radiance += beta * m.emission;
             return;
         }
+        CHECK(is_unit(ray.dir) && is_unit(hit.normal));
         Lobes lobes = material_lobes(m, dot(hit.normal, -ray.dir));
         float total = lobes_total(lobes);
         if (!(total > 0.0f)) {
@@ -313,7 +310,7 @@ void paper_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
         float pick = rng_1d(rng) * total;
         vec2 u = rng_2d(rng);
         if (pick < w_smooth || !(w_smooth < total)) {
-            note_decision(12u);
+            note_decision(DECISION_SMOOTH_LOBES);
             vec3 d = from_basis(basis_around(hit.normal), sample_hemisphere(hemisphere_rule(), u.x, u.y));
             float cos_theta = dot(d, hit.normal);
             vec3 g = vec3(0.0f);
@@ -324,7 +321,7 @@ void paper_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
                 s.dropped = true;
                 return;
             }
-            vec3 local = phong_term(m, lobes.diffuse, hit.normal, d, cos_theta, -ray.dir);
+            vec3 local = phong_term(m, lobes.diffuse.albedo, hit.normal, d, cos_theta, -ray.dir);
             s.radiance += beta * (total / w_smooth) * local * g;
             return;
         }

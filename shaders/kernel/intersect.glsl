@@ -145,7 +145,7 @@ float sphere_exact_c_test(Ray ray, vec3 center, float radius, SphereSetup s, flo
 //
 // SIMD hardware that runs both sides of a branch (lavapipe) pays for the error-free
 // form on every test; loops over many spheres therefore call the two forms apart and
-// defer the few spheres that need the exact one (scene.glsl, DeferredSpheres).
+// defer the few spheres that need the exact one (traversal.glsl, DeferredSpheres).
 float intersect_sphere(Ray ray, vec3 center, float radius, float t_min, float t_max) {
     SphereSetup s = sphere_setup(ray, center, radius);
     if (sphere_needs_exact_c(s)) {

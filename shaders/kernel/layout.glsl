@@ -61,28 +61,16 @@ struct Cylinder {
 #define Cylinder_FROM_TEXELS(b, i) \
     Cylinder(fetch_vec4(b, 3u * (i)), fetch_vec4(b, 3u * (i) + 1u), fetch_texel(b, 3u * (i) + 2u))
 
-// Material fields as in the scene file (docs/scene-format.md).
+// A material: the fields of kernel/material_fields.glsl, each named for what it
+// holds, MATERIAL_TEXELS texels in all. render.comp assembles one from its texels
+// (material_from_texels); the host writes it as it is (types.hpp checks the offsets).
+const uint MATERIAL_TEXELS = 10u;
 struct Material {
-    vec4 diffuse_kd;         // rgb diffuse colour, w = kd
-    vec4 specular_ks;        // rgb specular colour, w = ks
-    vec4 reflect_shininess;  // rgb mirror reflectance, w = Phong exponent
-    vec4 transmit_ior;       // rgb transmittance, w = index of refraction
-    vec4 emission_fresnel;   // rgb emitted radiance (front face only), w = 1: Fresnel-weighted
-                             // reflection/refraction, 0: the constant weights reflect and transmit
-    vec4 microfacet;         // the metallic-roughness material's rough lobe (bsdf.glsl): rgb = its
-                             // reflectance at normal incidence, w = GGX alpha; w = 0: no such lobe
-    uvec4 maps;              // 1 + a texture's index (texture.glsl), 0: none: x = colour, y = metallic
-                             // (blue) and roughness (green), z = normal map (normal_map.glsl), w = emission
-                             // (multiplies emission_fresnel.rgb)
-    vec4 uv_u;               // the texture coordinates' transform: u' = dot(xy, uv) + z; w = metallic
-    vec4 uv_v;               // v' = dot(xy, uv) + z; w = roughness
-                             // (a metallic-roughness material keeps its base colour in specular_ks.rgb,
-                             // with ks = 0, so that texture.glsl can rebuild its lobes)
+#define MATERIAL_FIELD(T, name, texel, lane) T name;
+#define MATERIAL_FIELD3(T, name, texel) T name;
+#define MATERIAL_PAD(texel, lane) uint pad_##texel##_##lane;
+#include "material_fields.glsl"
 };
-#define Material_FROM_TEXELS(b, i)                                                                   \
-    Material(fetch_vec4(b, 9u * (i)), fetch_vec4(b, 9u * (i) + 1u), fetch_vec4(b, 9u * (i) + 2u),     \
-             fetch_vec4(b, 9u * (i) + 3u), fetch_vec4(b, 9u * (i) + 4u), fetch_vec4(b, 9u * (i) + 5u),  \
-             fetch_texel(b, 9u * (i) + 6u), fetch_vec4(b, 9u * (i) + 7u), fetch_vec4(b, 9u * (i) + 8u))
 
 // A texture image (texture.glsl): its texels are in texture_words from info.x on,
 // row after row from the top, as the format says; info.y = width, info.z = height,
@@ -136,14 +124,14 @@ struct Params {
     uvec4 texels[PARAM_TEXELS];
 };
 // A value of type T from the bits of its lanes, and back (the accessors' halves).
-#define PARAM_FROM_BITS_uint(bits) (bits)
-#define PARAM_FROM_BITS_uvec3(bits) (bits)
-#define PARAM_FROM_BITS_float(bits) uintBitsToFloat(bits)
-#define PARAM_FROM_BITS_vec3(bits) uintBitsToFloat(bits)
-#define PARAM_TO_BITS_uint(value) (value)
-#define PARAM_TO_BITS_uvec3(value) (value)
-#define PARAM_TO_BITS_float(value) floatBitsToUint(value)
-#define PARAM_TO_BITS_vec3(value) floatBitsToUint(value)
+#define FROM_BITS_uint(bits) (bits)
+#define FROM_BITS_uvec3(bits) (bits)
+#define FROM_BITS_float(bits) uintBitsToFloat(bits)
+#define FROM_BITS_vec3(bits) uintBitsToFloat(bits)
+#define TO_BITS_uint(value) (value)
+#define TO_BITS_uvec3(value) (value)
+#define TO_BITS_float(value) floatBitsToUint(value)
+#define TO_BITS_vec3(value) floatBitsToUint(value)
 
 // Per-pixel sums of sample radiance (sums.glsl): each channel's exact sum as a 96-bit
 // fixed-point integer in xyz, least significant word first, in units of 2^-40.

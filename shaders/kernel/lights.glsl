@@ -21,6 +21,6 @@ vec3 toward_light(Light light, vec3 p) {
 float cone_factor(Light light, vec3 l) {
     float t = clamp(dot(vec3(light.cone), -l) + light.cone.w, 0.0f, 1.0f);
     float factor = t * t;
-    note_decision(factor > 0.0f ? 18u : 17u);
+    note_decision(factor > 0.0f ? DECISION_INSIDE_CONE : DECISION_OUTSIDE_CONE);
     return factor;
 }

@@ -26,10 +26,10 @@ vec3 mapped_normal(Hit hit, vec3 wo) {
         return hit.normal;
     }
     Material m = load_material(hit.material);
-    if (m.maps.z == 0u) {
+    if (m.normal_map == 0u) {
         return hit.normal;
     }
-    Texture map = load_texture(m.maps.z - 1u);
+    Texture map = load_texture(m.normal_map - 1u);
     vec3 encoded = vec3(texture_bilinear(map, material_uv(m, hit.uv)));
     float scale = map.decode.x;
     precise vec3 ts = vec3((2.0f * encoded.x - 1.0f) * scale, (2.0f * encoded.y - 1.0f) * scale,

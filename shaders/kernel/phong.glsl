@@ -10,7 +10,7 @@ vec3 phong_term(Material m, vec3 diffuse, vec3 normal, vec3 l, float cos_theta, 
         float cos_alpha = dot(mirrored, to_eye);
         // pow(0, 0) is undefined in GLSL: no highlight where cos(alpha) <= 0.
         if (cos_alpha > 0.0f) {
-            term += vec3(m.specular_ks) * (m.specular_ks.w * power(cos_alpha, m.reflect_shininess.w));
+            term += m.specular * (m.ks * power(cos_alpha, m.shininess));
         }
     }
     return term;

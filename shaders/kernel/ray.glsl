@@ -32,6 +32,17 @@ bool is_finite_bits(float x) {
     return (floatBitsToUint(x) & 0x7f800000u) != 0x7f800000u;
 }
 
+// For CHECK: every channel finite and not negative (a weight, a radiance).
+bool is_weight(vec3 v) {
+    return is_finite_bits(v.x) && is_finite_bits(v.y) && is_finite_bits(v.z) && v.x >= 0.0f && v.y >= 0.0f &&
+           v.z >= 0.0f;
+}
+
+// For CHECK: a unit vector, to float's rounding of a normalization.
+bool is_unit(vec3 v) {
+    return abs(dot(v, v) - 1.0f) < 1.0e-4f;
+}
+
 Hit no_hit() {
     return Hit(INFINITY_T, vec3(0.0f), vec3(0.0f), vec3(0.0f), 0u, false, REF_NONE, vec2(0.0f));
 }

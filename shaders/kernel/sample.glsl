@@ -3,7 +3,7 @@
 
 // A ray waiting to be traced, with the factor its radiance is weighed by in the
 // pixel, its generation (0 for the eye ray) and the glass it is inside
-// (specular.glsl's media; 0 for air).
+// (lobes/glass.glsl's media; 0 for air).
 struct PendingRay {
     Ray ray;
     vec3 weight;
@@ -28,7 +28,7 @@ struct RayQueue {
 // (min_ray_weight(); 0 keeps every ray, as the SPD rules ask). True if queued.
 bool queue_ray(PendingRay r, INOUT(RayQueue) q, INOUT(SampleResult) s) {
     bool light = max(r.weight.x, max(r.weight.y, r.weight.z)) < min_ray_weight();
-    note_decision(light ? 5u : 4u);
+    note_decision(light ? DECISION_RAY_TOO_LIGHT : DECISION_RAY_QUEUED);
     if (light) {
         s.dropped_weight += 1u;
         return false;
@@ -55,8 +55,8 @@ bool queue_ray(PendingRay r, INOUT(RayQueue) q, INOUT(SampleResult) s) {
 // reflect + R * transmit reflected, (1 - R) * transmit refracted.
 void spawn_children(PendingRay cur, Hit hit, INOUT(RayQueue) q, INOUT(SampleResult) s) {
     Material m = load_material(hit.material);
-    vec3 reflect_weight = vec3(m.reflect_shininess);
-    vec3 transmit = vec3(m.transmit_ior);
+    vec3 reflect_weight = m.mirror;
+    vec3 transmit = m.transmit;
     bool transmits = HAS_REFRACTION && any(greaterThan(transmit, vec3(0.0f)));
     bool reflects = (HAS_REFLECTION && any(greaterThan(reflect_weight, vec3(0.0f)))) || transmits;
     if (!reflects || cur.depth >= max_depth()) {
@@ -67,10 +67,10 @@ void spawn_children(PendingRay cur, Hit hit, INOUT(RayQueue) q, INOUT(SampleResu
     if (transmits) {
         // Entering through the front face goes from the ray's medium into the
         // material; leaving through the back face goes the other way.
-        float ior = m.transmit_ior.w;
+        float ior = m.ior;
         Refraction r = refract_fresnel(cur.ray.dir, hit.normal, interface_eta(cur.media, ior, hit.front_face));
-        note_decision(r.total ? 7u : 6u);
-        bool fresnel = m.emission_fresnel.w != 0.0f;
+        note_decision(r.total ? DECISION_TOTAL_REFLECTION : DECISION_REFRACTED);
+        bool fresnel = m.fresnel != 0u;
         float share = r.total ? 1.0f : (fresnel ? r.reflectance : 0.0f);
         reflect_weight += share * transmit;
         if (!r.total) {

@@ -10,10 +10,10 @@
 
 vec3 shade_local(Ray ray, Hit hit, INOUT(Rng) rng, INOUT(uint) shadow_rays) {
     Material m = surface_material(hit);
-    vec3 diffuse = vec3(m.diffuse_kd) * m.diffuse_kd.w;
+    vec3 diffuse = m.diffuse * m.kd;
     vec3 color = vec3(0.0f);
     if (HAS_EMISSION && hit.front_face) {
-        color += vec3(m.emission_fresnel);
+        color += m.emission;
     }
     if (HAS_AMBIENT) {
         color += ambient_light() * diffuse;

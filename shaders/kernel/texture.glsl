@@ -94,7 +94,7 @@ vec2 material_uv(Material m, vec2 uv) {
 
 // An emission texture's radiance at (u, v): the emission times the texture.
 vec3 textured_emission(Material m, vec2 uv) {
-    return vec3(m.emission_fresnel) * vec3(texture_bilinear(load_texture(m.maps.w - 1u), uv));
+    return m.emission * vec3(texture_bilinear(load_texture(m.emission_map - 1u), uv));
 }
 
 // The material at a hit, textured. A Phong material's diffuse colour times the
@@ -105,25 +105,27 @@ vec3 textured_emission(Material m, vec2 uv) {
 // texture coordinates; other shapes keep the untextured material.
 Material surface_material(Hit hit) {
     Material m = load_material(hit.material);
-    if (HAS_TEXTURES && m.maps.w != 0u && (hit.prim >> REF_KIND_SHIFT) == REF_TRIANGLE) {
-        m.emission_fresnel = vec4(textured_emission(m, material_uv(m, hit.uv)), m.emission_fresnel.w);
+    if (HAS_TEXTURES && m.emission_map != 0u && (hit.prim >> REF_KIND_SHIFT) == REF_TRIANGLE) {
+        m.emission = textured_emission(m, material_uv(m, hit.uv));
     }
-    if (HAS_TEXTURES && (m.maps.x != 0u || m.maps.y != 0u) && (hit.prim >> REF_KIND_SHIFT) == REF_TRIANGLE) {
+    if (HAS_TEXTURES && (m.color_map != 0u || m.metal_rough_map != 0u) && (hit.prim >> REF_KIND_SHIFT) == REF_TRIANGLE) {
         vec2 uv = material_uv(m, hit.uv);
-        vec3 c = m.maps.x != 0u ? vec3(texture_bilinear(load_texture(m.maps.x - 1u), uv)) : vec3(1.0f);
-        if (m.microfacet.w > 0.0f) {
-            vec3 base = vec3(m.specular_ks) * c;
-            float metallic = m.uv_u.w;
-            float roughness = m.uv_v.w;
-            if (m.maps.y != 0u) {
-                vec4 mr = texture_bilinear(load_texture(m.maps.y - 1u), uv);
+        vec3 c = m.color_map != 0u ? vec3(texture_bilinear(load_texture(m.color_map - 1u), uv)) : vec3(1.0f);
+        if (m.ggx_alpha > 0.0f) {
+            vec3 base = m.base_color * c;
+            float metallic = m.metallic;
+            float roughness = m.roughness;
+            if (m.metal_rough_map != 0u) {
+                vec4 mr = texture_bilinear(load_texture(m.metal_rough_map - 1u), uv);
                 metallic = clamp(metallic * mr.b, 0.0f, 1.0f);
                 roughness = clamp(roughness * mr.g, 0.0f, 1.0f);
             }
-            m.diffuse_kd = vec4((1.0f - metallic) * base, 1.0f);
-            m.microfacet = vec4(mix(vec3(0.04f), base, metallic), max(roughness * roughness, MIN_GGX_ALPHA));
+            m.diffuse = (1.0f - metallic) * base;
+            m.kd = 1.0f;
+            m.ggx_f0 = mix(vec3(0.04f), base, metallic);
+            m.ggx_alpha = max(roughness * roughness, MIN_GGX_ALPHA);
         } else {
-            m.diffuse_kd = vec4(vec3(m.diffuse_kd) * c, m.diffuse_kd.w);
+            m.diffuse = m.diffuse * c;
         }
     }
     return m;

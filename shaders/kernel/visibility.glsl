@@ -19,13 +19,13 @@
 // itself, not along l for the hit's distance: the move is a number of ULPs of the
 // hit's coordinates, which far from the origin exceeds the margin SHADOW_RAY_END
 // leaves before the light, and a ray of the hit's length from the moved origin then
-// reached the emitter's own surface (found by issue 6's scale cases). Toward a
+// reached the emitter's own surface (the stability suite's scale cases found it). Toward a
 // directional light, or the environment, the shadow ray runs along l without end:
 // anything it meets blocks the light.
 bool light_reaches(Hit hit, vec3 shadow_origin, vec3 l, vec4 light, bool source_faces, INOUT(uint) shadow_rays) {
     bool lifted = HAS_TERMINATOR && dot(hit.lift, hit.geo_normal) > 0.0f;
     bool faces = source_faces && dot(hit.normal, l) > 0.0f && (lifted || dot(hit.geo_normal, l) > 0.0f);
-    note_decision(faces ? 3u : 2u);
+    note_decision(faces ? DECISION_LIGHT_FACING : DECISION_LIGHT_BEHIND);
     if (!faces) {
         return false;
     }

@@ -1,12 +1,22 @@
-// Mirror reflection and refraction at a surface: directions and the Fresnel
-// reflectance. `n` is the unit shading normal on the side the ray arrives from
-// (Hit.normal), `d` the unit direction of the arriving ray.
+// The glass lobe: delta reflection and refraction at a smooth interface, split by the
+// exact Fresnel reflectance (or all refracted with "fresnel": false), and the stack of
+// media a ray travels in. `n` is the unit shading normal on the side the ray arrives
+// from (Hit.normal), `d` the unit direction of the arriving ray.
 
-// Renormalized: d and n are unit only to rounding, and the error would compound over
-// a chain of mirrors.
-vec3 mirror_direction(vec3 d, vec3 n) {
-    precise vec3 r = d - (2.0f * dot(d, n)) * n;
-    return unit_vector(r);
+struct GlassLobe {
+    vec3 color;    // transmit (0 without HAS_REFRACTION)
+    float ior;
+    bool fresnel;  // split by Fresnel; otherwise refracted unless totally reflected
+    float weight;  // the mean of its colour
+};
+
+GlassLobe glass_lobe(Material m) {
+    GlassLobe l;
+    l.color = HAS_REFRACTION ? m.transmit : vec3(0.0f);
+    l.ior = m.ior;
+    l.fresnel = m.fresnel != 0u;
+    l.weight = mean3(l.color);
+    return l;
 }
 
 struct Refraction {

@@ -336,7 +336,7 @@ Hit triangle_hit(Ray ray, uint index, TriangleHit th) {
     vec3 g = front ? ng : -ng;
     // The shading normal must lie on the viewer's side of the surface too.
     bool flip = dot(ns, g) < 0.0f;
-    note_decision(flip ? 11u : 10u);
+    note_decision(flip ? DECISION_NORMAL_FLIPPED : DECISION_NORMAL_KEPT);
     vec3 s = flip ? -ns : ns;
     vec3 lift = vec3(0.0f);
     if (HAS_TERMINATOR && tri.meta.y != 0u) {
@@ -397,7 +397,7 @@ Hit closest_hit(Ray ray, float t_max) {
     if (HAS_CYLINDERS && (nearest.ref >> REF_KIND_SHIFT) == REF_CYLINDER) {
         note_decision(nearest.part);
     }
-    note_decision(hit.front_face ? 9u : 8u);
+    note_decision(hit.front_face ? DECISION_FRONT_FACE : DECISION_BACK_FACE);
     return hit;
 }
 
@@ -405,6 +405,6 @@ Hit closest_hit(Ray ray, float t_max) {
 // first blocker, whichever it is and wherever on the ray it lies.
 bool occluded(Ray ray, float t_max) {
     bool blocked = trace(ray, t_max, true).ref != REF_NONE;
-    note_decision(blocked ? 1u : 0u);
+    note_decision(blocked ? DECISION_BLOCKED : DECISION_UNBLOCKED);
     return blocked;
 }

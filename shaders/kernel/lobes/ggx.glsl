@@ -1,5 +1,5 @@
-// The GGX microfacet reflection lobe of the metallic-roughness material (bsdf.glsl),
-// isotropic, in the local frame of the shading normal (z up):
+// The rough lobe: GGX microfacet reflection, of the metallic-roughness material
+// (bsdf.glsl), isotropic, in the local frame of the shading normal (z up):
 //
 //   f(wo, wi) = F(wo.h) D(h) G2(wo, wi) / (4 cos(theta_o) cos(theta_i)),  h = |wo + wi|
 //
@@ -7,9 +7,10 @@
 // height-correlated masking-shadowing (Walter et al., "Microfacet Models for
 // Refraction through Rough Surfaces", 2007; Heitz, "Understanding the
 // Masking-Shadowing Function in Microfacet-Based BRDFs", 2014); F is Schlick's
-// approximation of the Fresnel reflectance around the colour at normal incidence f0.
+// approximation of the Fresnel reflectance around the colour at normal incidence f0
+// (fresnel.glsl).
 // Light that scatters more than once between microfacets is not followed, so a
-// white rough lobe reflects less than all the light (tests/kernel_microfacet_test).
+// white rough lobe reflects less than all the light (its test measures how much).
 //
 // Directions are drawn from the distribution of normals visible from wo (Heitz,
 // "Sampling the GGX Distribution of Visible Normals", JCGT 2018), whose density over
@@ -36,17 +37,6 @@ float ggx_lambda(float c, float alpha) {
     precise float a2t2 = alpha * alpha * max(0.0f, 1.0f - c2) / c2;
     precise float lambda = a2t2 / (2.0f * (sqrt(1.0f + a2t2) + 1.0f));
     return lambda;
-}
-
-float schlick_scalar(float cos_d) {
-    float m = clamp(1.0f - cos_d, 0.0f, 1.0f);
-    float m2 = m * m;
-    return m2 * m2 * m;
-}
-
-vec3 fresnel_schlick(vec3 f0, float cos_d) {
-    precise vec3 f = f0 + (vec3(1.0f) - f0) * schlick_scalar(cos_d);
-    return f;
 }
 
 // The lobe's value f for unit directions wo, wi about the unit normal n (0 where
@@ -97,4 +87,40 @@ vec3 ggx_sample(float alpha, vec3 wo, float u1, float u2) {
     vec3 m = unit_vector(vec3(alpha * n.x, alpha * n.y, max(0.0f, n.z)));
     precise vec3 wi = (2.0f * dot(wo, m)) * m - wo;
     return wi;
+}
+
+// The lobe as bsdf.glsl mixes it: the material's GGX factors (HAS_MICROFACET; alpha 0:
+// no such lobe) and its selection weight seen from cos(theta_o) = cos_o, the mean of
+// the Fresnel reflectance toward wo (0 from below). Its members are not in the order
+// of GlossyLobe's, whose types they share (smooth_lobes.glsl says why that matters).
+struct GgxLobe {
+    float alpha;
+    vec3 f0;
+    float weight;
+};
+
+GgxLobe ggx_lobe(Material m, float cos_o) {
+    GgxLobe l;
+    l.alpha = HAS_MICROFACET ? m.ggx_alpha : 0.0f;
+    l.f0 = l.alpha > 0.0f ? m.ggx_f0 : vec3(0.0f);
+    l.weight = l.alpha > 0.0f && cos_o > 0.0f ? mean3(fresnel_schlick(l.f0, cos_o)) : 0.0f;
+    return l;
+}
+
+bool ggx_present(GgxLobe l) {
+    return HAS_MICROFACET && l.alpha > 0.0f;
+}
+
+// The mixture's interface (smooth_lobes.glsl), over the functions above.
+vec3 ggx_eval(GgxLobe l, vec3 n, vec3 wo, vec3 wi) {
+    return ggx_eval(l.f0, l.alpha, n, wo, wi);
+}
+
+float ggx_pdf(GgxLobe l, Basis frame, vec3 wo, vec3 wi, uint hemisphere) {
+    return ggx_pdf(l.alpha, frame.n, wo, wi);
+}
+
+vec3 ggx_sample(GgxLobe l, Basis frame, vec3 wo, uint hemisphere, float u1, float u2) {
+    vec3 local = vec3(dot(wo, frame.t), dot(wo, frame.b), dot(wo, frame.n));
+    return from_basis(frame, ggx_sample(l.alpha, local, u1, u2));
 }

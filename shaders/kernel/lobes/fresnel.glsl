@@ -1,0 +1,20 @@
+// What the lobes share: a colour's selection weight, and Schlick's approximation of
+// the Fresnel reflectance (Schlick, "An Inexpensive BRDF Model for Physically-based
+// Rendering", 1994), F = f0 + (1 - f0)(1 - cos)^5 for the cosine cos_d between the
+// direction and the (micro)surface normal.
+
+float mean3(vec3 v) {
+    return (v.x + v.y + v.z) * (1.0f / 3.0f);
+}
+
+// (1 - cos_d)^5, cos_d clamped to [0, 1].
+float schlick_scalar(float cos_d) {
+    float m = clamp(1.0f - cos_d, 0.0f, 1.0f);
+    float m2 = m * m;
+    return m2 * m2 * m;
+}
+
+vec3 fresnel_schlick(vec3 f0, float cos_d) {
+    precise vec3 f = f0 + (vec3(1.0f) - f0) * schlick_scalar(cos_d);
+    return f;
+}

@@ -1,0 +1,48 @@
+// The material record, one field a line, in the order of its lanes: both languages
+// declare layout.glsl's Material from this list, render.comp assembles it from the
+// scene buffer's texels by it, and host/kernel/types.hpp checks that each field sits
+// at its texel and lane. A field is named for the one thing it holds; a lane that
+// holds nothing is a MATERIAL_PAD, written as 0.
+//
+//   MATERIAL_FIELD(type, name, texel, lane)   a uint or float in lane x, y, z or w
+//   MATERIAL_FIELD3(type, name, texel)        a vec3 in lanes xyz of a texel
+//   MATERIAL_PAD(texel, lane)                 an unused lane
+//
+// The file that includes this one defines the three macros; they are undefined at
+// the end. The materials of the scene file (docs/scene-format.md) map onto these as
+// host/flatten/flat_scene.cpp says.
+
+// The paper's material (and the lobes global mode builds from it, bsdf.glsl).
+MATERIAL_FIELD3(vec3, diffuse, 0)      // diffuse colour
+MATERIAL_FIELD(float, kd, 0, w)        // its weight
+MATERIAL_FIELD3(vec3, specular, 1)     // Phong highlight colour
+MATERIAL_FIELD(float, ks, 1, w)        // its weight
+MATERIAL_FIELD3(vec3, mirror, 2)       // mirror reflectance (the scene file's `reflect`)
+MATERIAL_FIELD(float, shininess, 2, w) // Phong exponent
+MATERIAL_FIELD3(vec3, transmit, 3)     // glass transmittance
+MATERIAL_FIELD(float, ior, 3, w)       // index of refraction
+MATERIAL_FIELD3(vec3, emission, 4)     // emitted radiance, front face only
+MATERIAL_FIELD(uint, fresnel, 4, w)    // 1: mirror and glass split by Fresnel; 0: by the constant weights
+
+// The metallic-roughness material's GGX lobe (lobes/ggx.glsl), built from its
+// factors on the host and rebuilt per hit when textured (texture.glsl).
+MATERIAL_FIELD3(vec3, ggx_f0, 5)       // reflectance at normal incidence
+MATERIAL_FIELD(float, ggx_alpha, 5, w) // GGX width; 0: no such lobe
+
+// Textures: 1 + the texture's index (texture.glsl), 0 for none.
+MATERIAL_FIELD(uint, color_map, 6, x)           // multiplies the diffuse colour or the base colour
+MATERIAL_FIELD(uint, metal_rough_map, 6, y)     // metallic (blue) and roughness (green)
+MATERIAL_FIELD(uint, normal_map, 6, z)          // normal_map.glsl
+MATERIAL_FIELD(uint, emission_map, 6, w)        // multiplies the emission
+
+// The texture coordinates' transform: u' = dot(uv_u.xy, uv) + uv_u.z, v' likewise.
+MATERIAL_FIELD3(vec3, uv_u, 7)
+MATERIAL_FIELD(float, metallic, 7, w)  // the metallic-roughness factors (0 for the paper's material)
+MATERIAL_FIELD3(vec3, uv_v, 8)
+MATERIAL_FIELD(float, roughness, 8, w)
+MATERIAL_FIELD3(vec3, base_color, 9)   // the metallic-roughness base colour
+MATERIAL_PAD(9, w)
+
+#undef MATERIAL_PAD
+#undef MATERIAL_FIELD3
+#undef MATERIAL_FIELD
