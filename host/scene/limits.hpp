@@ -6,8 +6,10 @@
 
 namespace vkrt::limits {
 
-// An image side beyond this is a typo, not a render; the accumulation buffers of
-// the largest allowed image (48 bytes a pixel: sums and counters) stay near 1.5 GiB.
+// An image side beyond this is a typo, not a render. A pixel's sums and counters
+// take 112 bytes (kernel::PIXEL_TEXELS = 7 texels of 16 bytes: PixelSum 3, Counters
+// 4), so those of the largest allowed image take 3.5 GiB; a progressive render holds
+// two such sets on the host from its second pass on, the total and the pass's own.
 inline constexpr std::uint32_t kMaxImageSide = 32768;
 inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t(1) << 25;
 // Why an image of width x height pixels is refused; empty when it is allowed.
@@ -31,7 +33,8 @@ inline constexpr std::uint32_t kMaxAa = 64;
 inline constexpr std::uint32_t kMaxSpp = 1u << 16;
 inline constexpr std::uint32_t kMaxDepth = 64;
 // Global mode's bounces; each is one loop iteration of a budget of 65,000 shared with
-// the grid walk, so more than this could never finish (issue 6 tries 1000).
+// the grid walk, so more than this could never finish (the stability tests render
+// 1000).
 inline constexpr std::uint32_t kMaxBounces = 1000;
 // render.exposure and --exposure, in stops: 2^64 either way is far past any
 // radiance a float image holds.
