@@ -112,18 +112,22 @@ void store_pixel_texel(uint t, uvec4 value) {
 // The kernel's invariants are checked by the reference backend (host/kernel/checks.hpp).
 #define CHECK(condition)
 
-// A material from its texels, field by field (kernel/material_fields.glsl). All its
-// texels are fetched first, so that a texel is read once however many fields it holds;
-// the driver drops those whose fields the pipeline never reads.
+// A material from its texels, field by field (kernel/material_fields.glsl): each
+// texel fetched once into t<texel>, whichever fields it holds. Without a loop or an
+// array, so that the driver drops a texel no field of the pipeline reads without
+// having to unroll anything first. A field in a texel beyond t9 fails to compile
+// here: add its fetch.
 Material material_from_texels(uint i) {
-    uvec4 t[MATERIAL_TEXELS];
-    [[unroll]] for (uint k = 0u; k < MATERIAL_TEXELS; ++k) {
-        t[k] = fetch_texel(materials, MATERIAL_TEXELS * i + k);
-    }
+    uint first = MATERIAL_TEXELS * i;
+    uvec4 t0 = fetch_texel(materials, first), t1 = fetch_texel(materials, first + 1u),
+          t2 = fetch_texel(materials, first + 2u), t3 = fetch_texel(materials, first + 3u),
+          t4 = fetch_texel(materials, first + 4u), t5 = fetch_texel(materials, first + 5u),
+          t6 = fetch_texel(materials, first + 6u), t7 = fetch_texel(materials, first + 7u),
+          t8 = fetch_texel(materials, first + 8u), t9 = fetch_texel(materials, first + 9u);
     Material m;
-#define MATERIAL_FIELD(T, name, texel, lane) m.name = FROM_BITS_##T(t[texel].lane);
-#define MATERIAL_FIELD3(T, name, texel) m.name = FROM_BITS_##T(t[texel].xyz);
-#define MATERIAL_PAD(texel, lane) m.pad_##texel##_##lane = t[texel].lane;
+#define MATERIAL_FIELD(T, name, texel, lane) m.name = FROM_BITS_##T(t##texel.lane);
+#define MATERIAL_FIELD3(T, name, texel) m.name = FROM_BITS_##T(t##texel.xyz);
+#define MATERIAL_PAD(texel, lane) m.pad_##texel##_##lane = t##texel.lane;
 #include "kernel/material_fields.glsl"
     return m;
 }

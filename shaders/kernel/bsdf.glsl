@@ -19,7 +19,7 @@
 // only, as no light sample can land on a delta lobe.
 
 struct Lobes {
-#define SMOOTH_LOBE(id, name, Type) Type name;
+#define SMOOTH_LOBE(id, name, Type, FEATURE) Type name;
 #include "lobes/smooth_lobes.glsl"
     MirrorLobe mirror;
     GlassLobe glass;
@@ -29,11 +29,11 @@ struct Lobes {
 // shading normal, on which some lobes' selection weights depend.
 Lobes material_lobes(Material m, float cos_o) {
     Lobes l;
-#define SMOOTH_LOBE(id, name, Type) l.name = name##_lobe(m, cos_o);
+#define SMOOTH_LOBE(id, name, Type, FEATURE) l.name = name##_lobe(m, cos_o);
 #include "lobes/smooth_lobes.glsl"
     l.mirror = mirror_lobe(m);
     l.glass = glass_lobe(m);
-#define SMOOTH_LOBE(id, name, Type) CHECK(is_finite_bits(l.name.weight) && l.name.weight >= 0.0f);
+#define SMOOTH_LOBE(id, name, Type, FEATURE) CHECK(is_finite_bits(l.name.weight) && l.name.weight >= 0.0f);
 #include "lobes/smooth_lobes.glsl"
     return l;
 }
@@ -41,7 +41,7 @@ Lobes material_lobes(Material m, float cos_o) {
 // The smooth group's weight: the sum of its lobes'.
 float smooth_weight(Lobes l) {
     float w = 0.0f;
-#define SMOOTH_LOBE(id, name, Type) w += l.name.weight;
+#define SMOOTH_LOBE(id, name, Type, FEATURE) if (FEATURE) w += l.name.weight;
 #include "lobes/smooth_lobes.glsl"
     return w;
 }
@@ -54,8 +54,8 @@ float lobes_total(Lobes l) {
 // pointing away from the surface; n the shading normal on their side).
 vec3 eval_smooth(Lobes l, vec3 n, vec3 wo, vec3 wi) {
     vec3 f = vec3(0.0f);
-#define SMOOTH_LOBE(id, name, Type) \
-    if (name##_present(l.name)) {   \
+#define SMOOTH_LOBE(id, name, Type, FEATURE) \
+    if (FEATURE && name##_present(l.name)) {   \
         f += name##_eval(l.name, n, wo, wi); \
     }
 #include "lobes/smooth_lobes.glsl"
@@ -71,8 +71,8 @@ float pdf_smooth(Lobes l, Basis frame, vec3 wo, vec3 wi, uint hemisphere) {
         return 0.0f;
     }
     float pdf = 0.0f;
-#define SMOOTH_LOBE(id, name, Type)                                              \
-    if (l.name.weight > 0.0f) {                                                  \
+#define SMOOTH_LOBE(id, name, Type, FEATURE)                                              \
+    if (FEATURE && l.name.weight > 0.0f) {                                       \
         pdf += l.name.weight * name##_pdf(l.name, frame, wo, wi, hemisphere);    \
     }
 #include "lobes/smooth_lobes.glsl"
@@ -89,16 +89,16 @@ vec3 sample_smooth(Lobes l, Basis frame, vec3 wo, uint hemisphere, float u0, flo
     float pick = u0 * smooth_weight(l);
     uint chosen = 0u;
     float start = 0.0f;
-#define SMOOTH_LOBE(id, name, Type) \
-    if (l.name.weight > 0.0f) {     \
+#define SMOOTH_LOBE(id, name, Type, FEATURE) \
+    if (FEATURE && l.name.weight > 0.0f) { \
         if (pick >= start) {        \
             chosen = id;            \
         }                           \
         start += l.name.weight;     \
     }
 #include "lobes/smooth_lobes.glsl"
-#define SMOOTH_LOBE(id, name, Type)                                            \
-    if (chosen == id) {                                                        \
+#define SMOOTH_LOBE(id, name, Type, FEATURE)                                            \
+    if (FEATURE && chosen == id) {                                             \
         return name##_sample(l.name, frame, wo, hemisphere, u1, u2);           \
     }
 #include "lobes/smooth_lobes.glsl"

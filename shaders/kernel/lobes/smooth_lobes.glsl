@@ -20,11 +20,15 @@
 // for one and writes invalid SPIR-V, which the validation layer of the Vulkan tests
 // reports. Order the members differently, as ggx.glsl does.
 //
-//   SMOOTH_LOBE(id, name, Type)
+//   SMOOTH_LOBE(id, name, Type, FEATURE)
+//
+// FEATURE: the feature without which the lobe is always empty (true: none), written
+// into every test of the mixture so that the lobes a scene lacks fold away at once
+// when the pipeline is specialized.
 //
 // The file that includes this one defines SMOOTH_LOBE; it is undefined at the end.
-SMOOTH_LOBE(0u, diffuse, DiffuseLobe)   // Lambertian (diffuse.glsl)
-SMOOTH_LOBE(1u, glossy, GlossyLobe)     // normalized Phong (glossy.glsl)
-SMOOTH_LOBE(2u, ggx, GgxLobe)           // GGX microfacet reflection (ggx.glsl)
+SMOOTH_LOBE(0u, diffuse, DiffuseLobe, true)            // Lambertian (diffuse.glsl)
+SMOOTH_LOBE(1u, glossy, GlossyLobe, HAS_SPECULAR)      // normalized Phong (glossy.glsl)
+SMOOTH_LOBE(2u, ggx, GgxLobe, HAS_MICROFACET)          // GGX microfacet reflection (ggx.glsl)
 
 #undef SMOOTH_LOBE
