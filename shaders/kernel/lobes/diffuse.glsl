@@ -36,7 +36,7 @@ DiffuseLobe diffuse_lobe(Material m, float cos_o) {
 }
 
 // Evaluated whatever its weight: a coupled lobe seen from below still has a value.
-bool diffuse_present(DiffuseLobe l) {
+bool diffuse_present(DiffuseLobe) {
     return true;
 }
 
@@ -49,11 +49,11 @@ vec3 diffuse_eval(DiffuseLobe l, vec3 n, vec3 wo, vec3 wi) {
     return f;
 }
 
-float diffuse_pdf(DiffuseLobe l, Basis frame, vec3 wo, vec3 wi, uint hemisphere) {
+float diffuse_pdf(DiffuseLobe, Basis frame, vec3 /* wo */, vec3 wi, uint hemisphere) {
     vec3 local = vec3(dot(wi, frame.t), dot(wi, frame.b), dot(wi, frame.n));
     return hemisphere_pdf(hemisphere, local);
 }
 
-vec3 diffuse_sample(DiffuseLobe l, Basis frame, vec3 wo, uint hemisphere, float u1, float u2) {
+vec3 diffuse_sample(DiffuseLobe, Basis frame, vec3 /* wo */, uint hemisphere, float u1, float u2) {
     return from_basis(frame, sample_hemisphere(hemisphere, u1, u2));
 }

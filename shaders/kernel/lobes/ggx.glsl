@@ -116,11 +116,11 @@ vec3 ggx_eval(GgxLobe l, vec3 n, vec3 wo, vec3 wi) {
     return ggx_eval(l.f0, l.alpha, n, wo, wi);
 }
 
-float ggx_pdf(GgxLobe l, Basis frame, vec3 wo, vec3 wi, uint hemisphere) {
+float ggx_pdf(GgxLobe l, Basis frame, vec3 wo, vec3 wi, uint /* hemisphere */) {
     return ggx_pdf(l.alpha, frame.n, wo, wi);
 }
 
-vec3 ggx_sample(GgxLobe l, Basis frame, vec3 wo, uint hemisphere, float u1, float u2) {
+vec3 ggx_sample(GgxLobe l, Basis frame, vec3 wo, uint /* hemisphere */, float u1, float u2) {
     vec3 local = vec3(dot(wo, frame.t), dot(wo, frame.b), dot(wo, frame.n));
     return from_basis(frame, ggx_sample(l.alpha, local, u1, u2));
 }

@@ -16,7 +16,7 @@ struct GlossyLobe {
     float weight;     // the mean of its colour
 };
 
-GlossyLobe glossy_lobe(Material m, float cos_o) {
+GlossyLobe glossy_lobe(Material m, float /* cos_o */) {
     GlossyLobe l;
     l.color = HAS_SPECULAR ? m.specular * m.ks : vec3(0.0f);
     l.shininess = m.shininess;
@@ -42,7 +42,7 @@ vec3 glossy_eval(GlossyLobe l, vec3 n, vec3 wo, vec3 wi) {
     return l.color * ((l.shininess + 2.0f) / (2.0f * PI) * power(c, l.shininess));
 }
 
-float glossy_pdf(GlossyLobe l, Basis frame, vec3 wo, vec3 wi, uint hemisphere) {
+float glossy_pdf(GlossyLobe l, Basis frame, vec3 wo, vec3 wi, uint /* hemisphere */) {
     float c = phong_cos_alpha(frame.n, wo, wi);
     if (!(c > 0.0f)) {
         return 0.0f;
@@ -50,7 +50,7 @@ float glossy_pdf(GlossyLobe l, Basis frame, vec3 wo, vec3 wi, uint hemisphere) {
     return (l.shininess + 1.0f) / (2.0f * PI) * power(c, l.shininess);
 }
 
-vec3 glossy_sample(GlossyLobe l, Basis frame, vec3 wo, uint hemisphere, float u1, float u2) {
+vec3 glossy_sample(GlossyLobe l, Basis frame, vec3 wo, uint /* hemisphere */, float u1, float u2) {
     vec3 mirrored = (2.0f * dot(frame.n, wo)) * frame.n - wo;
     float c = power(u1, 1.0f / (l.shininess + 1.0f));
     float s = sqrt(max(0.0f, 1.0f - c * c));
