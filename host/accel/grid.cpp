@@ -330,6 +330,8 @@ std::vector<bool> choose_loose(const Listed& all, const GridRequest& request, do
     std::vector<bool> loose(all.boxes.size());
     std::vector<std::size_t> kept;  // the others' indices
     std::vector<Aabb> kept_boxes;
+    kept.reserve(all.boxes.size());
+    kept_boxes.reserve(all.boxes.size());
     for (std::size_t i = 0; i < all.boxes.size(); ++i) {
         loose[i] = request.loose_kinds[all.ids[i] >> kernel::REF_KIND_SHIFT];
         if (!loose[i]) {
@@ -346,6 +348,8 @@ std::vector<bool> choose_loose(const Listed& all, const GridRequest& request, do
 // they were listed (by kind, like a cell's).
 std::vector<std::uint32_t> take_loose(Listed& listed, const std::vector<bool>& loose) {
     std::vector<std::uint32_t> loose_refs;
+    // Nothing loose, the common case: no copy of the boxes.
+    if (std::find(loose.begin(), loose.end(), true) == loose.end()) return loose_refs;
     Listed kept;
     for (std::size_t i = 0; i < listed.boxes.size(); ++i) {
         if (loose[i]) {
@@ -484,7 +488,7 @@ std::vector<double> lay_within_limits(Grid& g, const Aabb& box, GridResolution r
 // the prefix sum.
 RootCells bin_root_cells(const Grid& g, const Listed& listed, const Binner& binner,
                          const std::vector<double>& rounding) {
-    const GridResolution& res = g.resolution;
+    const GridResolution res = g.resolution;  // a copy: the counts written below cannot alias it
     const std::uint64_t cells = g.cell_count();
     const auto cell_index = [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
         return (std::uint64_t(z) * res[1] + y) * res[0] + x;
