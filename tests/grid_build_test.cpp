@@ -554,6 +554,35 @@ TEST(GridBuild, NoPrimitivesGivesAnEmptyGrid) {
     EXPECT_TRUE(g.refs.empty());
 }
 
+// A kind loose as a whole goes first, in index order, into no cell; when every kind
+// is loose the grid is one empty cell after them.
+TEST(GridBuild, LooseKindsAreListedFirstAndInNoCell) {
+    const RandomScene s = random_scene(37, 40, 40);
+    GridRequest request;
+    request.loose_kinds[kernel::REF_RING] = true;
+    request.loose_kinds[kernel::REF_CYLINDER] = true;
+    std::string note;
+    const Grid g = build_grid(s.primitives(), request, note);
+    ASSERT_EQ(g.loose, s.rings.size() + s.cylinders.size());
+    for (std::uint32_t i = 0; i < g.loose; ++i) {
+        const std::uint32_t kind = i < s.rings.size() ? kernel::REF_RING : kernel::REF_CYLINDER;
+        const std::uint32_t index = i < s.rings.size() ? i : i - std::uint32_t(s.rings.size());
+        EXPECT_EQ(g.refs[i], (kind << kernel::REF_KIND_SHIFT) | index) << i;
+    }
+    for (std::size_t i = g.loose; i < g.refs.size(); ++i) {
+        const std::uint32_t kind = g.refs[i] >> kernel::REF_KIND_SHIFT;
+        ASSERT_TRUE(kind == kernel::REF_SPHERE || kind == kernel::REF_TRIANGLE) << "a loose kind listed in a cell";
+    }
+    EXPECT_EQ(g.nodes.front(), g.loose);
+
+    request.loose_kinds.fill(true);
+    const Grid none = build_grid(s.primitives(), request, note);
+    EXPECT_EQ(none.loose, s.size());
+    EXPECT_EQ(none.refs.size(), s.size());
+    EXPECT_EQ(none.nodes, (std::vector<std::uint32_t>{none.loose, none.loose}));
+    EXPECT_TRUE(note.empty()) << note;
+}
+
 // A dense cluster in a wide scene, the teapot in a stadium: the builder splits the
 // cluster's root cells, and every leaf, at any depth, lists every primitive whose box
 // touches its box, and none farther than twice the padding; within a leaf, by kind.

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
@@ -12,6 +14,7 @@
 #include <utility>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
@@ -394,6 +397,43 @@ TEST_F(ObjMeshTest, BadFacesAreRefusedWithTheirLine) {
     EXPECT_NE(obj_error("").find(": the file has no faces"), std::string::npos);
 }
 
+TEST_F(ObjMeshTest, TextureCoordinatesAreCheckedAsPositionsAre) {
+    const std::string v = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    const std::string f = "f 1/1 2/1 3/1\n";
+    EXPECT_NE(obj_error(v + "vt abc 0\n" + f).find(":4: expected a number, got 'abc'"), std::string::npos);
+    EXPECT_NE(obj_error(v + "vt 0 nan\n" + f).find(":4: expected a finite number, got 'nan'"), std::string::npos);
+    EXPECT_NE(obj_error(v + "vt 1e40 0\n" + f).find(":4: expected a number of magnitude at most"), std::string::npos);
+    EXPECT_NE(obj_error(v + "vt\n" + f).find(":4: expected 1 to 3 numbers after 'vt', got 0"), std::string::npos);
+    EXPECT_NE(obj_error(v + "vt 0 0 0 0\n" + f).find(":4: expected 1 to 3 numbers after 'vt', got 4"),
+              std::string::npos);
+    // v defaults to 0 (turned to run down the image: 1); the numbers are kept at
+    // float precision.
+    const IndexedMesh mesh = load_obj(write("uv.obj", v + "vt 0.1\nvt 0.3 0.7 0\n" + f));
+    ASSERT_EQ(mesh.uvs.size(), 2u);
+    EXPECT_EQ(mesh.uvs[0], glm::dvec2(double(0.1f), 1.0));
+    EXPECT_EQ(mesh.uvs[1], glm::dvec2(double(0.3f), 1.0 - double(0.7f)));
+}
+
+TEST_F(ObjMeshTest, FaceIndicesAreIntegersCountedFromOneOrFromTheEnd) {
+    const std::string v = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n";
+    for (const char* face : {"f 1.5 2 3\n", "f 1abc 2 3\n", "f 1/1/1/1 2 3\n", "f 1/ 2 3\n", "f 1// 2 3\n",
+                             "f /1 2 3\n", "f 1 -0 3\n", "f 1 +-2 3\n"}) {
+        const std::string m = obj_error(v + "vt 0 0\nvn 0 0 1\n" + face);
+        EXPECT_NE(m.find("Failed parse `f' line"), std::string::npos) << face << m;
+        EXPECT_NE(m.find("line 7"), std::string::npos) << face << m;
+    }
+    // A relative index before the first element is out of range, also for normals.
+    EXPECT_NE(
+        obj_error(v + "vn 0 0 1\nf 1//-2 2 3\n").find(":6: a face refers to normal 0, but the file has 1 normals"),
+        std::string::npos);
+    EXPECT_NE(obj_error(v + "f 1 2 99999999999\n").find(":5: a face refers to vertex 99999999999"), std::string::npos);
+    // A face may refer to a vertex of a later line and end in a comment; +1 is 1,
+    // and -1 the last vertex read so far.
+    const IndexedMesh mesh = load_obj(write("later.obj", "v 0 0 0\nf +1 2 -1 # 2 comes next\nv 1 0 0\nv 0 1 0\n"));
+    ASSERT_EQ(mesh.faces.size(), 1u);
+    EXPECT_EQ(mesh.faces[0].position, (std::array<std::uint32_t, 3>{0, 1, 0}));
+}
+
 TEST_F(ObjMeshTest, ObjErrorsComeAfterTheScenePathToTheFile) {
     const std::string m = expect_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", "",
                                        {": objects[0].file: ", "mesh.obj:4: a face refers to vertex 4"});
@@ -644,6 +684,35 @@ TEST_F(ObjMeshTest, AFaceWithoutAMaterialIsAnErrorWhenTheObjectGivesNone) {
     const IndexedMesh mesh = load_obj_with_materials(write("mesh.obj", uses_red), warnings);
     ASSERT_EQ(mesh.materials.size(), 1u);
     expect_vec(mesh.materials[0].diffuse, {0.8, 0.1, 0.1}, 1e-7);
+}
+
+TEST_F(ObjMeshTest, AUsemtlFindsTheMaterialsOfTheMtllibLinesBeforeIt) {
+    write("two.mtl", kTwoMtl);
+    write("more.mtl", "newmtl red\nKd 0 0 1\nnewmtl blue\nKd 0 0 1\n");
+    std::vector<std::string> warnings;
+    // A second library adds its materials; a name both define keeps the first's.
+    const IndexedMesh mesh = load_obj_with_materials(
+        write("mesh.obj", "mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl lamp\nf 1 2 3\n"
+                          "mtllib more.mtl\nusemtl blue\nf 1 2 3\nusemtl red\nf 1 2 3\n"),
+        warnings);
+    ASSERT_EQ(mesh.materials.size(), 4u);
+    ASSERT_EQ(mesh.faces.size(), 3u);
+    EXPECT_EQ(mesh.materials[mesh.faces[0].material].name, "lamp");
+    EXPECT_EQ(mesh.materials[mesh.faces[1].material].name, "blue");
+    EXPECT_EQ(mesh.faces[2].material, 0u);  // two.mtl's red
+    ASSERT_EQ(warnings.size(), 1u);  // two libraries named, if on two lines
+    EXPECT_NE(warnings[0].find("names 2 MTL files"), std::string::npos) << warnings[0];
+    // Before its mtllib line a usemtl finds nothing.
+    try {
+        load_obj_with_materials(write("early.obj", "usemtl red\nmtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
+                                warnings);
+        ADD_FAILURE() << "no error";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("early.obj:6: the face has no material (usemtl 'red' is not defined in "
+                                             "mtllib 'two.mtl')"),
+                  std::string::npos)
+            << e.what();
+    }
 }
 
 TEST_F(ObjMeshTest, LoadsTheUtahTeapot) {

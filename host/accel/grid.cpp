@@ -5,6 +5,8 @@
 #include <cmath>
 #include <initializer_list>
 #include <limits>
+#include <optional>
+#include <span>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -283,183 +285,272 @@ std::array<GridResolution, 2> Grid::cells_overlapping(const Aabb& box) const {
     return vkrt::cells_overlapping(box, lo, cell, padding(box), resolution);
 }
 
-Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, std::string& note) {
+namespace {
+
+// The primitives the grid's cells list: each one's box and reference (kind <<
+// REF_KIND_SHIFT | index), in the same order.
+struct Listed {
     std::vector<Aabb> boxes;
     std::vector<std::uint32_t> ids;
-    boxes.reserve(primitives.spheres.size() + primitives.triangles.size() + primitives.rings.size() +
-                  primitives.cylinders.size());
-    ids.reserve(boxes.capacity());
-    // Kind by kind, in the kernel's loop order: the placement pass below keeps this
-    // order within every cell, so each cell's references come grouped by kind.
-    auto add_kind = [&](const auto& items, std::uint32_t kind, const char* name) {
-        if (items.size() > std::size_t(kernel::REF_INDEX_MASK) + 1) {
-            throw std::runtime_error(fmt::format("the grid holds at most {} {} (a reference's index bits), the "
-                                                 "scene has {}",
-                                                 std::size_t(kernel::REF_INDEX_MASK) + 1, name, items.size()));
-        }
-        for (std::size_t i = 0; i < items.size(); ++i) {
-            boxes.push_back(bounds(items[i]));
-            ids.push_back((kind << kernel::REF_KIND_SHIFT) | std::uint32_t(i));
-        }
-    };
-    add_kind(primitives.spheres, kernel::REF_SPHERE, "spheres");
-    add_kind(primitives.triangles, kernel::REF_TRIANGLE, "triangles");
-    add_kind(primitives.rings, kernel::REF_RING, "rings");
-    add_kind(primitives.cylinders, kernel::REF_CYLINDER, "cylinders");
+};
 
+// Appends one kind's boxes and references, in index order.
+template <class Primitive>
+void add_kind(std::span<const Primitive> items, std::uint32_t kind, const char* name, Listed& out) {
+    if (items.size() > std::size_t(kernel::REF_INDEX_MASK) + 1) {
+        throw std::runtime_error(fmt::format("the grid holds at most {} {} (a reference's index bits), the "
+                                             "scene has {}",
+                                             std::size_t(kernel::REF_INDEX_MASK) + 1, name, items.size()));
+    }
+    for (std::size_t i = 0; i < items.size(); ++i) {
+        out.boxes.push_back(bounds(items[i]));
+        out.ids.push_back((kind << kernel::REF_KIND_SHIFT) | std::uint32_t(i));
+    }
+}
+
+// Every primitive's box and reference, kind by kind in the kernel's loop order:
+// binning keeps this order within every cell, so each cell's references come
+// grouped by kind.
+Listed primitive_boxes(const GridPrimitives& primitives) {
+    Listed all;
+    all.boxes.reserve(primitives.spheres.size() + primitives.triangles.size() + primitives.rings.size() +
+                      primitives.cylinders.size());
+    all.ids.reserve(all.boxes.capacity());
+    add_kind(primitives.spheres, kernel::REF_SPHERE, "spheres", all);
+    add_kind(primitives.triangles, kernel::REF_TRIANGLE, "triangles", all);
+    add_kind(primitives.rings, kernel::REF_RING, "rings", all);
+    add_kind(primitives.cylinders, kernel::REF_CYLINDER, "cylinders", all);
+    return all;
+}
+
+// Which primitives are loose: those of the kinds the request names, and those that
+// would stretch the box of the others (choose_stretching; `shrink` gets its ratio).
+// Kinds loose as a whole take no part in choosing the others.
+std::vector<bool> choose_loose(const Listed& all, const GridRequest& request, double& shrink) {
+    std::vector<bool> loose(all.boxes.size());
+    std::vector<std::size_t> kept;  // the others' indices
+    std::vector<Aabb> kept_boxes;
+    kept.reserve(all.boxes.size());
+    kept_boxes.reserve(all.boxes.size());
+    for (std::size_t i = 0; i < all.boxes.size(); ++i) {
+        loose[i] = request.loose_kinds[all.ids[i] >> kernel::REF_KIND_SHIFT];
+        if (!loose[i]) {
+            kept.push_back(i);
+            kept_boxes.push_back(all.boxes[i]);
+        }
+    }
+    const std::vector<bool> stretching = choose_stretching(kept_boxes, request.max_loose, shrink);
+    for (std::size_t k = 0; k < kept.size(); ++k) loose[kept[k]] = loose[kept[k]] || stretching[k];
+    return loose;
+}
+
+// Moves the loose primitives out of `listed`; returns their references, in the order
+// they were listed (by kind, like a cell's).
+std::vector<std::uint32_t> take_loose(Listed& listed, const std::vector<bool>& loose) {
+    std::vector<std::uint32_t> loose_refs;
+    // Nothing loose, the common case: no copy of the boxes.
+    if (std::find(loose.begin(), loose.end(), true) == loose.end()) return loose_refs;
+    Listed kept;
+    for (std::size_t i = 0; i < listed.boxes.size(); ++i) {
+        if (loose[i]) {
+            loose_refs.push_back(listed.ids[i]);
+        } else {
+            kept.boxes.push_back(listed.boxes[i]);
+            kept.ids.push_back(listed.ids[i]);
+        }
+    }
+    listed = std::move(kept);
+    return loose_refs;
+}
+
+void add_note(std::string& note, const std::string& text) { note += (note.empty() ? "" : "; ") + text; }
+
+// How large the grid may be: the device's limit on a buffer's entries or vkrt's own,
+// whichever is less, and each named as the builder's notes name it.
+struct GridLimits {
+    std::uint64_t cells = 0;  // root cells
+    std::uint64_t refs = 0;   // references
+    std::string cell_limit;
+    std::string ref_limit;
+};
+
+GridLimits grid_limits(std::uint64_t max_entries) {
+    GridLimits limits;
+    limits.refs = std::min(max_entries, kMaxGridRefs);
+    // The nodes hold one entry more than there are root cells.
+    limits.cells = std::min(std::max<std::uint64_t>(max_entries, 2) - 1, kMaxGridCells);
+    const std::string device_limit = fmt::format("this device's buffer limit of {} entries", max_entries);
+    limits.cell_limit =
+        limits.cells == kMaxGridCells ? fmt::format("vkrt's limit of {} cells", kMaxGridCells) : device_limit;
+    limits.ref_limit =
+        limits.refs == kMaxGridRefs ? fmt::format("vkrt's limit of {} references", kMaxGridRefs) : device_limit;
+    return limits;
+}
+
+// The root cells per axis: the heuristic's for `primitives` in `box`, or the
+// request's, reduced (with a note) to the cell limit.
+GridResolution root_resolution(const GridRequest& request, const Aabb& box, std::size_t primitives,
+                               const GridLimits& limits, std::string& note) {
+    const GridResolution& asked = request.resolution;
+    if (product(asked) == 0) return grid_resolution(box, primitives, kGridDensity, limits.cells);
+    if (product(asked) <= limits.cells) return asked;
+    const GridResolution res = fit(asked, limits.cells);
+    add_note(note, fmt::format("grid resolution {}x{}x{} exceeds {}; using {}x{}x{}", asked[0], asked[1], asked[2],
+                               limits.cell_limit, res[0], res[1], res[2]));
+    return res;
+}
+
+// Where rays start, for the padding: the corners of the box of everything (loose
+// primitives included) and the eye, when given.
+std::vector<dvec3> ray_origins(const Aabb& everything, const std::optional<dvec3>& eye) {
+    std::vector<dvec3> origins;
+    for (int corner = 0; corner < 8; ++corner) {
+        origins.push_back({corner & 1 ? everything.hi.x : everything.lo.x,
+                           corner & 2 ? everything.hi.y : everything.lo.y,
+                           corner & 4 ? everything.hi.z : everything.lo.z});
+    }
+    if (eye) origins.push_back(*eye);
+    return origins;
+}
+
+// At least any box's rounding padding (Grid::rounding_pad): a box's magnitude is at
+// most the scene's, a root cell at most twice it (the box of everything, with a
+// little margin), and a ray travels at most from the eye across the box of everything.
+double most_rounding(const Aabb& everything, const std::optional<dvec3>& eye) {
+    const double magnitude =
+        std::max({std::abs(everything.lo.x), std::abs(everything.lo.y), std::abs(everything.lo.z),
+                  std::abs(everything.hi.x), std::abs(everything.hi.y), std::abs(everything.hi.z)});
+    double reach = glm::length(everything.hi - everything.lo);
+    if (eye) reach += glm::length(*eye - glm::clamp(*eye, everything.lo, everything.hi));
+    return (3.1 * magnitude + reach) * kMagnitudePad;
+}
+
+// Lays `res` root cells over `box`: float corners and cell size, the box grown by the
+// largest padding so that a ray grazing a primitive on the boundary still clips to a
+// non-empty interval despite rounding in the slab test.
+void lay_root_cells(Grid& g, const Aabb& box, const GridResolution& res, double most_rounding) {
+    g.resolution = res;
+    for (int a = 0; a < 3; ++a) {
+        // 1.1: the cell ends up a little wider than extent / res, by the margins.
+        const double margin = 1.1 * kCellPad * (box.hi[a] - box.lo[a]) / res[a] + most_rounding;
+        g.lo[a] = float_down(box.lo[a] - margin);
+        g.cell[a] = float_up((box.hi[a] + margin - g.lo[a]) / res[a]);
+        g.hi[a] = float_up(g.lo[a] + g.cell[a] * res[a]);
+        g.pad[a] = margin;
+    }
+}
+
+// Each box's rounding padding in the grid as laid.
+std::vector<double> rounding_pads(const Grid& g, const std::vector<Aabb>& boxes) {
+    std::vector<double> rounding(boxes.size());
+    for (std::size_t i = 0; i < boxes.size(); ++i) rounding[i] = g.rounding_pad(boxes[i]);
+    return rounding;
+}
+
+// A root cell's padding of a box (Grid::padding) whose rounding padding is `rounding`.
+dvec3 root_pad(const Grid& g, double rounding) { return kCellPad * g.cell + rounding; }
+
+// The references the root cells would hold, loose ones included, counted before
+// anything is allocated: an upper bound, as triangles go only into the cells they cross.
+std::uint64_t count_references(const Grid& g, const std::vector<Aabb>& boxes, const std::vector<double>& rounding) {
+    std::uint64_t total = g.loose;
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+        const auto [first, last] =
+            vkrt::cells_overlapping(boxes[i], g.lo, g.cell, root_pad(g, rounding[i]), g.resolution);
+        total += std::uint64_t(last[0] - first[0] + 1) * (last[1] - first[1] + 1) * (last[2] - first[2] + 1);
+    }
+    return total;
+}
+
+// Lays the root cells, starting at `res`, coarser (with a note) until their
+// references fit the limit: coarser cells hold fewer copies of the large
+// primitives. Returns the boxes' rounding paddings in the grid as laid; throws if
+// even one cell holds too many.
+std::vector<double> lay_within_limits(Grid& g, const Aabb& box, GridResolution res, const std::vector<Aabb>& boxes,
+                                      double most_rounding, const GridLimits& limits, std::string& note) {
+    for (;;) {
+        lay_root_cells(g, box, res, most_rounding);
+        std::vector<double> rounding = rounding_pads(g, boxes);
+        const std::uint64_t total = count_references(g, boxes, rounding);
+        if (total <= limits.refs) return rounding;
+        if (product(res) <= 1) {
+            throw std::runtime_error(fmt::format("the scene's {} primitives do not fit one grid: {} references, "
+                                                 "over {}",
+                                                 boxes.size() + g.loose, total, limits.ref_limit));
+        }
+        res = fit(res, product(res) / 2);
+        add_note(note, fmt::format("grid {}x{}x{} needs {} references, over {}; using {}x{}x{}", g.resolution[0],
+                                   g.resolution[1], g.resolution[2], total, limits.ref_limit, res[0], res[1], res[2]));
+    }
+}
+
+// Each root cell's primitives, in two passes: count them, then place them after
+// the prefix sum.
+RootCells bin_root_cells(const Grid& g, const Listed& listed, const Binner& binner,
+                         const std::vector<double>& rounding) {
+    const GridResolution res = g.resolution;  // a copy: the counts written below cannot alias it
+    const std::uint64_t cells = g.cell_count();
+    const auto cell_index = [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+        return (std::uint64_t(z) * res[1] + y) * res[0] + x;
+    };
+    const auto for_each_cell = [&](std::size_t i, const auto& f) {
+        binner.cells(listed.boxes[i], listed.ids[i], g.lo, g.cell, root_pad(g, rounding[i]), res, f);
+    };
+    RootCells roots;
+    roots.starts.assign(cells + 1, 0);
+    for (std::size_t i = 0; i < listed.boxes.size(); ++i) {
+        for_each_cell(i, [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+            ++roots.starts[cell_index(x, y, z)];
+        });
+    }
+    std::uint32_t sum = 0;
+    for (std::uint64_t c = 0; c <= cells; ++c) {
+        const std::uint32_t n = roots.starts[c];
+        roots.starts[c] = sum;
+        sum += n;
+    }
+    std::vector<std::uint32_t> cursor(roots.starts.begin(), roots.starts.end() - 1);
+    roots.items.assign(sum, 0);
+    for (std::size_t i = 0; i < listed.boxes.size(); ++i) {
+        for_each_cell(i, [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+            roots.items[cursor[cell_index(x, y, z)]++] = std::uint32_t(i);
+        });
+    }
+    return roots;
+}
+
+}  // namespace
+
+Grid build_grid(const GridPrimitives& primitives, const GridRequest& request, std::string& note) {
+    Listed listed = primitive_boxes(primitives);
     Grid g;
-    if (boxes.empty()) {
-        g.nodes = {0, 0};   // one empty root cell
+    if (listed.boxes.empty()) {
+        g.nodes = {0, 0};  // one empty root cell
         return g;
     }
-    // The loose primitives' references go first, in kind order like a cell's; the
-    // rest are binned. Kinds that are loose as a whole take no part in choosing the
-    // others.
-    std::vector<std::uint32_t> loose_refs;
-    std::vector<Aabb> all_boxes;
-    {
-        std::vector<bool> loose(boxes.size());
-        std::vector<std::size_t> kept;   // the others' indices
-        std::vector<Aabb> kept_boxes;
-        for (std::size_t i = 0; i < boxes.size(); ++i) {
-            loose[i] = request.loose_kinds[ids[i] >> kernel::REF_KIND_SHIFT];
-            if (!loose[i]) {
-                kept.push_back(i);
-                kept_boxes.push_back(boxes[i]);
-            }
-        }
-        const std::vector<bool> stretching = choose_stretching(kept_boxes, request.max_loose, g.loose_shrink);
-        for (std::size_t k = 0; k < kept.size(); ++k) loose[kept[k]] = loose[kept[k]] || stretching[k];
-        std::vector<Aabb> listed_boxes;
-        std::vector<std::uint32_t> listed_ids;
-        for (std::size_t i = 0; i < boxes.size(); ++i) {
-            if (loose[i]) {
-                loose_refs.push_back(ids[i]);
-            } else {
-                listed_boxes.push_back(boxes[i]);
-                listed_ids.push_back(ids[i]);
-            }
-        }
-        all_boxes = std::move(boxes);
-        boxes = std::move(listed_boxes);
-        ids = std::move(listed_ids);
-    }
-    g.loose = std::uint32_t(loose_refs.size());
     // Rays may start on a loose primitive far outside the grid's box: the padding
-    // below allows for positions at the magnitude of, and rays as long as, the box
-    // of everything.
-    const Aabb everything = grid_box(all_boxes);
-    if (boxes.empty()) {   // everything is loose: one cell, empty
+    // allows for positions at the magnitude of, and rays as long as, the box of
+    // everything.
+    const Aabb everything = grid_box(listed.boxes);
+    std::vector<std::uint32_t> loose_refs = take_loose(listed, choose_loose(listed, request, g.loose_shrink));
+    g.loose = std::uint32_t(loose_refs.size());
+    if (listed.boxes.empty()) {  // everything is loose: one cell, empty
         g.nodes = {g.loose, g.loose};
         g.refs = std::move(loose_refs);
         return g;
     }
-    const Aabb box = grid_box(boxes);
+    const Aabb box = grid_box(listed.boxes);
+    const GridLimits limits = grid_limits(request.max_entries);
+    const GridResolution res = root_resolution(request, box, listed.boxes.size(), limits, note);
+    g.origins = ray_origins(everything, request.eye);
+    const std::vector<double> rounding =
+        lay_within_limits(g, box, res, listed.boxes, most_rounding(everything, request.eye), limits, note);
     const Binner binner{primitives.triangles};
-    const std::uint64_t max_refs = std::min(request.max_entries, kMaxGridRefs);
-    // The nodes hold one entry more than there are root cells.
-    const std::uint64_t max_cells = std::min(std::max<std::uint64_t>(request.max_entries, 2) - 1, kMaxGridCells);
-    const std::string cell_limit = max_cells == kMaxGridCells
-                                       ? fmt::format("vkrt's limit of {} cells", kMaxGridCells)
-                                       : fmt::format("this device's buffer limit of {} entries", request.max_entries);
-    const std::string ref_limit = max_refs == kMaxGridRefs
-                                      ? fmt::format("vkrt's limit of {} references", kMaxGridRefs)
-                                      : fmt::format("this device's buffer limit of {} entries", request.max_entries);
-    auto add_note = [&](const std::string& text) { note += (note.empty() ? "" : "; ") + text; };
-    GridResolution res = request.resolution;
-    if (product(res) == 0) {
-        res = grid_resolution(box, boxes.size(), kGridDensity, max_cells);
-    } else if (product(res) > max_cells) {
-        const GridResolution asked = res;
-        res = fit(res, max_cells);
-        add_note(fmt::format("grid resolution {}x{}x{} exceeds {}; using {}x{}x{}", asked[0], asked[1], asked[2],
-                             cell_limit, res[0], res[1], res[2]));
-    }
-
-    const double magnitude =
-        std::max({std::abs(everything.lo.x), std::abs(everything.lo.y), std::abs(everything.lo.z),
-                  std::abs(everything.hi.x), std::abs(everything.hi.y), std::abs(everything.hi.z)});
-    // Rays travel at most from the eye across the box of everything.
-    double reach = glm::length(everything.hi - everything.lo);
-    if (request.eye) reach += glm::length(*request.eye - glm::clamp(*request.eye, everything.lo, everything.hi));
-    for (int corner = 0; corner < 8; ++corner) {
-        g.origins.push_back({corner & 1 ? everything.hi.x : everything.lo.x,
-                             corner & 2 ? everything.hi.y : everything.lo.y,
-                             corner & 4 ? everything.hi.z : everything.lo.z});
-    }
-    if (request.eye) g.origins.push_back(*request.eye);
-    // At least any box's rounding padding: a box's magnitude is at most the scene's, a
-    // root cell at most twice it (the box of everything, with a little margin), and a
-    // ray's reach at most `reach`.
-    const double most_rounding = (3.1 * magnitude + reach) * kMagnitudePad;
-    std::vector<double> rounding(boxes.size());   // each box's rounding padding
-    for (;;) {
-        g.resolution = res;
-        // The grid box is the primitives' box grown by the largest padding, so that a
-        // ray grazing a primitive on the boundary still clips to a non-empty interval
-        // despite rounding in the slab test.
-        for (int a = 0; a < 3; ++a) {
-            // 1.1: the cell ends up a little wider than extent / res, by the margins.
-            const double margin = 1.1 * kCellPad * (box.hi[a] - box.lo[a]) / res[a] + most_rounding;
-            g.lo[a] = float_down(box.lo[a] - margin);
-            g.cell[a] = float_up((box.hi[a] + margin - g.lo[a]) / res[a]);
-            g.hi[a] = float_up(g.lo[a] + g.cell[a] * res[a]);
-            g.pad[a] = margin;
-        }
-        for (std::size_t i = 0; i < boxes.size(); ++i) rounding[i] = g.rounding_pad(boxes[i]);
-        // A root cell's padding of box i (Grid::padding, from the rounding above).
-        const auto root_pad = [&](std::size_t i) { return kCellPad * g.cell + rounding[i]; };
-        // The references each box would add, counted before anything is allocated
-        // (an upper bound: triangles go only into the cells they cross): a
-        // resolution too fine for the limit is coarsened without building it.
-        std::uint64_t total = g.loose;
-        for (std::size_t i = 0; i < boxes.size(); ++i) {
-            const auto [first, last] = vkrt::cells_overlapping(boxes[i], g.lo, g.cell, root_pad(i), res);
-            total += std::uint64_t(last[0] - first[0] + 1) * (last[1] - first[1] + 1) * (last[2] - first[2] + 1);
-        }
-        if (total > max_refs && product(res) > 1) {
-            // Coarser cells hold fewer copies of the large primitives.
-            const GridResolution before = res;
-            res = fit(res, product(res) / 2);
-            add_note(fmt::format("grid {}x{}x{} needs {} references, over {}; using {}x{}x{}", before[0], before[1],
-                                 before[2], total, ref_limit, res[0], res[1], res[2]));
-            continue;
-        }
-        if (total > max_refs) {
-            throw std::runtime_error(fmt::format("the scene's {} primitives do not fit one grid: {} references, over {}",
-                                                 boxes.size() + g.loose, total, ref_limit));
-        }
-        // Two passes: count each root cell's primitives, then place them after the
-        // prefix sum.
-        const std::uint64_t cells = g.cell_count();
-        RootCells roots;
-        roots.starts.assign(cells + 1, 0);
-        auto cell_index = [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
-            return (std::uint64_t(z) * res[1] + y) * res[0] + x;
-        };
-        for (std::size_t i = 0; i < boxes.size(); ++i) {
-            binner.cells(boxes[i], ids[i], g.lo, g.cell, root_pad(i), res,
-                         [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) { ++roots.starts[cell_index(x, y, z)]; });
-        }
-        std::uint32_t sum = 0;
-        for (std::uint64_t c = 0; c <= cells; ++c) {
-            const std::uint32_t n = roots.starts[c];
-            roots.starts[c] = sum;
-            sum += n;
-        }
-        std::vector<std::uint32_t> cursor(roots.starts.begin(), roots.starts.end() - 1);
-        roots.items.assign(sum, 0);
-        for (std::size_t i = 0; i < boxes.size(); ++i) {
-            binner.cells(boxes[i], ids[i], g.lo, g.cell, root_pad(i), res,
-                         [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
-                             roots.items[cursor[cell_index(x, y, z)]++] = std::uint32_t(i);
-                         });
-        }
-        g.refs = std::move(loose_refs);
-        const bool split = request.split && product(request.resolution) == 0;
-        place_cells(g, roots, boxes, ids, binner, rounding, split, max_refs, request.max_entries);
-        return g;
-    }
+    const RootCells roots = bin_root_cells(g, listed, binner, rounding);
+    g.refs = std::move(loose_refs);
+    const bool split = request.split && product(request.resolution) == 0;
+    place_cells(g, roots, listed.boxes, listed.ids, binner, rounding, split, limits.refs, request.max_entries);
+    return g;
 }
 
 }  // namespace vkrt

@@ -183,6 +183,140 @@ void print_summary(const RenderStats& s, const std::string& output, bool partial
     fmt::print("wrote     {}{}\n", output, partial ? " (a partial file: vkrt merge adds it up with others)" : "");
 }
 
+// The backend, made on another thread while the scene loads: neither needs the
+// other, and a Vulkan instance and device take as long as reading a large scene
+// file. `seconds` gets how long it took. A scene's error is still the one reported
+// (the future waits, its own is dropped).
+std::future<std::unique_ptr<Backend>> make_backend_meanwhile(const RenderArgs& args, double& seconds) {
+    return std::async(std::launch::async, [&args, &seconds] {
+        const auto made = std::chrono::steady_clock::now();
+        std::unique_ptr<Backend> b = make_backend(args);
+        seconds = seconds_since(made);
+        return b;
+    });
+}
+
+// The scene's own warnings, then the command line's changes to it.
+void prepare_scene(const RenderArgs& args, Scene& scene) {
+    for (const std::string& warning : scene.warnings) fmt::print(stderr, "warning: {}\n", warning);
+    apply_overrides(args, scene);
+}
+
+// Where the render goes: the image, or for --samples the partial file of those samples.
+struct RenderTarget {
+    std::optional<SampleRange> samples;
+    std::string output;
+};
+
+// The render's target, its paths (and the stats file's) checked now rather than
+// after a long render.
+RenderTarget render_target(const RenderArgs& args) {
+    RenderTarget target;
+    // The range is checked by the parser.
+    if (!args.samples.empty()) target.samples = parse_sample_range(args.samples, limits::kMaxSpp);
+    target.output = args.output.empty() ? default_output(args.scene, target.samples) : args.output;
+    app::check_writable_image(target.output);
+    if (target.samples && !app::is_exr(target.output)) {
+        throw std::runtime_error(fmt::format(
+            "{}: --samples writes a partial file, which is OpenEXR: give -o a name ending in .exr", target.output));
+    }
+    if (!args.stats_file.empty()) app::check_writable_file(args.stats_file, "stats file");
+    return target;
+}
+
+// How many samples the passes render: the scene's (--spp changed it), as many as
+// --time allows, or those of --samples.
+RenderPlan sample_plan(const RenderArgs& args, const std::optional<SampleRange>& samples) {
+    RenderPlan plan;
+    plan.seconds = args.time;
+    // A time budget alone renders as many samples as fit, up to the most a pixel takes.
+    if (args.time && !args.spp) plan.samples = limits::kMaxSpp;
+    if (samples) {
+        plan.first_sample = samples->first;
+        plan.samples = samples->count;
+    }
+    return plan;
+}
+
+// When the command's steps ended, from its start.
+struct CommandTimes {
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+    double backend_seconds = 0.0;  // making the backend, while the scene loaded
+    double load_seconds = 0.0;
+    std::optional<double> first_pass_seconds;
+};
+
+// The stats only the command knows: its times (the backend's setup counted in the
+// render's), the textures' decoding, and the peak memory.
+void add_command_stats(RenderStats& s, const CommandTimes& times, const Scene& scene) {
+    s.setup_seconds += times.backend_seconds;
+    s.load_seconds = times.load_seconds;
+    s.decode_seconds = scene.texture_decode_seconds;
+    s.first_pass_seconds = times.first_pass_seconds.value_or(0.0);
+    s.total_seconds = seconds_since(times.start);  // from loading the scene to the written image
+    s.peak_resident_bytes = app::peak_resident_bytes();
+}
+
+void write_stats_file(const std::string& file, const RenderStats& s) {
+    std::ofstream out(file);
+    out << stats_to_json(s).dump(2) << '\n';
+    if (!out) throw std::runtime_error(fmt::format("{}: cannot write the stats file", file));
+}
+
+// The summary and, given --reference, the error against it; nothing with --quiet.
+void print_report(const RenderArgs& args, const RenderStats& s, const RenderTarget& target, const Image& image,
+                  const Image& reference) {
+    if (args.quiet) return;
+    print_summary(s, target.output, target.samples.has_value());
+    if (!args.reference.empty()) {
+        const ErrorMetrics error = error_metrics(image, reference);
+        fmt::print("error     RMSE {:.6g}, relMSE {:.6g}, mean {:.6g} against {:.6g} of {}\n", error.rmse, error.relmse,
+                   error.mean, error.mean - error.mean_diff, args.reference);
+    }
+}
+
+// The live preview's last word: the outcome, and the file written.
+void finish_live_preview(live::LiveFeed& feed, const RenderOutcome& outcome, const std::string& label,
+                         const std::string& output) {
+    live::feed_outcome(feed, outcome, label);
+    feed.finish(output);
+    feed.wait_until_seen(2.0);
+}
+
+// What the render left out or made coarser: said on stderr, since the summary may
+// be --quiet.
+void warn_about_render(const RenderStats& s) {
+    if (s.nonfinite_samples > 0) {
+        fmt::print(stderr, "warning: {} samples were NaN or infinite and were left out of the average\n",
+                   s.nonfinite_samples);
+    }
+    // A grid coarser than the scene or --grid asked for renders the same image, only slower.
+    if (!s.grid.warning.empty()) fmt::print(stderr, "warning: {}\n", s.grid.warning);
+    if (s.clamped_samples > 0) {
+        fmt::print(stderr, "warning: {} samples had a radiance above {:.3g} and were clamped to it\n",
+                   s.clamped_samples, double(kernel::SUM_SAMPLE_MAX));
+    }
+}
+
+// The failures found only once the image is written: validation messages, and
+// samples cut short by the loop budget.
+void check_render_complete(const RenderStats& s, const std::string& output) {
+    if (s.validation_messages > 0) {
+        throw std::runtime_error(fmt::format("the Vulkan validation layer reported {} messages (above)",
+                                             s.validation_messages));
+    }
+    if (s.truncated_samples > 0) {
+        throw std::runtime_error(fmt::format(
+            "{} samples ran out of the per-invocation loop budget of {} iterations and were left out; "
+            "the image ({}) is incomplete (lavapipe stops loops silently at 65,535 iterations per 8-lane "
+            "vector, so the kernel stops first, or flags what lavapipe cut). {}",
+            s.truncated_samples, s.loop_budget, output,
+            s.grid.used ? "Grid cells along these rays hold too many primitives, or a sample traces too many "
+                          "rays through them: try a finer render.grid resolution or a lower render.max_depth"
+                        : "The scene has too many primitives for brute-force tracing: try --grid on"));
+    }
+}
+
 }  // namespace
 
 std::optional<GridSettings> parse_grid_option(const std::string& text) {
@@ -210,65 +344,37 @@ std::optional<GridSettings> parse_grid_option(const std::string& text) {
 }
 
 int run_render(const RenderArgs& args) {
-    const auto start = std::chrono::steady_clock::now();
-    // The device is made while the scene loads: neither needs the other, and a
-    // Vulkan instance and device take as long as reading a large scene file. A
-    // scene's error is still the one reported (the future waits, its own is dropped).
-    double backend_seconds = 0.0;
-    std::future<std::unique_ptr<Backend>> backend_made = std::async(std::launch::async, [&args, &backend_seconds] {
-        const auto made = std::chrono::steady_clock::now();
-        std::unique_ptr<Backend> b = make_backend(args);
-        backend_seconds = seconds_since(made);
-        return b;
-    });
+    CommandTimes times;
+    std::future<std::unique_ptr<Backend>> backend_made = make_backend_meanwhile(args, times.backend_seconds);
     PreparationProgress preparing(!args.quiet, stderr, isatty(fileno(stderr)) != 0);
     preparing.step("loading " + args.scene);
     Scene scene = load_scene(args.scene);
-    const double load_seconds = seconds_since(start);
-    for (const std::string& warning : scene.warnings) fmt::print(stderr, "warning: {}\n", warning);
-    apply_overrides(args, scene);
-    std::optional<SampleRange> samples;
-    if (!args.samples.empty()) samples = parse_sample_range(args.samples, limits::kMaxSpp);  // checked by the parser
-    const std::string output = args.output.empty() ? default_output(args.scene, samples) : args.output;
-
-    // Mistakes in the output paths are found now, not after a long render.
-    app::check_writable_image(output);
-    if (samples && !app::is_exr(output)) {
-        throw std::runtime_error(fmt::format(
-            "{}: --samples writes a partial file, which is OpenEXR: give -o a name ending in .exr", output));
-    }
-    if (!args.stats_file.empty()) app::check_writable_file(args.stats_file, "stats file");
+    times.load_seconds = seconds_since(times.start);
+    prepare_scene(args, scene);
+    const RenderTarget target = render_target(args);
     warn_ignored_options(args);
 
     Image reference;
     if (!args.reference.empty()) reference = read_reference(args.reference, scene.camera.width, scene.camera.height);
     live::LiveFeed feed;
     const std::unique_ptr<live::LiveServer> server = live::serve_if_asked(feed, args.serve, "the render as it converges");
-
     const std::unique_ptr<Backend> backend = backend_made.get();
     feed.set_renderer(backend->name(), backend->device_name());
     feed.set_display(scene.render.display);
-    RenderPlan plan;
-    plan.seconds = args.time;
-    // A time budget alone renders as many samples as fit, up to the most a pixel takes.
-    if (args.time && !args.spp) plan.samples = limits::kMaxSpp;
-    if (samples) {
-        plan.first_sample = samples->first;
-        plan.samples = samples->count;
-    }
+
     const std::string label = std::filesystem::path(args.scene).filename().string();
     const live::PassLabels labels{label, backend->name(), args.reference.empty() ? nullptr : &reference,
                                   args.time && !args.spp};
     auto last_checkpoint = std::chrono::steady_clock::now();
-    std::optional<double> first_pass_seconds;
+    RenderPlan plan = sample_plan(args, target.samples);
     plan.on_step = [&](const std::string& what) { preparing.step(what); };
     plan.after_pass = [&](const PassView& view) {
-        if (!first_pass_seconds) first_pass_seconds = seconds_since(start);
+        if (!times.first_pass_seconds) times.first_pass_seconds = seconds_since(times.start);
         preparing.done();
         if (server) live::feed_pass(feed, view, labels);
         if (args.checkpoint && seconds_since(last_checkpoint) >= *args.checkpoint) {
-            write_output(output, args, scene, backend->name(), view.total, samples, view.samples, view.fingerprint,
-                         view.corners);
+            write_output(target.output, args, scene, backend->name(), view.total, target.samples, view.samples,
+                         view.fingerprint, view.corners);
             last_checkpoint = std::chrono::steady_clock::now();
         }
         return !feed.stop_requested();
@@ -279,58 +385,16 @@ int run_render(const RenderArgs& args) {
         progress.update(status.fraction(), status.seconds_left, progress_detail(status));
     });
     progress.finish();
-    write_output(output, args, scene, backend->name(), outcome.sums, samples, outcome.stats.samples_per_pixel,
-                 outcome.fingerprint, outcome.corners, &outcome.image);
+    write_output(target.output, args, scene, backend->name(), outcome.sums, target.samples,
+                 outcome.stats.samples_per_pixel, outcome.fingerprint, outcome.corners, &outcome.image);
 
     RenderStats& s = outcome.stats;
-    s.setup_seconds += backend_seconds;         // device and instance creation, while the scene loaded
-    s.load_seconds = load_seconds;
-    s.decode_seconds = scene.texture_decode_seconds;
-    s.first_pass_seconds = first_pass_seconds.value_or(0.0);
-    s.total_seconds = seconds_since(start);     // from loading the scene to the written image
-    s.peak_resident_bytes = app::peak_resident_bytes();
-    if (!args.stats_file.empty()) {
-        std::ofstream out(args.stats_file);
-        out << stats_to_json(s).dump(2) << '\n';
-        if (!out) throw std::runtime_error(fmt::format("{}: cannot write the stats file", args.stats_file));
-    }
-    if (!args.quiet) print_summary(s, output, samples.has_value());
-    if (!args.reference.empty() && !args.quiet) {
-        const ErrorMetrics error = error_metrics(outcome.image, reference);
-        fmt::print("error     RMSE {:.6g}, relMSE {:.6g}, mean {:.6g} against {:.6g} of {}\n", error.rmse, error.relmse,
-                   error.mean, error.mean - error.mean_diff, args.reference);
-    }
-    if (server) {
-        live::feed_outcome(feed, outcome, label);
-        feed.finish(output);
-        feed.wait_until_seen(2.0);
-    }
-
-    if (s.nonfinite_samples > 0) {
-        fmt::print(stderr, "warning: {} samples were NaN or infinite and were left out of the average\n",
-                   s.nonfinite_samples);
-    }
-    // A grid coarser than the scene or --grid asked for renders the same image, only
-    // slower: said on stderr, since the summary may be --quiet.
-    if (!s.grid.warning.empty()) fmt::print(stderr, "warning: {}\n", s.grid.warning);
-    if (s.clamped_samples > 0) {
-        fmt::print(stderr, "warning: {} samples had a radiance above {:.3g} and were clamped to it\n",
-                   s.clamped_samples, double(kernel::SUM_SAMPLE_MAX));
-    }
-    if (s.validation_messages > 0) {
-        throw std::runtime_error(fmt::format("the Vulkan validation layer reported {} messages (above)",
-                                             s.validation_messages));
-    }
-    if (s.truncated_samples > 0) {
-        throw std::runtime_error(fmt::format(
-            "{} samples ran out of the per-invocation loop budget of {} iterations and were left out; "
-            "the image ({}) is incomplete (lavapipe stops loops silently at 65,535 iterations per 8-lane "
-            "vector, so the kernel stops first, or flags what lavapipe cut). {}",
-            s.truncated_samples, s.loop_budget, output,
-            s.grid.used ? "Grid cells along these rays hold too many primitives, or a sample traces too many "
-                          "rays through them: try a finer render.grid resolution or a lower render.max_depth"
-                        : "The scene has too many primitives for brute-force tracing: try --grid on"));
-    }
+    add_command_stats(s, times, scene);
+    if (!args.stats_file.empty()) write_stats_file(args.stats_file, s);
+    print_report(args, s, target, outcome.image, reference);
+    if (server) finish_live_preview(feed, outcome, label, target.output);
+    warn_about_render(s);
+    check_render_complete(s, target.output);
     return 0;
 }
 

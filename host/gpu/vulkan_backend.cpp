@@ -159,6 +159,138 @@ struct DeviceState {
     BatchTimer timer;
 };
 
+// A part of a slab's work: samples [first_sample, first_sample + samples) of a
+// region of it, each tile by tile.
+struct SlabWork {
+    Region region;
+    std::uint32_t first_sample, samples;
+};
+
+// What rendering one slab keeps from batch to batch.
+struct SlabJob {
+    std::uint32_t index = 0;      // which slab
+    std::uint32_t rows = 0;
+    std::uint32_t first_row = 0;  // of the image
+    VkDeviceSize bytes = 0;       // of its sums in the pixel buffer
+    Region whole;
+    // The work, taken from the back: the whole slab, but for the rest of a sample
+    // whose tiles were split part-way. The sums are exact integers, so neither
+    // tiling, batching nor order changes a bit of the image.
+    std::vector<SlabWork> work;
+    std::optional<TileBatcher> rest_batcher;  // for the rest of a sample
+    bool dispatched = false;                  // anything yet: the sums are cleared before the first
+    double pixel_samples = 0.0;               // in all, for the progress
+    double pixel_samples_done = 0.0;
+    double gpu_seconds = 0.0;                 // the batches' time on the device, where it is measured
+};
+
+// One submission: items [first, first + count) of a work, item i being tile
+// i % tiles of its sample first_sample + i / tiles.
+struct Batch {
+    const SlabWork& work;
+    const Tiling& tiling;
+    std::uint32_t tiles;
+    std::uint32_t first, count;
+    bool last;  // the slab's last: its sums are then made readable
+};
+
+// The slab starts from zero sums, after whatever last used the buffer.
+void clear_sums(VkCommandBuffer cmd, const DeviceState& s, VkDeviceSize bytes) {
+    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                   kShaderAccess | VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                   VK_ACCESS_TRANSFER_WRITE_BIT);
+    vkCmdFillBuffer(cmd, s.pixels.get(), 0, bytes, 0);
+    memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, kShaderAccess);
+}
+
+void bind_pipeline(VkCommandBuffer cmd, const DeviceState& s) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.pipeline.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.layout.get(), 0, 1, &s.pipeline.set, 0,
+                            nullptr);
+    vkCmdPushConstants(cmd, s.pipeline.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, kPassBytes, kPushBytes - kPassBytes,
+                       s.push.data());
+}
+
+// Dispatches item i of the batch's work: one tile of one sample.
+void dispatch_item(VkCommandBuffer cmd, const DeviceState& s, const Batch& batch, std::uint32_t i, SlabJob& job) {
+    const SlabWork& w = batch.work;
+    const std::uint32_t tile = i % batch.tiles;
+    // A sample adds to the sums an earlier one wrote: one barrier where the samples
+    // of a region start orders all that came before (across batches too: a
+    // barrier's scope spans earlier submissions). The tiles of one sample write
+    // disjoint pixels and may overlap.
+    if (tile == 0 && job.dispatched) {
+        memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, kShaderAccess);
+    }
+    const Tiling& tiling = batch.tiling;
+    const std::uint32_t x = tile % tiling.across() * tiling.tile_width;
+    const std::uint32_t y = tile / tiling.across() * tiling.tile_height;
+    const std::array<std::uint32_t, 4> pass{w.first_sample + i / batch.tiles, w.region.x + x,
+                                            job.first_row + w.region.y + y, job.first_row};
+    vkCmdPushConstants(cmd, s.pipeline.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, kPassBytes, pass.data());
+    const std::uint32_t tw = std::min(tiling.tile_width, w.region.width - x);
+    const std::uint32_t th = std::min(tiling.tile_height, w.region.rows - y);
+    vkCmdDispatch(cmd, (tw + kWorkgroupSide - 1) / kWorkgroupSide, (th + kWorkgroupSide - 1) / kWorkgroupSide, 1);
+    job.pixel_samples_done += double(tw) * th;
+    job.dispatched = true;
+}
+
+// The slab's sums, to where the CPU reads them.
+void make_sums_readable(VkCommandBuffer cmd, const DeviceState& s, VkDeviceSize bytes) {
+    if (s.readback) {
+        memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+        const VkBufferCopy region{0, 0, bytes};
+        vkCmdCopyBuffer(cmd, s.pixels.get(), s.readback->get(), 1, &region);
+        memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                       VK_ACCESS_HOST_READ_BIT);
+    } else {
+        memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+    }
+}
+
+// Records and submits one batch and waits for it; returns its wall time.
+double submit_batch(DeviceState& s, const Batch& batch, SlabJob& job) {
+    const Clock::time_point submitted = Clock::now();
+    s.context->submit_and_wait([&](VkCommandBuffer cmd) {
+        if (!job.dispatched) clear_sums(cmd, s, job.bytes);
+        s.timer.begin(cmd);
+        bind_pipeline(cmd, s);
+        for (std::uint32_t i = batch.first; i < batch.first + batch.count; ++i) dispatch_item(cmd, s, batch, i, job);
+        s.timer.end(cmd);
+        if (batch.last) make_sums_readable(cmd, s, job.bytes);
+    });
+    const double wall = seconds_since(submitted);
+    if (s.timer.on_gpu()) job.gpu_seconds += s.timer.batch_seconds();
+    return wall;
+}
+
+// After the tiles were split at item `item` of a work of `chunk` samples: the rest of
+// that sample in the new tiles (rest_of_sample), then the samples after it.
+void queue_rest_of_work(SlabJob& job, const SlabWork& w, const Tiling& tiling, std::uint32_t item,
+                        std::uint32_t chunk) {
+    const std::uint32_t tiles = tiling.count();
+    const std::uint32_t sample = item / tiles;
+    if (sample + 1 < chunk) job.work.push_back({w.region, w.first_sample + sample + 1, chunk - sample - 1});
+    const std::vector<Region> rest = rest_of_sample(w.region, tiling, item % tiles);
+    for (auto r = rest.rbegin(); r != rest.rend(); ++r) job.work.push_back({*r, w.first_sample + sample, 1});
+}
+
+// The slab's sums into the result. Each pixel's texels: its PixelSum, then its
+// Counters (kernel/layout.glsl).
+void read_sums(const DeviceState& s, const SlabJob& job, std::uint32_t width, RenderResult& result) {
+    const auto* texels = static_cast<const unsigned char*>(s.readback ? s.readback->data() : s.pixels.data());
+    const std::size_t first = std::size_t(job.first_row) * width;
+    for (std::size_t p = 0; p < std::size_t(job.rows) * width; ++p) {
+        const unsigned char* pixel = texels + p * kernel::PIXEL_TEXELS * 16;
+        std::memcpy(&result.sums[first + p], pixel, sizeof(kernel::PixelSum));
+        std::memcpy(&result.counters[first + p], pixel + sizeof(kernel::PixelSum), sizeof(kernel::Counters));
+    }
+}
+
 class VulkanBackend;
 
 // The device state of one scene, kept for as many passes as the caller renders:
@@ -176,6 +308,9 @@ private:
     bool split_tiles(double costliest, const Tiling& tiling);
     void render_slab(SampleRange samples, std::uint32_t slab, std::uint32_t rows, RenderResult& result,
                      const std::function<void(double)>& progress);
+    void render_work(SlabJob& job, const SlabWork& w, RenderResult& result,
+                     const std::function<void(double)>& progress);
+    TileBatcher& batcher_for(SlabJob& job, const Region& region, const Tiling& tiling);
 
     VulkanBackend& backend_;
     const FlatScene& scene_;
@@ -336,135 +471,62 @@ bool VulkanSession::split_tiles(double costliest, const Tiling& tiling) {
 
 void VulkanSession::render_slab(SampleRange samples, std::uint32_t slab, std::uint32_t rows, RenderResult& result,
                                 const std::function<void(double)>& progress) {
-    DeviceState& s = *state_;
-    const VulkanContext& context = *s.context;
-    const std::uint32_t first_row = slab * s.paths.slab_rows;
-    const VkDeviceSize bytes = VkDeviceSize(rows) * width_ * kernel::PIXEL_TEXELS * 16;
-    const Region whole{0, 0, width_, rows};
-
-    // The work, taken from the back: samples of a region, each tile by tile. It is
-    // the whole slab, but for the rest of a sample whose tiles were split part-way.
-    // The sums are exact integers, so neither tiling, batching nor order changes a
-    // bit of the image.
-    struct Work {
-        Region region;
-        std::uint32_t first_sample, samples;
-    };
-    std::vector<Work> work{{whole, samples.first, samples.count}};
-    const double pixel_samples = double(width_) * rows * samples.count;
-    double pixel_samples_done = 0.0;
-    bool dispatched = false;
+    SlabJob job;
+    job.index = slab;
+    job.rows = rows;
+    job.first_row = slab * state_->paths.slab_rows;
+    job.bytes = VkDeviceSize(rows) * width_ * kernel::PIXEL_TEXELS * 16;
+    job.whole = Region{0, 0, width_, rows};
+    job.work = {{job.whole, samples.first, samples.count}};
+    job.pixel_samples = double(width_) * rows * samples.count;
     const Clock::time_point loop_start = Clock::now();
-    double gpu_seconds = 0.0;
-    std::optional<TileBatcher> rest_batcher;  // for the rest of a sample
-    while (!work.empty()) {
-        const Work w = work.back();
-        work.pop_back();
-        const Tiling tiling = tile_slab(w.region.width, w.region.rows, tile_width_, tile_height_);
-        TileBatcher* batcher = nullptr;
-        if (w.region == whole) {
-            // The slab's tile costs, kept from pass to pass while its tiling holds.
-            const Tiling& kept = tilings_[slab];
-            if (!batchers_[slab] || kept.rows != rows || kept.tile_width != tiling.tile_width ||
-                kept.tile_height != tiling.tile_height) {
-                tilings_[slab] = tiling;
-                batchers_[slab].emplace(tiling.count(), bound_, kMaxBatch);
-            }
-            batcher = &*batchers_[slab];
-        } else {
-            batcher = &rest_batcher.emplace(tiling.count(), bound_, kMaxBatch);
-        }
-        const std::uint32_t tiles = tiling.count();
-        // Item numbers stay in 32 bits: a chunk of the samples, the rest later.
-        const std::uint32_t chunk = std::min(w.samples, std::max(1u, (1u << 30) / tiles));
-        if (chunk < w.samples) work.push_back({w.region, w.first_sample + chunk, w.samples - chunk});
-        const std::uint32_t items = chunk * tiles;
-        for (std::uint32_t item = 0; item < items;) {
-            const std::uint32_t n = batcher->next(item, items - item);
-            const bool last = item + n == items && work.empty();
-            const Clock::time_point submitted = Clock::now();
-            context.submit_and_wait([&](VkCommandBuffer cmd) {
-                if (!dispatched) {
-                    // The slab starts from zero sums, after whatever last used the buffer.
-                    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                                   kShaderAccess | VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                                   VK_ACCESS_TRANSFER_WRITE_BIT);
-                    vkCmdFillBuffer(cmd, s.pixels.get(), 0, bytes, 0);
-                    memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, kShaderAccess);
-                }
-                s.timer.begin(cmd);
-                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.pipeline.get());
-                vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipeline.layout.get(), 0, 1,
-                                        &s.pipeline.set, 0, nullptr);
-                vkCmdPushConstants(cmd, s.pipeline.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, kPassBytes,
-                                   kPushBytes - kPassBytes, s.push.data());
-                for (std::uint32_t i = item; i < item + n; ++i) {
-                    const std::uint32_t tile = i % tiles;
-                    // A sample adds to the sums an earlier one wrote: one barrier where
-                    // the samples of a region start orders all that came before (across
-                    // batches too: a barrier's scope spans earlier submissions). The
-                    // tiles of one sample write disjoint pixels and may overlap.
-                    if (tile == 0 && dispatched) {
-                        memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, kShaderAccess);
-                    }
-                    const std::uint32_t x = tile % tiling.across() * tiling.tile_width;
-                    const std::uint32_t y = tile / tiling.across() * tiling.tile_height;
-                    const std::array<std::uint32_t, 4> pass{w.first_sample + i / tiles, w.region.x + x,
-                                                            first_row + w.region.y + y, first_row};
-                    vkCmdPushConstants(cmd, s.pipeline.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, kPassBytes,
-                                       pass.data());
-                    const std::uint32_t tw = std::min(tiling.tile_width, w.region.width - x);
-                    const std::uint32_t th = std::min(tiling.tile_height, w.region.rows - y);
-                    vkCmdDispatch(cmd, (tw + kWorkgroupSide - 1) / kWorkgroupSide,
-                                  (th + kWorkgroupSide - 1) / kWorkgroupSide, 1);
-                    pixel_samples_done += double(tw) * th;
-                    dispatched = true;
-                }
-                s.timer.end(cmd);
-                if (last) {
-                    // The slab's sums, to where the CPU reads them.
-                    if (s.readback) {
-                        memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                                       VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-                        const VkBufferCopy region{0, 0, bytes};
-                        vkCmdCopyBuffer(cmd, s.pixels.get(), s.readback->get(), 1, &region);
-                        memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                                       VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
-                    } else {
-                        memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                                       VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
-                    }
-                }
-            });
-            const double wall = seconds_since(submitted);
-            result.longest_submit_seconds = std::max(result.longest_submit_seconds, wall);
-            if (s.timer.on_gpu()) gpu_seconds += s.timer.batch_seconds();
-            batcher->measured(item, n, wall);
-            item += n;
-            if (progress) progress(pixel_samples_done / pixel_samples);
-            // A tile that alone overran the bound: smaller tiles at once, for the rest
-            // of this sample (rest_of_sample), the samples after it and the next slabs.
-            if (batcher->costliest() > bound_ && split_tiles(batcher->costliest(), tiling) && item < items) {
-                const std::uint32_t sample = item / tiles;
-                if (sample + 1 < chunk) work.push_back({w.region, w.first_sample + sample + 1, chunk - sample - 1});
-                const std::vector<Region> rest = rest_of_sample(w.region, tiling, item % tiles);
-                for (auto r = rest.rbegin(); r != rest.rend(); ++r) work.push_back({*r, w.first_sample + sample, 1});
-                break;
-            }
-        }
+    while (!job.work.empty()) {
+        const SlabWork w = job.work.back();
+        job.work.pop_back();
+        render_work(job, w, result, progress);
     }
-    result.render_seconds += s.timer.on_gpu() ? gpu_seconds : seconds_since(loop_start);
+    result.render_seconds += state_->timer.on_gpu() ? job.gpu_seconds : seconds_since(loop_start);
+    read_sums(*state_, job, width_, result);
+}
 
-    // Each pixel's texels: its PixelSum, then its Counters (kernel/layout.glsl).
-    const auto* texels = static_cast<const unsigned char*>(s.readback ? s.readback->data() : s.pixels.data());
-    const std::size_t first = std::size_t(first_row) * width_;
-    for (std::size_t p = 0; p < std::size_t(rows) * width_; ++p) {
-        const unsigned char* pixel = texels + p * kernel::PIXEL_TEXELS * 16;
-        std::memcpy(&result.sums[first + p], pixel, sizeof(kernel::PixelSum));
-        std::memcpy(&result.counters[first + p], pixel + sizeof(kernel::PixelSum), sizeof(kernel::Counters));
+// Renders a work in batches; queues what is left of it when its tiles are split.
+void VulkanSession::render_work(SlabJob& job, const SlabWork& w, RenderResult& result,
+                                const std::function<void(double)>& progress) {
+    const Tiling tiling = tile_slab(w.region.width, w.region.rows, tile_width_, tile_height_);
+    TileBatcher& batcher = batcher_for(job, w.region, tiling);
+    const std::uint32_t tiles = tiling.count();
+    // Item numbers stay in 32 bits: a chunk of the samples, the rest later.
+    const std::uint32_t chunk = std::min(w.samples, std::max(1u, (1u << 30) / tiles));
+    if (chunk < w.samples) job.work.push_back({w.region, w.first_sample + chunk, w.samples - chunk});
+    const std::uint32_t items = chunk * tiles;
+    for (std::uint32_t item = 0; item < items;) {
+        const std::uint32_t n = batcher.next(item, items - item);
+        const bool last = item + n == items && job.work.empty();
+        const double wall = submit_batch(*state_, {w, tiling, tiles, item, n, last}, job);
+        result.longest_submit_seconds = std::max(result.longest_submit_seconds, wall);
+        batcher.measured(item, n, wall);
+        item += n;
+        if (progress) progress(job.pixel_samples_done / job.pixel_samples);
+        // A tile that alone overran the bound: smaller tiles at once, for the rest
+        // of this sample, the samples after it and the next slabs.
+        if (batcher.costliest() > bound_ && split_tiles(batcher.costliest(), tiling) && item < items) {
+            queue_rest_of_work(job, w, tiling, item, chunk);
+            return;
+        }
     }
+}
+
+// The batcher of a work's tiles: for the whole slab the slab's own, whose tile costs
+// are kept from pass to pass while its tiling holds; for the rest of a sample a new one.
+TileBatcher& VulkanSession::batcher_for(SlabJob& job, const Region& region, const Tiling& tiling) {
+    if (region != job.whole) return job.rest_batcher.emplace(tiling.count(), bound_, kMaxBatch);
+    const Tiling& kept = tilings_[job.index];
+    if (!batchers_[job.index] || kept.rows != job.rows || kept.tile_width != tiling.tile_width ||
+        kept.tile_height != tiling.tile_height) {
+        tilings_[job.index] = tiling;
+        batchers_[job.index].emplace(tiling.count(), bound_, kMaxBatch);
+    }
+    return *batchers_[job.index];
 }
 
 }  // namespace

@@ -1,16 +1,23 @@
-// OBJ files are read in two passes over the text. Our own pass checks every line
-// that carries geometry and takes the numbers from it; tinyobjloader then reads the
-// structure (faces, their index forms v, v/t, v/t/n, v//n and negative relative
-// indices). The first pass exists because tinyobjloader reads a malformed number
-// ("nan", "1,5", "abc") as 0 without a word, and some valid ones wrongly ("0e400"
-// becomes NaN): a model would silently change shape instead of being refused.
+// OBJ files are read in one pass over the text: every line that carries geometry is
+// checked and its numbers taken, so that a malformed number ("nan", "1,5", "abc") is
+// refused with its line instead of silently changing the model's shape. Faces are
+// kept as polygons of corners (v, v/vt, v/vt/vn, v//vn, negative indices counting
+// back from the last element read) and triangulated as fans once the whole file is
+// read, when every index can be checked. MTL files are read by tinyobjloader (its
+// texture options), after their numbers are checked as the OBJ's are.
 #include "scene/obj_mesh.hpp"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
-#include <sstream>
+#include <limits>
+#include <map>
+#include <optional>
+#include <set>
+#include <span>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -28,13 +35,15 @@ namespace {
 
 using glm::dvec3;
 
-// tinyobjloader keeps a face's vertex count in an unsigned char.
+// At most this many vertices per face: tinyobjloader, which read faces before, kept
+// the count in an unsigned char, and files with more were refused then.
 constexpr std::size_t kMaxFaceVertices = 255;
 
-// The words of one OBJ or MTL line; a comment runs from '#' to the end of the line.
-std::vector<std::string_view> words_of(std::string_view line) {
+// The words of one OBJ or MTL line, into `words`; a comment runs from '#' to the end
+// of the line.
+void split_words(std::string_view line, std::vector<std::string_view>& words) {
+    words.clear();
     line = line.substr(0, line.find('#'));
-    std::vector<std::string_view> words;
     std::size_t at = 0;
     while (true) {
         at = line.find_first_not_of(" \t\r", at);
@@ -43,18 +52,18 @@ std::vector<std::string_view> words_of(std::string_view line) {
         words.push_back(line.substr(at, end - at));
         at = end;
     }
-    return words;
 }
 
 // Calls statement(line number from 1, words) for every line of the text with words.
 template <class F>
 void for_each_statement(std::string_view text, F&& statement) {
+    std::vector<std::string_view> words;  // one buffer for every line
     std::size_t start = 0, line = 0;
     while (start < text.size()) {
         std::size_t end = text.find('\n', start);
         if (end == std::string_view::npos) end = text.size();
         ++line;
-        const std::vector<std::string_view> words = words_of(text.substr(start, end - start));
+        split_words(text.substr(start, end - start), words);
         if (!words.empty()) statement(line, words);
         start = end + 1;
     }
@@ -84,74 +93,6 @@ double file_number(std::string_view word, const std::string& name, std::size_t l
     }
     return x;
 }
-
-// What the first pass takes from the file.
-struct Scanned {
-    std::vector<dvec3> positions;
-    std::vector<dvec3> normals;
-    std::vector<std::size_t> face_lines;  // the line of each face, in file order
-    std::vector<std::string> face_usemtl;  // the usemtl name before each face ("" for none)
-    std::vector<std::string> mtllibs;      // every file an mtllib line names
-};
-
-class Scanner {
-public:
-    explicit Scanner(const std::string& name) : name_(name) {}
-
-    Scanned scan(std::string_view text) {
-        for_each_statement(text, [this](std::size_t line, const std::vector<std::string_view>& words) {
-            line_ = line;
-            statement(words);
-        });
-        return std::move(out_);
-    }
-
-private:
-    [[noreturn]] void fail(std::string_view message) const {
-        throw SceneError(fmt::format("{}:{}: {}", name_, line_, message));
-    }
-
-    void statement(const std::vector<std::string_view>& words) {
-        if (words[0] == "v") {
-            out_.positions.push_back(triple(words, "v"));
-        } else if (words[0] == "vn") {
-            out_.normals.push_back(triple(words, "vn"));
-        } else if (words[0] == "f") {
-            const std::size_t n = words.size() - 1;
-            if (n < 3) fail(fmt::format("a face needs at least 3 vertices, got {}", n));
-            if (n > kMaxFaceVertices) {
-                fail(fmt::format("a face of {} vertices; at most {} are supported", n, kMaxFaceVertices));
-            }
-            out_.face_lines.push_back(line_);
-            out_.face_usemtl.push_back(usemtl_);
-        } else if (words[0] == "usemtl" && words.size() > 1) {
-            usemtl_ = std::string(words[1]);
-        } else if (words[0] == "mtllib") {
-            for (std::size_t i = 1; i < words.size(); ++i) out_.mtllibs.emplace_back(words[i]);
-        }
-        // Every other statement (g, o, s, l, p, ...) carries nothing we use; vt is counted by
-        // tinyobjloader alone.
-    }
-
-    // The first three numbers of a "v" or "vn" line; the rest (w, vertex colours)
-    // must be numbers too, but are not used.
-    dvec3 triple(const std::vector<std::string_view>& words, std::string_view keyword) const {
-        if (words.size() < 4) {
-            fail(fmt::format("expected 3 numbers after '{}', got {}", keyword, words.size() - 1));
-        }
-        dvec3 v(0.0);
-        for (std::size_t i = 1; i < words.size(); ++i) {
-            const double x = file_number(words[i], name_, line_);
-            if (i <= 3) v[static_cast<int>(i - 1)] = x;
-        }
-        return v;
-    }
-
-    const std::string& name_;
-    std::size_t line_ = 0;
-    std::string usemtl_;
-    Scanned out_;
-};
 
 // The numbers of an MTL file's colour, exponent and dissolve lines, checked as
 // the OBJ's are (tinyobjloader reads "abc" or "0,8" as 0 and a missing colour
@@ -220,145 +161,306 @@ Material from_mtl(const tinyobj::material_t& m, const std::string& obj_name, std
     return out;
 }
 
+// The MTL files an OBJ names, read as tinyobjloader reads them while it reads an OBJ:
+// of each mtllib line's files, the first that was not read before and can be opened,
+// relative to the OBJ's directory. A usemtl finds its material among those read so
+// far; where two have one name, the first read.
+class MaterialLibraries {
+public:
+    explicit MaterialLibraries(const std::filesystem::path& obj)
+        : dir_(obj.parent_path().empty() ? std::filesystem::path(".") : obj.parent_path()),
+          // The directory with its separator ("box.obj" alone is in "./", not "/").
+          reader_(dir_.string() + "/") {}
+
+    // One mtllib line's files. Every one of them that is there has its numbers
+    // checked first (check_mtl).
+    void add(std::span<const std::string_view> files) {
+        for (const std::string_view file : files) {
+            names_.emplace_back(file);
+            if (std::filesystem::is_regular_file(dir_ / names_.back())) {
+                check_mtl(dir_ / names_.back());
+            } else {
+                unreadable_.push_back(names_.back());
+            }
+        }
+        for (const std::string_view file : files) {
+            const std::string name(file);
+            if (read_.contains(name)) continue;
+            // tinyobjloader's warnings say less than the checks above and the
+            // errors of the faces left without a material.
+            std::string warning, error;
+            if (reader_(name, &materials_, &by_name_, &warning, &error)) {
+                read_.insert(name);
+                break;
+            }
+        }
+    }
+
+    // The index of the material called `name` among those read so far, or -1.
+    int find(const std::string& name) const {
+        const auto found = by_name_.find(name);
+        return found == by_name_.end() ? -1 : found->second;
+    }
+
+    const std::vector<std::string>& names() const { return names_; }            // every file named
+    const std::vector<std::string>& unreadable() const { return unreadable_; }  // those not there
+    const std::vector<tinyobj::material_t>& materials() const { return materials_; }
+
+private:
+    std::filesystem::path dir_;
+    tinyobj::MaterialFileReader reader_;
+    std::vector<std::string> names_;
+    std::vector<std::string> unreadable_;
+    std::set<std::string> read_;
+    std::vector<tinyobj::material_t> materials_;
+    std::map<std::string, int> by_name_;
+};
+
+// One corner of a face: indices from 0 into the file's positions, texture
+// coordinates and normals, as the file gives them (checked against the counts only
+// once the whole file is read: an index may refer to a later line).
+struct Corner {
+    static constexpr std::int64_t kNone = std::numeric_limits<std::int64_t>::min();
+    std::int64_t position = kNone;
+    std::int64_t uv = kNone;
+    std::int64_t normal = kNone;
+};
+
+// One face of the file, a polygon: corners [first, first + count).
+struct Polygon {
+    std::size_t first = 0;
+    std::size_t count = 0;
+    std::size_t line = 0;
+    int material = -1;       // into the libraries' materials; -1: its usemtl found none
+    std::size_t usemtl = 0;  // into ParsedObj::usemtl_names: what its usemtl asked for
+};
+
+// What one pass over an OBJ file takes from it.
+struct ParsedObj {
+    std::vector<dvec3> positions;
+    std::vector<dvec3> normals;
+    std::vector<glm::dvec2> uvs;  // v turned to run down the image, as vkrt's textures do
+    std::vector<Corner> corners;  // every face's, in file order
+    std::vector<Polygon> polygons;
+    std::vector<std::string> usemtl_names{""};  // [0]: no usemtl yet
+};
+
+// Reads an OBJ file's lines, refusing a malformed one with its line. `libraries`,
+// when the file's materials are wanted, reads the files mtllib lines name; without
+// it mtllib lines are skipped rather than opened (the scene gives the material).
+class ObjParser {
+public:
+    ObjParser(const std::string& name, MaterialLibraries* libraries) : name_(name), libraries_(libraries) {}
+
+    ParsedObj parse(std::string_view text) {
+        for_each_statement(text, [this](std::size_t line, const std::vector<std::string_view>& words) {
+            line_ = line;
+            statement(words);
+        });
+        return std::move(out_);
+    }
+
+private:
+    [[noreturn]] void fail(std::string_view message) const {
+        throw SceneError(fmt::format("{}:{}: {}", name_, line_, message));
+    }
+
+    void statement(const std::vector<std::string_view>& words) {
+        const std::string_view keyword = words[0];
+        if (keyword == "v") {
+            out_.positions.push_back(triple(words, "v"));
+        } else if (keyword == "vn") {
+            out_.normals.push_back(triple(words, "vn"));
+        } else if (keyword == "vt") {
+            out_.uvs.push_back(texture_coordinate(words));
+        } else if (keyword == "f") {
+            face(words);
+        } else if (keyword == "usemtl") {
+            use_material(words.size() > 1 ? std::string(words[1]) : std::string());
+        } else if (keyword == "mtllib" && libraries_ != nullptr) {
+            libraries_->add(std::span(words).subspan(1));
+        }
+        // Every other statement (g, o, s, l, p, ...) carries nothing vkrt uses.
+    }
+
+    // The first three numbers of a "v" or "vn" line; the rest (w, vertex colours)
+    // must be numbers too, but are not used.
+    dvec3 triple(const std::vector<std::string_view>& words, std::string_view keyword) const {
+        if (words.size() < 4) {
+            fail(fmt::format("expected 3 numbers after '{}', got {}", keyword, words.size() - 1));
+        }
+        dvec3 v(0.0);
+        for (std::size_t i = 1; i < words.size(); ++i) {
+            const double x = file_number(words[i], name_, line_);
+            if (i <= 3) v[static_cast<int>(i - 1)] = x;
+        }
+        return v;
+    }
+
+    // A "vt" line's u and v (0 where not given; a w must be a number, but is not
+    // used). Rounded to float as tinyobjloader, which read them before, did: a
+    // textured mesh renders as it did. OBJ's v runs up the image, vkrt's (glTF's)
+    // down from its top row.
+    glm::dvec2 texture_coordinate(const std::vector<std::string_view>& words) const {
+        const std::size_t count = words.size() - 1;
+        if (count < 1 || count > 3) fail(fmt::format("expected 1 to 3 numbers after 'vt', got {}", count));
+        float uv[2] = {0.0f, 0.0f};
+        for (std::size_t i = 1; i < words.size(); ++i) {
+            const double x = file_number(words[i], name_, line_);
+            if (i <= 2) uv[i - 1] = static_cast<float>(x);
+        }
+        return {uv[0], 1.0 - double(uv[1])};
+    }
+
+    void face(const std::vector<std::string_view>& words) {
+        const std::size_t count = words.size() - 1;
+        if (count < 3) fail(fmt::format("a face needs at least 3 vertices, got {}", count));
+        if (count > kMaxFaceVertices) {
+            fail(fmt::format("a face of {} vertices; at most {} are supported", count, kMaxFaceVertices));
+        }
+        out_.polygons.push_back({out_.corners.size(), count, line_, material_, usemtl_});
+        for (std::size_t i = 1; i < words.size(); ++i) out_.corners.push_back(corner(words[i]));
+    }
+
+    // v, v/vt, v/vt/vn or v//vn.
+    Corner corner(std::string_view word) const {
+        Corner c;
+        const std::size_t slash = word.find('/');
+        c.position = index(word.substr(0, slash), out_.positions.size());
+        if (slash == std::string_view::npos) return c;
+        word.remove_prefix(slash + 1);
+        const std::size_t second = word.find('/');
+        if (second != 0) c.uv = index(word.substr(0, second), out_.uvs.size());
+        if (second != std::string_view::npos) c.normal = index(word.substr(second + 1), out_.normals.size());
+        return c;
+    }
+
+    // An index counted from 1, or when negative back from the end of the `count`
+    // elements read so far (-1: the last), as an index from 0.
+    std::int64_t index(std::string_view text, std::size_t count) const {
+        const bool from_end = text.starts_with('-');
+        if (from_end || text.starts_with('+')) text.remove_prefix(1);
+        std::uint64_t n = 0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+        if (ec != std::errc() || end != text.data() + text.size() || n == 0 || n > kMaxIndex) {
+            // The words of tinyobjloader, which read faces before.
+            throw SceneError(
+                fmt::format("{}: Failed parse `f' line(e.g. zero value for face index. line {}.)", name_, line_));
+        }
+        return from_end ? std::int64_t(count) - std::int64_t(n) : std::int64_t(n) - 1;
+    }
+
+    void use_material(std::string name) {
+        material_ = libraries_ != nullptr ? libraries_->find(name) : -1;
+        usemtl_ = out_.usemtl_names.size();
+        out_.usemtl_names.push_back(std::move(name));
+    }
+
+    // Far beyond any file's count, and far from overflowing an index's arithmetic.
+    static constexpr std::uint64_t kMaxIndex = std::uint64_t(1) << 62;
+
+    const std::string& name_;
+    MaterialLibraries* libraries_;
+    std::size_t line_ = 0;
+    int material_ = -1;
+    std::size_t usemtl_ = 0;
+    ParsedObj out_;
+};
+
+// A face's index checked against the `count` elements the file has:
+// "<file>:<line>: a face refers to <element> <index from 1>, but the file has <count><plural>".
+std::uint32_t checked_index(std::int64_t index, std::size_t count, const char* element, const char* plural,
+                            const std::string& name, std::size_t line) {
+    if (index < 0 || static_cast<std::uint64_t>(index) >= count) {
+        throw SceneError(fmt::format("{}:{}: a face refers to {} {}, but the file has {}{}", name, line, element,
+                                     index + 1, count, plural));
+    }
+    return static_cast<std::uint32_t>(index);
+}
+
+// The triangle of three corners of a face on `line`, its indices checked. Texture
+// coordinates only where all three corners have them.
+IndexedMesh::Face triangle(const std::array<Corner, 3>& c, std::uint32_t material, const IndexedMesh& mesh,
+                           const std::string& name, std::size_t line) {
+    IndexedMesh::Face f;
+    f.material = material;
+    for (int i = 0; i < 3; ++i) {
+        f.position[i] = checked_index(c[i].position, mesh.positions.size(), "vertex", " vertices", name, line);
+        if (c[i].normal != Corner::kNone) {
+            f.normal[i] = checked_index(c[i].normal, mesh.normals.size(), "normal", " normals", name, line);
+        }
+    }
+    if (c[0].uv != Corner::kNone && c[1].uv != Corner::kNone && c[2].uv != Corner::kNone) {
+        for (int i = 0; i < 3; ++i) {
+            f.uv[i] = checked_index(c[i].uv, mesh.uvs.size(), "texture coordinate", "", name, line);
+        }
+    }
+    return f;
+}
+
+// Appends a polygon's triangles to the mesh: a fan (v0, vk, vk+1).
+void append_fan(const ParsedObj& obj, const Polygon& polygon, std::uint32_t material, const std::string& name,
+                IndexedMesh& mesh) {
+    const Corner* corners = obj.corners.data() + polygon.first;
+    for (std::size_t k = 1; k + 1 < polygon.count; ++k) {
+        mesh.faces.push_back(triangle({corners[0], corners[k], corners[k + 1]}, material, mesh, name, polygon.line));
+    }
+}
+
+// A face's material where the file's are wanted: the one its usemtl found, or an
+// error saying why there is none.
+std::uint32_t face_material(const Polygon& polygon, const ParsedObj& obj, const MaterialLibraries& libraries,
+                            const std::string& name) {
+    if (polygon.material >= 0) return static_cast<std::uint32_t>(polygon.material);
+    const std::string& used = obj.usemtl_names[polygon.usemtl];
+    std::string why;
+    if (used.empty()) {
+        why = "no usemtl before it";
+    } else if (!libraries.unreadable().empty()) {
+        why = fmt::format("usemtl {}, and mtllib {} is not there", json::quote_user(used),
+                          json::quote_user(libraries.unreadable().front()));
+    } else if (libraries.names().empty()) {
+        why = fmt::format("usemtl {}, but the file names no mtllib", json::quote_user(used));
+    } else {
+        why = fmt::format("usemtl {} is not defined in mtllib {}", json::quote_user(used),
+                          json::quote_user(libraries.names().front()));
+    }
+    throw SceneError(fmt::format(
+        "{}:{}: the face has no material ({}); give the mesh object a \"material\" for the whole mesh", name,
+        polygon.line, why));
+}
+
+// The libraries' materials as vkrt's, with their map_Kd files.
+void add_materials(const MaterialLibraries& libraries, const std::string& name, std::vector<std::string>& warnings,
+                   IndexedMesh& mesh) {
+    for (const tinyobj::material_t& m : libraries.materials()) {
+        mesh.materials.push_back(from_mtl(m, name, warnings));
+        mesh.material_textures.push_back(m.diffuse_texname);
+    }
+}
+
 IndexedMesh read_obj(const std::filesystem::path& file, std::vector<std::string>* material_warnings) {
     const std::string name = file.string();
     const std::string text = read_text(file, name, "mesh");
-    Scanned scanned = Scanner(name).scan(text);
-
-    tinyobj::attrib_t attrib;
-    std::vector<tinyobj::shape_t> shapes;
-    std::vector<tinyobj::material_t> materials;
-    std::string warning;
-    std::string error;
-    std::istringstream stream(text);
-    // The MTL files beside the OBJ only when its materials are wanted; otherwise
-    // mtllib lines are skipped rather than opened (the scene gives the material).
-    // tinyobjloader's warnings concern materials (quoted below where a face lacks
-    // one) or indices out of range, which are checked below with the line named.
-    // No triangulation: its quads are split along the shorter diagonal and larger
-    // polygons by ear clipping that skips what it cannot use; a fan is predictable.
-    // The directory with its separator ("box.obj" alone is in "./", not "/").
-    const std::filesystem::path dir = file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path();
-    std::vector<std::string> unreadable;  // mtllib files that are not there
-    if (material_warnings != nullptr) {
-        for (const std::string& lib : scanned.mtllibs) {
-            if (std::filesystem::is_regular_file(dir / lib)) {
-                check_mtl(dir / lib);
-            } else {
-                unreadable.push_back(lib);
-            }
-        }
-        if (scanned.mtllibs.size() > 1) {
-            material_warnings->push_back(fmt::format(
-                "{}: names {} MTL files; tinyobjloader reads the first one of them that exists", name,
-                scanned.mtllibs.size()));
-        }
+    std::optional<MaterialLibraries> libraries;
+    if (material_warnings != nullptr) libraries.emplace(file);
+    ParsedObj obj = ObjParser(name, libraries ? &*libraries : nullptr).parse(text);
+    if (libraries && libraries->names().size() > 1) {
+        material_warnings->push_back(fmt::format(
+            "{}: names {} MTL files; tinyobjloader reads the first one of them that exists", name,
+            libraries->names().size()));
     }
-    tinyobj::MaterialFileReader mtl_reader(dir.string() + "/");
-    const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warning, &error, &stream,
-                                     material_warnings != nullptr ? &mtl_reader : nullptr, /*triangulate=*/false,
-                                     /*default_vcols_fallback=*/false);
-    if (!ok) throw SceneError(fmt::format("{}: {}", name, one_line(error)));
-
-    std::size_t faces = 0;
-    for (const tinyobj::shape_t& shape : shapes) faces += shape.mesh.num_face_vertices.size();
-    if (attrib.vertices.size() != 3 * scanned.positions.size() ||
-        attrib.normals.size() != 3 * scanned.normals.size() || faces != scanned.face_lines.size()) {
-        // Both passes read the same lines; a difference means they read it differently.
-        throw SceneError(fmt::format(
-            "{}: tinyobjloader read {} vertices, {} normals and {} faces where the file has {}, {} and {}", name,
-            attrib.vertices.size() / 3, attrib.normals.size() / 3, faces, scanned.positions.size(),
-            scanned.normals.size(), scanned.face_lines.size()));
-    }
-    if (faces == 0) throw SceneError(fmt::format("{}: the file has no faces (no 'f' lines)", name));
+    if (obj.polygons.empty()) throw SceneError(fmt::format("{}: the file has no faces (no 'f' lines)", name));
 
     IndexedMesh mesh;
-    mesh.positions = std::move(scanned.positions);
-    mesh.normals = std::move(scanned.normals);
-    // OBJ's v runs up the image, vkrt's (glTF's) down from its top row.
-    for (std::size_t i = 0; i + 1 < attrib.texcoords.size(); i += 2) {
-        const glm::dvec2 uv(attrib.texcoords[i], 1.0 - double(attrib.texcoords[i + 1]));
-        if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) {
-            throw SceneError(fmt::format("{}: texture coordinate {} is not finite", name, i / 2 + 1));
-        }
-        mesh.uvs.push_back(uv);
-    }
-    const auto position_of = [&](int index, std::size_t line) {
-        if (index < 0 || static_cast<std::size_t>(index) >= mesh.positions.size()) {
-            throw SceneError(fmt::format("{}:{}: a face refers to vertex {}, but the file has {} vertices", name, line,
-                                         index + 1, mesh.positions.size()));
-        }
-        return static_cast<std::uint32_t>(index);
-    };
-    const auto normal_of = [&](int index, std::size_t line) {
-        if (index == -1) return IndexedMesh::kNoNormal;  // the face gave none
-        if (index < 0 || static_cast<std::size_t>(index) >= mesh.normals.size()) {
-            throw SceneError(fmt::format("{}:{}: a face refers to normal {}, but the file has {} normals", name, line,
-                                         index + 1, mesh.normals.size()));
-        }
-        return static_cast<std::uint32_t>(index);
-    };
-
-    if (material_warnings != nullptr) {
-        for (const tinyobj::material_t& m : materials) {
-            mesh.materials.push_back(from_mtl(m, name, *material_warnings));
-            mesh.material_textures.push_back(m.diffuse_texname);
-        }
-    }
-    std::size_t face = 0;
-    for (const tinyobj::shape_t& shape : shapes) {
-        std::size_t first = 0;
-        for (std::size_t face_in_shape = 0; face_in_shape < shape.mesh.num_face_vertices.size(); ++face_in_shape) {
-            const unsigned char count = shape.mesh.num_face_vertices[face_in_shape];
-            const std::size_t line = scanned.face_lines[face++];
-            std::uint32_t material = IndexedMesh::kNoMaterial;
-            if (material_warnings != nullptr) {
-                const int id = shape.mesh.material_ids[face_in_shape];
-                if (id < 0 || static_cast<std::size_t>(id) >= mesh.materials.size()) {
-                    const std::string& used = scanned.face_usemtl[face - 1];
-                    std::string why;
-                    if (used.empty()) {
-                        why = "no usemtl before it";
-                    } else if (!unreadable.empty()) {
-                        why = fmt::format("usemtl {}, and mtllib {} is not there", json::quote_user(used),
-                                          json::quote_user(unreadable.front()));
-                    } else if (scanned.mtllibs.empty()) {
-                        why = fmt::format("usemtl {}, but the file names no mtllib", json::quote_user(used));
-                    } else {
-                        why = fmt::format("usemtl {} is not defined in mtllib {}", json::quote_user(used),
-                                          json::quote_user(scanned.mtllibs.front()));
-                    }
-                    throw SceneError(fmt::format(
-                        "{}:{}: the face has no material ({}); give the mesh object a \"material\" for the "
-                        "whole mesh",
-                        name, line, why));
-                }
-                material = static_cast<std::uint32_t>(id);
-            }
-            const auto corner = [&](std::size_t k) { return shape.mesh.indices[first + k]; };
-            for (std::size_t k = 1; k + 1 < count; ++k) {
-                IndexedMesh::Face f;
-                f.material = material;
-                const tinyobj::index_t c[3] = {corner(0), corner(k), corner(k + 1)};
-                for (int i = 0; i < 3; ++i) {
-                    f.position[i] = position_of(c[i].vertex_index, line);
-                    f.normal[i] = normal_of(c[i].normal_index, line);
-                }
-                // Texture coordinates where all three corners have them.
-                if (c[0].texcoord_index >= 0 && c[1].texcoord_index >= 0 && c[2].texcoord_index >= 0) {
-                    for (int i = 0; i < 3; ++i) {
-                        if (static_cast<std::size_t>(c[i].texcoord_index) >= mesh.uvs.size()) {
-                            throw SceneError(fmt::format("{}:{}: a face refers to texture coordinate {}, but the file "
-                                                         "has {}",
-                                                         name, line, c[i].texcoord_index + 1, mesh.uvs.size()));
-                        }
-                        f.uv[i] = static_cast<std::uint32_t>(c[i].texcoord_index);
-                    }
-                }
-                mesh.faces.push_back(f);
-            }
-            first += count;
-        }
+    mesh.positions = std::move(obj.positions);
+    mesh.normals = std::move(obj.normals);
+    mesh.uvs = std::move(obj.uvs);
+    if (libraries) add_materials(*libraries, name, *material_warnings, mesh);
+    for (const Polygon& polygon : obj.polygons) {
+        const std::uint32_t material =
+            libraries ? face_material(polygon, obj, *libraries, name) : IndexedMesh::kNoMaterial;
+        append_fan(obj, polygon, material, name, mesh);
     }
     return mesh;
 }

@@ -1,8 +1,8 @@
 #pragma once
 // Wavefront OBJ meshes: the "mesh" object of the scene format
-// (docs/scene-format.md): positions, normals and faces, and the materials of the
-// file's MTL libraries (usemtl) where the scene object gives no "material".
-// Texture coordinates, groups, smoothing groups, lines and points are ignored.
+// (docs/scene-format.md): positions, normals, texture coordinates and faces, and the
+// materials of the file's MTL libraries (usemtl) where the scene object gives no
+// "material". Groups, smoothing groups, lines and points are ignored.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -16,8 +16,9 @@ namespace vkrt {
 
 // Reads an OBJ file; polygons become triangle fans (v0, vk, vk+1). Throws
 // SceneError "<file>: <what>" or "<file>:<line>: <what>" on a file that cannot
-// be read, a malformed or non-finite number, a face with fewer than 3 or more
-// than 255 vertices, an index out of range, or a file without faces.
+// be read, a malformed or non-finite number (v, vn, vt), a face with fewer than 3
+// or more than 255 vertices, a face index that is 0 or no integer, an index out of
+// range, or a file without faces.
 IndexedMesh load_obj(const std::filesystem::path& file);
 
 // The same with the materials of the file's MTL libraries (Kd, Ks, Ns, Ke; read
