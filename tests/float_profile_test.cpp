@@ -119,7 +119,7 @@ TEST(FloatProfile, UnitVectorIsBitIdenticalOnLavapipeAndCpu) {
     EXPECT_GT(p.normalize_differing, 0u);
 }
 
-// Issue 6, case 11: the kernel's random numbers are bit-identical on both backends for
+// The numerical-stability suite, case 11: the kernel's random numbers are bit-identical on both backends for
 // the same (pixel, sample, seed, dimension), extreme keys included, and stay in [0, 1)
 // on both: the probe runs rng_next itself (rng.glsl) on lavapipe and on the CPU.
 TEST(FloatProfile, RandomNumbersAreBitIdenticalAndBelowOne) {

@@ -148,7 +148,7 @@ TEST(Rng, MatchesThePublishedHash) {
     }
 }
 
-// Issue 6, case 11: whatever the hash, the float stays below 1. The top 256 hashes all
+// The numerical-stability suite, case 11: whatever the hash, the float stays below 1. The top 256 hashes all
 // give the largest value, 1 - 2^-24; converting all 32 bits instead would round them
 // (and every hash from 2^32 - 128 on) to exactly 1.0.
 TEST(Rng, UnitFloatNeverReachesOne) {

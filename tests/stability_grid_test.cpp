@@ -1,4 +1,4 @@
-// Issue 6, case 6: the uniform grid where 3D-DDA implementations classically break,
+// The numerical-stability suite (docs/numerics.md), case 6: the uniform grid where 3D-DDA implementations classically break,
 // on both backends. The case list, each sub-case with the tests that prove it
 // ("here": this file; the scenes are tests/scenes/stability/case6_*.json):
 //

@@ -1,4 +1,4 @@
-// Issue 6, cases 4 and 5: intersections at their edge cases.
+// The numerical-stability suite (docs/numerics.md), cases 4 and 5: intersections at their edge cases.
 //   Case 4: grazing and silhouette rays, a camera inside a sphere, rays parallel to a
 //   ring's plane or a cylinder's axis: finite hits where real arithmetic says so.
 //   Case 5: closed meshes are watertight (no ray aimed at a shared vertex or edge

@@ -1,6 +1,6 @@
-// Issue 6: "no loop can run unbounded: grid traversal, bounce loops and the
-// reflection/refraction stack terminate for any input, including zero, negative-zero,
-// tiny, NaN and infinite direction components". Eye rays of every combination of such
+// The numerical-stability suite (docs/numerics.md): no loop runs unbounded. Grid
+// traversal, the bounce loops and the reflection/refraction stack end for any input,
+// zero, negative-zero, tiny, NaN and infinite direction components included. Eye rays of every combination of such
 // components (and origins inside the scene, on the grid's boundary and non-finite) are
 // traced through a scene that has every loop the kernel has: the grid walk, the point
 // and area light loops, the mirror/glass ray tree, and global mode's bounce loop with

@@ -1,4 +1,4 @@
-// Issue 6, case 7: refraction at and around the critical angle (energy conserved),
+// The numerical-stability suite (docs/numerics.md), case 7: refraction at and around the critical angle (energy conserved),
 // an interface of ior 1, nested glass of equal ior (one body), rays trapped in a slab
 // by total internal reflection (the tree and the bounce loops end); and case 10's
 // hemisphere basis for axis and signed-zero normals, rendered on both backends.

@@ -1,4 +1,4 @@
-// Issue 6, cases 1 to 3: scale. Shadow acne at scene scales 1, 1e3 and 1e5 (and a
+// The numerical-stability suite (docs/numerics.md), cases 1 to 3: scale. Shadow acne at scene scales 1, 1e3 and 1e5 (and a
 // thin occluder that must still cast its shadow), a tiny far sphere and a huge near
 // one against a double-precision mask, and a scene far from the origin rendering
 // the same 8-bit image as at the origin; every case on both backends. The scenes are

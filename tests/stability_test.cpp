@@ -1,6 +1,7 @@
-// The start of issue 6's stability suite: extreme cameras and images, and global
-// mode's stiff emitters (a tiny one of huge radiance, one of radiance 1e38), on both
-// backends. Every case must give finite pixels and no truncated sample.
+// The numerical-stability suite (docs/numerics.md), cases 9 and 10: extreme cameras
+// and images, and global mode's stiff emitters (a tiny one of huge radiance, one of
+// radiance 1e38), on both backends. Every case must give finite pixels and no
+// truncated sample.
 #include <gtest/gtest.h>
 
 #include <algorithm>

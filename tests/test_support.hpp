@@ -82,7 +82,7 @@ void write_gzip(const std::filesystem::path& file, const std::string& text);
 // How many channel values of the image are NaN or infinite.
 std::size_t nonfinite_values(const Image& image);
 
-// What every render of the stability suite must be (issue 6): no NaN or infinite
+// What every render of the numerical-stability suite must be: no NaN or infinite
 // pixel, no sample discarded as non-finite, none truncated by the loop budget.
 void expect_sane(const RenderOutcome& out);
 
