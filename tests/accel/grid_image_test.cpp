@@ -4,7 +4,7 @@
 // per-invocation loop budget (lavapipe stops longer loops), so scenes where one sample
 // would run past it (many primitives, or mirrors multiplying the rays of a sample)
 // compare the Vulkan grid image with the reference's brute-force image instead,
-// under the cross-check's tolerance (crosscheck_test.cpp). The reference runs brute
+// under the cross-check's tolerance (crosscheck/crosscheck_test.cpp). The reference runs brute
 // force with the budget lifted.
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The thin-lens camera (kernel/camera.glsl): the concentric disc map and the blur of
 // a sphere out of focus against its closed form. Its rays' geometry is checked with
-// the pinhole's, in kernel_sampling_test.cpp.
+// the pinhole's, in sampling_test.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,6 +1,6 @@
 // Rings and cylinders in the kernel (shaders/kernel/intersect.glsl, scene.glsl),
 // through the reference backend's view of the shared GLSL. As in
-// kernel_intersect_test.cpp the inputs are chosen so that every intermediate is exact
+// intersect_test.cpp the inputs are chosen so that every intermediate is exact
 // in float (axis-aligned axes and normals, small whole and half coordinates), so the
 // expected t values and normals, worked out by hand in the comments, are checked for
 // equality. Where a case cannot be exact, the expected value is computed in double and

@@ -1,6 +1,6 @@
 // The kernel's scene-level functions (hit records, closest hit, shadow queries, local
 // shading, one whole sample and its accumulation) through the reference backend's
-// view of the shared GLSL, on scenes built by hand. As in kernel_intersect_test.cpp
+// view of the shared GLSL, on scenes built by hand. As in intersect_test.cpp
 // the inputs are chosen so that intermediates are exact in float wherever the maths
 // allows, and the checks are then equalities; the shading formula is recomputed here
 // in double, straight from docs/architecture.md ("Numbers and conventions"), and

@@ -1,7 +1,7 @@
 // Bad scene files through the real program: each must end with exit status 1 and
 // exactly one "error: " line naming the file and the JSON path (or line:column),
 // never a crash, a hang or an output image (docs/architecture.md, principle 5). The loader's
-// own messages are tested value by value in scene_loader_test.cpp; this test is
+// own messages are tested value by value in loader_test.cpp; this test is
 // about what a user at the command line sees.
 #include <gtest/gtest.h>
 

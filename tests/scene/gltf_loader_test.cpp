@@ -454,7 +454,7 @@ TEST(GltfErrors, AFlatteningTransformIsRefused) {
 // nothing but sky above every point: each bounce keeps half the light and the next
 // ray leaves, so every pixel on it is exactly 0.5, on both backends. The file's
 // material is made Lambertian after loading: glTF's has a Fresnel term, whose share
-// depends on the view (kernel_microfacet_test has the white furnace for it).
+// depends on the view (kernel/microfacet_test.cpp has the white furnace for it).
 TEST(GltfRender, AConvexGreyObjectUnderAWhiteSkyIsItsAlbedo) {
     // Flat, without NORMAL: interpolated normals would send some bounces below the
     // facets, which end there (the energy smooth shading loses on a coarse mesh).

@@ -1,6 +1,6 @@
 // Input is validated in double before it becomes float (the numerical-stability
 // suite, docs/numerics.md). Rather than one
-// hand-written case per field (bad_input_test.cpp has those for the messages a user
+// hand-written case per field (scene/bad_input_test.cpp has those for the messages a user
 // sees), this walks EVERY number of two scenes that use every field of the format
 // and replaces it, one at a time, by values that must never reach the kernel:
 // infinities (a JSON literal like 1e999 overflows the double), and finite doubles

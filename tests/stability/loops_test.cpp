@@ -8,7 +8,7 @@
 // fires) and leave either a finite radiance that is added to its pixel or a non-finite
 // one that is counted and kept out. Through the reference backend, which runs the same
 // kernel text; the Vulkan backend's budget and counting are tested in
-// loop_budget_test.cpp and stability_scenes_test.cpp.
+// kernel/loop_budget_test.cpp and stability/scenes_test.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -4,8 +4,8 @@
 // caseN_*.json) is rendered as it is on both backends: no pixel may be NaN or
 // infinite, no sample may have been discarded as non-finite or truncated by the loop
 // budget, and the Vulkan run must raise no validation message. The cases' own tests
-// (stability_*_test.cpp) check what each scene is about; this one guards the invariant
-// that must hold for all of them, including scenes added later.
+// (the other files of tests/stability/) check what each scene is about; this one
+// guards the invariant that must hold for all of them, including scenes added later.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -34,7 +34,7 @@ std::vector<fs::path> stability_scenes() {
 
 TEST(StabilityScenes, EveryCaseHasAScene) {
     // At least one scene per case that has scenes (cases 1-10; case 11 is the random
-    // numbers, probed directly in float_profile_test).
+    // numbers, probed directly in probe/float_profile_test).
     for (int c = 1; c <= 10; ++c) {
         const auto files = stability_scenes();
         const bool found = std::any_of(files.begin(), files.end(), [&](const fs::path& f) {
