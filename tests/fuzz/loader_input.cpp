@@ -66,7 +66,7 @@ constexpr std::string_view kSceneHead =
 
 // The buffer a .gltf input may name as "mesh.bin": an octahedron's 6 positions,
 // their 6 normals (the same unit vectors) and 24 unsigned short indices, 192 bytes
-// (the layout of tests/gltf_loader_test.cpp).
+// (the layout of tests/scene/gltf_loader_test.cpp).
 std::string octahedron_buffer() {
     const float p[18] = {1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1};
     const std::uint16_t i[24] = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};

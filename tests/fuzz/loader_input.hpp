@@ -1,7 +1,7 @@
 #pragma once
 // One fuzz input loaded the way a file of its kind is: the entry point that the
 // fuzz harnesses (tests/fuzz/*_fuzz.cpp) and the regression test
-// (tests/fuzz_regression_test.cpp) share, so that a crash found by one is replayed
+// (tests/fuzz/regression_test.cpp) share, so that a crash found by one is replayed
 // by the other exactly.
 #include <filesystem>
 #include <optional>
