@@ -19,7 +19,7 @@ namespace vkrt {
 // Samples [first, first + count) of every pixel. Every random number is a function
 // of (seed, pixel, sample index, dimension), so any split of a range traces exactly
 // the rays of the whole, and the split sums add up (kernel::add_sums) to the whole's
-// bit for bit (tests/split_test.cpp).
+// bit for bit (tests/render/split_test.cpp).
 struct SampleRange {
     std::uint32_t first = 0;
     std::uint32_t count = 1;

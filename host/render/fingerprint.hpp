@@ -45,10 +45,10 @@ private:
 };
 
 // 64-bit FNV-1a over those bytes. The grid is left out: it decides how
-// rays find what they hit, not what they hit (tests/grid_image_test.cpp renders
+// rays find what they hit, not what they hit (tests/accel/grid_image_test.cpp renders
 // identical images with and without it), so partials rendered with --grid on, off,
 // or on backends that choose differently still merge. So is DEFERRED_SPHERES, the
-// order in which brute force tests spheres (tests/kernel_deferred_spheres_test.cpp).
+// order in which brute force tests spheres (tests/kernel/deferred_spheres_test.cpp).
 std::uint64_t scene_fingerprint(const FlatScene& scene);
 
 // Sixteen lower-case hex digits, as partial files store it.

@@ -14,7 +14,7 @@ uint g_intersection_tests = 0u;
 // light faced the surface, whether a shadow ray was blocked, total internal
 // reflection, a ray dropped): two backends whose images differ at a pixel but whose
 // decisions hashed alike differ by arithmetic alone; otherwise by a decision flip
-// (tests/crosscheck_test.cpp tells the two apart).
+// (tests/crosscheck/crosscheck_test.cpp tells the two apart).
 const uint DECISIONS_START = 2166136261u;   // the FNV-1a offset basis
 uint g_decisions = DECISIONS_START;
 

@@ -135,7 +135,7 @@ float sphere_exact_c_test(Ray ray, vec3 center, float radius, SphereSetup s, flo
 // the radius: 1.5 above a sphere of radius 1e5 it is 3e5 out of 1e10, where a float's
 // ULP is 1024, so the near root c / q was 0.3% off, eye rays' hit points landed inside
 // the ground, and shadow rays leaving it found themselves inside it: the ground
-// shadowed itself (tests/stability_scale_test.cpp). Where |c| is under half of
+// shadowed itself (tests/stability/scale_test.cpp). Where |c| is under half of
 // |oc|^2, c is therefore computed error-free (sphere_c_exact); elsewhere it loses
 // under a bit, and the cheap form stays (the overflow guard comes free: an infinite
 // |oc|^2 fails the test). There the discriminant is b^2 - c from the exact c and an

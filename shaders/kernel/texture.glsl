@@ -4,7 +4,7 @@
 // multiplication by the float nearest 1/255, or a look-up in the sRGB table the
 // host computed), so a textured image is the same on both. No mipmaps: a pixel's
 // samples are jittered over its area, so the average over many samples filters the
-// texture as it filters edges (tests/texture_test.cpp shows a checkerboard at a
+// texture as it filters edges (tests/kernel/texture_test.cpp shows a checkerboard at a
 // distance).
 
 uint texture_format(Texture t) {
