@@ -168,7 +168,7 @@ Aabb bounds(const kernel::Sphere& s) {
     return finite_or_throw({c - r, c + r}, "sphere");
 }
 
-// A parallelogram's fourth vertex as the kernel computes it, in float (traversal.glsl).
+// A parallelogram's fourth vertex as the kernel computes it, in float (shapes/triangle.glsl).
 Aabb bounds(const kernel::Triangle& t) {
     const dvec3 a = to_dvec3(t.p0), b = to_dvec3(t.p1), c = to_dvec3(t.p2);
     const dvec3 d = t.meta.z == kernel::SHAPE_TRIANGLE ? c : to_dvec3(t.p0 + (t.p2 - t.p1));

@@ -92,7 +92,7 @@ std::pair<std::uint32_t, std::uint32_t> brute_force_size(std::uint32_t width, st
 // loop entry per primitive kind and two for the deferred spheres' loops. Above that
 // lavapipe would cut the loops silently, so the kernel would stop the samples; the
 // cell says n/a instead of running. A ray that starts near more than four spheres
-// loops over the spheres once more per four (traversal.glsl), which this leaves out;
+// loops over the spheres once more per four (deferred_spheres.glsl), which this leaves out;
 // a render that runs out anyway reports its truncated samples.
 bool fits_loop_budget(const Scene& s) {
     const std::uint64_t per_query = primitive_count(s) + 6;

@@ -2,7 +2,7 @@
 // Textured emitters weighed by what they emit: a triangle (or quad) whose material
 // has an emission texture is an area light only where its own footprint in the
 // texture emits, picked with a weight equal to the mean textured emission over that
-// footprint (kernel/emitters.glsl, triangle_emitter_weight). A scanned asset's
+// footprint (kernel/shapes/triangle.glsl, triangle_emitter_weight). A scanned asset's
 // emission texture is mostly black: its few lit texels light the scene, and the
 // thousands of triangles over black texels are no emitters at all.
 //

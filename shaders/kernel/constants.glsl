@@ -40,7 +40,7 @@ const uint DECISION_REFRACTED = 6u;          // the ray tree's glass refracted (
 const uint DECISION_TOTAL_REFLECTION = 7u;   // ... or reflected totally
 const uint DECISION_BACK_FACE = 8u;          // a ray hit a back face (traversal.glsl)
 const uint DECISION_FRONT_FACE = 9u;         // ... or a front face
-const uint DECISION_NORMAL_KEPT = 10u;       // the shading normal was on the viewer's side (traversal.glsl)
+const uint DECISION_NORMAL_KEPT = 10u;       // the shading normal was on the viewer's side (shapes/triangle.glsl)
 const uint DECISION_NORMAL_FLIPPED = 11u;    // ... or was flipped to it
 const uint DECISION_SMOOTH_LOBES = 12u;      // a path sampled the smooth lobes (global.glsl)
 const uint DECISION_MIRROR = 13u;            // ... the mirror
@@ -78,7 +78,7 @@ const uint GRID_CHILDREN = 1u << (3u * GRID_SPLIT_BITS);
 // x fastest, then y, then z).
 const uint GRID_INNER = 0x80000000u;
 
-// The part of a cylinder a ray hit (CylinderHit in intersect.glsl).
+// The part of a cylinder a ray hit (CylinderHit in shapes/cylinder.glsl).
 const uint CYLINDER_SIDE = 0u;
 const uint CYLINDER_BASE_CAP = 1u;
 const uint CYLINDER_TOP_CAP = 2u;

@@ -35,12 +35,12 @@ FEATURE(21, LOOSE_TRIANGLES)
 FEATURE(22, LOOSE_RINGS)
 FEATURE(23, LOOSE_CYLINDERS)
 // Without the grid, whether the sphere loop tests the spheres a ray starts near
-// after it (traversal.glsl, DeferredSpheres) rather than in place: on from
+// after it (deferred_spheres.glsl) rather than in place: on from
 // AccelPolicy::deferred_spheres_from spheres (host/accel/accel_policy.hpp), where it
 // pays on lavapipe.
 FEATURE(24, DEFERRED_SPHERES)
 // Triangle records that hold parallelograms (quads): the triangle test becomes the
-// quad test, which takes a triangle as a quad with p3 = p2 (intersect.glsl).
+// quad test, which takes a triangle as a quad with p3 = p2 (shapes/triangle.glsl).
 FEATURE(25, HAS_QUADS)
 // With HAS_GRID, whether any cell is split into children (host/accel/grid_split.cpp):
 // without it every cell is a root cell, found in one step, as in a uniform grid.

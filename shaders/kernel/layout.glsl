@@ -21,7 +21,7 @@ struct Sphere {
 // p1, p2, p0 + p2 - p1 (constants.glsl), which has no vertex normals. The texture
 // coordinates of p0, p1, p2 ride in the w lanes: (p0.w, p1.w), (p2.w, n0.w), (n1.w, n2.w).
 // meta.w: with an emission texture, the float bits of the triangle's emitter weight
-// (emitters.glsl, triangle_emitter_weight): the mean textured emission over its
+// (shapes/triangle.glsl, triangle_emitter_weight): the mean textured emission over its
 // footprint in the texture, 0 where the footprint is black; 0 otherwise.
 struct Triangle {
     vec4 p0;

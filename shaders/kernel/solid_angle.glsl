@@ -9,8 +9,12 @@
 const float MIN_SAMPLED_SOLID_ANGLE = 1.0e-3f;
 const float MAX_SAMPLED_SOLID_ANGLE = 6.2f;
 
+bool sampled_by_solid_angle(float solid_angle) {
+    return solid_angle > MIN_SAMPLED_SOLID_ANGLE && solid_angle < MAX_SAMPLED_SOLID_ANGLE;
+}
+
 // Rectangles are sampled by solid angle from points within this many of their
-// diagonals of their centre (emitters.glsl, near_rect).
+// diagonals of their centre (shapes/triangle.glsl, near_rect).
 const float RECT_NEAR = 2.0f;
 
 // A rectangle (corner, perpendicular edges ex and ey) seen from o, set up as in

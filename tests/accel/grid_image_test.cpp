@@ -34,7 +34,7 @@ constexpr std::size_t kBruteForceOnVulkanMax = 20000;
 
 // Whether one sample, traced by brute force, stays within the kernel's loop budget:
 // each ray loops over every primitive (plus a loop entry per kind, and two for the
-// deferred spheres, traversal.glsl), and a sample traces its eye ray and, with
+// deferred spheres, deferred_spheres.glsl), and a sample traces its eye ray and, with
 // mirrors or glass, up to max_depth more along the ray tree, each sending a shadow
 // ray per point light and per area-light sample. One pass over the spheres per ray:
 // a ray that starts near more than four makes more (deferred_spheres.glsl). An estimate

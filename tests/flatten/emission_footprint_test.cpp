@@ -1,5 +1,5 @@
 // Textured emitters weighed by their own footprint (host/flatten/emission_footprint.cpp,
-// kernel/emitters.glsl triangle_emitter_weight): the texel intervals a footprint
+// kernel/shapes/triangle.glsl triangle_emitter_weight): the texel intervals a footprint
 // reaches under each wrap mode; the mean emission over a footprint, exact on small
 // textures; only triangles over emitting texels become emitters; and next-event
 // estimation over such a mesh stays unbiased: it agrees with BSDF sampling alone on

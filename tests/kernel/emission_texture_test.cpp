@@ -1,4 +1,4 @@
-// Emission textures (kernel/texture.glsl, emitters.glsl; the power estimate in
+// Emission textures (kernel/texture.glsl, shapes/triangle.glsl; the power estimate in
 // host/flatten/flat_scene.cpp): an emitter seen directly shows its texels times its
 // emission on both backends; lit by a textured emitter, a diffuse patch gets the
 // closed-form irradiance, by next-event estimation with MIS and by BSDF sampling

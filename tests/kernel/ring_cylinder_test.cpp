@@ -1,4 +1,4 @@
-// Rings and cylinders in the kernel (shaders/kernel/intersect.glsl, traversal.glsl),
+// Rings and cylinders in the kernel (shaders/kernel/shapes/ring.glsl, cylinder.glsl),
 // through the reference backend's view of the shared GLSL. As in
 // intersect_test.cpp the inputs are chosen so that every intermediate is exact
 // in float (axis-aligned axes and normals, small whole and half coordinates), so the

@@ -21,12 +21,14 @@
 namespace {
 
 using vkrt::kernel::INFINITY_T;
+using vkrt::kernel::REF_NONE;
 using vkrt::kernel::Kernel;
 using vkrt::kernel::Material;
 using vkrt::kernel::Light;
 using vkrt::kernel::Sphere;
 using vkrt::kernel::Triangle;
 using vkrt::kernel::uvec4;
+using vkrt::kernel::vec2;
 using vkrt::kernel::vec3;
 using vkrt::kernel::vec4;
 namespace kernel = vkrt::kernel;
@@ -92,13 +94,23 @@ struct TestScene {
     }
 };
 
+// The nearest hit a trace records (shapes/records.glsl), as <kind>_hit takes it: at
+// t, or where a triangle test found it, with its weights.
+Kernel::Nearest nearest_at(float t) {
+    return Kernel::Nearest(t, REF_NONE, vec2(0.0f), 0u);
+}
+
+Kernel::Nearest nearest_of(const Kernel::TriangleHit& th) {
+    return Kernel::Nearest(th.t, REF_NONE, vec2(th.u, th.v), 0u);
+}
+
 // ---------------------------------------------------------------- sphere_hit
 
 TEST(SphereHit, FromOutsideTheNormalPointsOutAndTheFaceIsFront) {
     TestScene scene;
     scene.spheres = {sphere(vec3(0, 0, 0), 2.0f, 7)};
     Kernel k = scene.kernel();
-    const Kernel::Hit h = k.sphere_hit(ray(vec3(0, 0, 5), vec3(0, 0, -1)), 0, 3.0f);
+    const Kernel::Hit h = k.sphere_hit(ray(vec3(0, 0, 5), vec3(0, 0, -1)), 0, nearest_at(3.0f));
     EXPECT_EQ(h.t, 3.0f);
     EXPECT_TRUE(same(h.normal, vec3(0, 0, 1)));
     EXPECT_TRUE(same(h.geo_normal, vec3(0, 0, 1)));
@@ -115,7 +127,7 @@ TEST(SphereHit, OffCentreNormalIsUnitLength) {
     const Kernel::Ray r = ray(vec3(3, 0, 10), vec3(0, 0, -1));
     const float t = k.intersect_sphere(r, vec3(0), 5.0f, 0.0f, INFINITY_T);
     ASSERT_EQ(t, 6.0f);
-    const Kernel::Hit h = k.sphere_hit(r, 0, t);
+    const Kernel::Hit h = k.sphere_hit(r, 0, nearest_at(t));
     EXPECT_TRUE(same(h.normal, vec3(0.6f, 0.0f, 0.8f)));
     EXPECT_TRUE(h.front_face);
 }
@@ -125,7 +137,7 @@ TEST(SphereHit, FromInsideTheNormalIsFlippedToFaceTheRay) {
     scene.spheres = {sphere(vec3(0, 0, 0), 2.0f, 0)};
     Kernel k = scene.kernel();
     // Leaving through (2, 0, 0): the outward normal is (1, 0, 0), the ray goes +x.
-    const Kernel::Hit h = k.sphere_hit(ray(vec3(0, 0, 0), vec3(1, 0, 0)), 0, 2.0f);
+    const Kernel::Hit h = k.sphere_hit(ray(vec3(0, 0, 0), vec3(1, 0, 0)), 0, nearest_at(2.0f));
     EXPECT_TRUE(same(h.normal, vec3(-1, 0, 0)));
     EXPECT_TRUE(same(h.geo_normal, vec3(-1, 0, 0)));
     EXPECT_FALSE(h.front_face);
@@ -165,25 +177,29 @@ TEST(TriangleHit, FrontFaceFollowsTheWinding) {
     const Kernel::Ray down = ray(vec3(0.25f, 0.5f, 2), vec3(0, 0, -1));
     const Kernel::Ray up = ray(vec3(0.25f, 0.5f, -3), vec3(0, 0, 1));
 
-    const Kernel::Hit a = k.triangle_hit(down, 0, k.intersect_triangle(down, kP0, kP1, kP2, 0.0f, INFINITY_T));
+    const Kernel::Hit a = k.triangle_hit(down, 0,
+                                         nearest_of(k.intersect_triangle(down, kP0, kP1, kP2, 0.0f, INFINITY_T)));
     EXPECT_EQ(a.t, 2.0f);
     EXPECT_TRUE(a.front_face);
     EXPECT_TRUE(same(a.geo_normal, vec3(0, 0, 1)));
     EXPECT_TRUE(same(a.normal, vec3(0, 0, 1)));
     EXPECT_EQ(a.material, 4u);
 
-    const Kernel::Hit b = k.triangle_hit(up, 0, k.intersect_triangle(up, kP0, kP1, kP2, 0.0f, INFINITY_T));
+    const Kernel::Hit b = k.triangle_hit(up, 0,
+                                         nearest_of(k.intersect_triangle(up, kP0, kP1, kP2, 0.0f, INFINITY_T)));
     EXPECT_EQ(b.t, 3.0f);
     EXPECT_FALSE(b.front_face);
     EXPECT_TRUE(same(b.geo_normal, vec3(0, 0, -1)));
     EXPECT_TRUE(same(b.normal, vec3(0, 0, -1)));
 
     // Reversed winding: its front is -z, so the ray from above sees its back.
-    const Kernel::Hit c = k.triangle_hit(down, 1, k.intersect_triangle(down, kP0, kP2, kP1, 0.0f, INFINITY_T));
+    const Kernel::Hit c = k.triangle_hit(down, 1,
+                                         nearest_of(k.intersect_triangle(down, kP0, kP2, kP1, 0.0f, INFINITY_T)));
     EXPECT_FALSE(c.front_face);
     EXPECT_TRUE(same(c.geo_normal, vec3(0, 0, 1)));
     EXPECT_EQ(c.material, 5u);
-    const Kernel::Hit d = k.triangle_hit(up, 1, k.intersect_triangle(up, kP0, kP2, kP1, 0.0f, INFINITY_T));
+    const Kernel::Hit d = k.triangle_hit(up, 1,
+                                         nearest_of(k.intersect_triangle(up, kP0, kP2, kP1, 0.0f, INFINITY_T)));
     EXPECT_TRUE(d.front_face);
     EXPECT_TRUE(same(d.geo_normal, vec3(0, 0, -1)));
 }
@@ -201,13 +217,14 @@ TEST(TriangleHit, SmoothNormalIsInterpolatedAndFlippedToTheViewer) {
     const Kernel::TriangleHit th_down = k.intersect_triangle(down, kP0, kP1, kP2, 0.0f, INFINITY_T);
     ASSERT_EQ(th_down.u, 0.25f);
     ASSERT_EQ(th_down.v, 0.5f);
-    const Kernel::Hit front = k.triangle_hit(down, 0, th_down);
+    const Kernel::Hit front = k.triangle_hit(down, 0, nearest_of(th_down));
     EXPECT_TRUE(front.front_face);
     EXPECT_TRUE(same(front.geo_normal, vec3(0, 0, 1)));
     EXPECT_TRUE(same(front.normal, vec3(0.0f, 0.6f, 0.8f)));
 
     const Kernel::Ray up = ray(vec3(0.25f, 0.5f, -3), vec3(0, 0, 1));
-    const Kernel::Hit back = k.triangle_hit(up, 0, k.intersect_triangle(up, kP0, kP1, kP2, 0.0f, INFINITY_T));
+    const Kernel::Hit back = k.triangle_hit(up, 0,
+                                            nearest_of(k.intersect_triangle(up, kP0, kP1, kP2, 0.0f, INFINITY_T)));
     EXPECT_FALSE(back.front_face);
     EXPECT_TRUE(same(back.geo_normal, vec3(0, 0, -1)));
     EXPECT_TRUE(same(back.normal, vec3(0.0f, -0.6f, -0.8f)));
@@ -222,10 +239,10 @@ TEST(TriangleHit, FlatTrianglesUseTheFaceNormal) {
     Kernel k = scene.kernel();
     const Kernel::Ray down = ray(vec3(0.25f, 0.5f, 2), vec3(0, 0, -1));
     const Kernel::TriangleHit th = k.intersect_triangle(down, kP0, kP1, kP2, 0.0f, INFINITY_T);
-    EXPECT_TRUE(same(k.triangle_hit(down, 0, th).normal, vec3(0, 0, 1)));
+    EXPECT_TRUE(same(k.triangle_hit(down, 0, nearest_of(th)).normal, vec3(0, 0, 1)));
     // A smooth triangle in a pipeline built without the feature is shaded flat too.
     k.HAS_SMOOTH_NORMALS = false;
-    EXPECT_TRUE(same(k.triangle_hit(down, 1, th).normal, vec3(0, 0, 1)));
+    EXPECT_TRUE(same(k.triangle_hit(down, 1, nearest_of(th)).normal, vec3(0, 0, 1)));
 }
 
 // ---------------------------------------------------------------- closest_hit

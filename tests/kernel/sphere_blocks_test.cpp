@@ -1,4 +1,4 @@
-// A shadow ray's sphere test (intersect.glsl, sphere_blocks): whether the sphere has a
+// A shadow ray's sphere test (shapes/sphere.glsl, sphere_blocks): whether the sphere has a
 // root in (0, t_max). Hand-worked cases with exact floats, origins on the surface
 // (which count as on it, whatever c rounds to), and agreement with intersect_sphere
 // on random rays wherever the answer does not hang on a rounding.
