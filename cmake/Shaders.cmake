@@ -2,7 +2,8 @@
 # as a C array (glslang's own --vn output), wrapped in an INTERFACE library whose
 # include directory holds the generated header. The kernel folder is a dependency,
 # so editing any shared kernel file rebuilds the shader; DEPENDS names further
-# included files (the float probe's, which live outside kernel/); DEFINES are
+# included files (the float probe's, which live outside kernel/); the list of the
+# kinds' files comes from VKRT_KINDS_DIR (cmake/PrimitiveKinds.cmake); DEFINES are
 # preprocessor definitions, NAME or NAME=VALUE.
 find_program(GLSLANG_VALIDATOR glslangValidator REQUIRED)
 
@@ -15,9 +16,9 @@ function(vkrt_add_shader target)
   add_custom_command(
     OUTPUT ${header}
     COMMAND ${CMAKE_COMMAND} -E make_directory ${out_dir}
-    COMMAND ${GLSLANG_VALIDATOR} -V --target-env vulkan1.1 -I${ARG_INCLUDE_DIR} ${ARG_DEFINES}
+    COMMAND ${GLSLANG_VALIDATOR} -V --target-env vulkan1.1 -I${ARG_INCLUDE_DIR} -I${VKRT_KINDS_DIR} ${ARG_DEFINES}
             --vn ${ARG_VARIABLE} -o ${header} ${ARG_SOURCE}
-    DEPENDS ${ARG_SOURCE} ${kernel_sources} ${ARG_DEPENDS}
+    DEPENDS ${ARG_SOURCE} ${kernel_sources} ${VKRT_KINDS_DIR}/shape_files.glsl ${ARG_DEPENDS}
     COMMENT "Compiling ${ARG_SOURCE} to SPIR-V"
     VERBATIM)
   add_custom_target(${target}_build DEPENDS ${header})

@@ -1,5 +1,6 @@
 #include "accel/grid.hpp"
 #include "accel/grid_split.hpp"
+#include "scene_shapes.hpp"  // each kind's bounds(), host/scene/shapes/<name>.hpp, generated
 
 #include <algorithm>
 #include <cmath>
@@ -47,8 +48,6 @@ double float_up(double x) {
     if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
     return f;
 }
-
-dvec3 to_dvec3(const kernel::vec4& v) { return dvec3(v.x, v.y, v.z); }
 
 std::uint64_t product(const GridResolution& r) { return std::uint64_t(r[0]) * r[1] * r[2]; }
 
@@ -151,70 +150,6 @@ GridResolution fit(GridResolution r, std::uint64_t max_cells) {
 
 }  // namespace
 
-// The loaders reject non-finite input; this guards the casts to cell indices, which
-// are undefined for NaN and infinity, against any other caller.
-Aabb finite_or_throw(const Aabb& box, const char* kind) {
-    for (int a = 0; a < 3; ++a) {
-        if (!std::isfinite(box.lo[a]) || !std::isfinite(box.hi[a])) {
-            throw std::invalid_argument(fmt::format("grid: a {} has a non-finite coordinate", kind));
-        }
-    }
-    return box;
-}
-
-Aabb bounds(const kernel::Sphere& s) {
-    const dvec3 c = to_dvec3(s.center_radius);
-    const double r = s.center_radius.w;
-    return finite_or_throw({c - r, c + r}, "sphere");
-}
-
-// A parallelogram's fourth vertex as the kernel computes it, in float (shapes/triangle.glsl).
-Aabb bounds(const kernel::Triangle& t) {
-    const dvec3 a = to_dvec3(t.p0), b = to_dvec3(t.p1), c = to_dvec3(t.p2);
-    const dvec3 d = t.meta.z == kernel::SHAPE_TRIANGLE ? c : to_dvec3(t.p0 + (t.p2 - t.p1));
-    return finite_or_throw({glm::min(glm::min(a, b), glm::min(c, d)), glm::max(glm::max(a, b), glm::max(c, d))},
-                           "triangle");
-}
-
-namespace {
-
-// The half-extents of a disc of `radius` perpendicular to `normal` (any length; a
-// zero normal, which the loaders refuse, gets the box of the sphere around the disc).
-dvec3 disc_extent(const dvec3& normal, double radius) {
-    const double len2 = glm::dot(normal, normal);
-    if (!(len2 > 0.0)) return dvec3(radius);
-    dvec3 e;
-    for (int a = 0; a < 3; ++a) e[a] = radius * std::sqrt(std::max(0.0, 1.0 - normal[a] * normal[a] / len2));
-    return e;
-}
-
-// glm::min and max drop a NaN operand, so primitives built from them check their
-// input first.
-void require_finite(std::initializer_list<kernel::vec4> values, const char* kind) {
-    for (const kernel::vec4& v : values) {
-        if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z) || !std::isfinite(v.w)) {
-            throw std::invalid_argument(fmt::format("grid: a {} has a non-finite coordinate", kind));
-        }
-    }
-}
-
-}  // namespace
-
-Aabb bounds(const kernel::Ring& r) {
-    require_finite({r.center_inner, r.normal_outer}, "ring");
-    const dvec3 c = to_dvec3(r.center_inner);
-    const dvec3 e = disc_extent(to_dvec3(r.normal_outer), r.normal_outer.w);
-    return finite_or_throw({c - e, c + e}, "ring");
-}
-
-Aabb bounds(const kernel::Cylinder& cyl) {
-    require_finite({cyl.base_radius, cyl.top_capped}, "cylinder");
-    const dvec3 b = to_dvec3(cyl.base_radius);
-    const dvec3 t = to_dvec3(cyl.top_capped);
-    const dvec3 e = disc_extent(t - b, cyl.base_radius.w);
-    return finite_or_throw({glm::min(b, t) - e, glm::max(b, t) + e}, "cylinder");
-}
-
 GridResolution grid_resolution(const Aabb& box, std::size_t primitives, double density, std::uint64_t max_cells) {
     const dvec3 extent = box.hi - box.lo;
     const double largest = std::max({extent.x, extent.y, extent.z});
@@ -313,13 +248,14 @@ void add_kind(std::span<const Primitive> items, std::uint32_t kind, const char* 
 // grouped by kind.
 Listed primitive_boxes(const GridPrimitives& primitives) {
     Listed all;
-    all.boxes.reserve(primitives.spheres.size() + primitives.triangles.size() + primitives.rings.size() +
-                      primitives.cylinders.size());
+    all.boxes.reserve(0
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) +primitives.names.size()
+#include "kernel/shapes/kinds.glsl"
+    );
     all.ids.reserve(all.boxes.capacity());
-    add_kind(primitives.spheres, kernel::REF_SPHERE, "spheres", all);
-    add_kind(primitives.triangles, kernel::REF_TRIANGLE, "triangles", all);
-    add_kind(primitives.rings, kernel::REF_RING, "rings", all);
-    add_kind(primitives.cylinders, kernel::REF_CYLINDER, "cylinders", all);
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
+    add_kind(primitives.names, kernel::REF_##NAME, #names, all);
+#include "kernel/shapes/kinds.glsl"
     return all;
 }
 

@@ -14,6 +14,7 @@
 #include <glm/vec3.hpp>
 
 #include "kernel/types.hpp"
+#include "scene/shapes/support.hpp"  // Aabb
 
 namespace vkrt {
 
@@ -36,11 +37,6 @@ struct GridStats {
 };
 
 using GridResolution = std::array<std::uint32_t, 3>;
-
-struct Aabb {
-    glm::dvec3 lo{0.0};
-    glm::dvec3 hi{0.0};
-};
 
 struct Grid {
     // Float-representable corners and cell size: exactly the values the kernel gets.
@@ -106,15 +102,6 @@ inline constexpr double kGridDensity = 4.0;
 // Axes with (nearly) no extent get one cell and leave the budget to the others.
 GridResolution grid_resolution(const Aabb& box, std::size_t primitives, double density, std::uint64_t max_cells);
 
-// The bounding box of a primitive as the kernel sees it (float data).
-Aabb bounds(const kernel::Sphere& s);
-Aabb bounds(const kernel::Triangle& t);
-// A ring's box is its outer disc's: on axis a the disc reaches outer * sqrt(1 - n_a^2)
-// from the centre, n the unit normal.
-Aabb bounds(const kernel::Ring& r);
-// A cylinder lies within the convex hull of its two end discs, so its box is theirs.
-Aabb bounds(const kernel::Cylinder& c);
-
 struct GridRequest {
     GridResolution resolution{0, 0, 0};  // zeros: by the heuristic
     std::uint64_t max_entries = 0xFFFFFFFFu;  // per array, the device's limit
@@ -123,28 +110,27 @@ struct GridRequest {
     // by that much, lest the walk step past a primitive the ray really touches.
     std::optional<glm::dvec3> eye;
     // Loose primitives are listed in no cell and tested once per ray instead: every
-    // primitive of a kind flagged here (indexed by REF_SPHERE...), and at most
+    // primitive of a kind flagged here (indexed by kind, REF_SPHERE...), and at most
     // `max_loose` more whose boxes would stretch the grid's far beyond the rest (a
     // floor polygon under a tree; build_grid says when).
-    std::array<bool, 4> loose_kinds{};
+    std::array<bool, kernel::PRIMITIVE_KINDS> loose_kinds{};
     std::size_t max_loose = 0;
     // Split crowded cells where it pays (docs/grid.md). A resolution given above
     // asks for one particular uniform grid, which is never split.
     bool split = true;
 };
 
-// What the grid is built over: one span per primitive kind, the kinds the kernel's
-// references name (REF_SPHERE, ...). Kinds left out are empty.
+// What the grid is built over: one span per kind of primitive
+// (shaders/kernel/shapes/kinds.glsl), each primitive bounded by its kind's
+// bounds() (host/scene/shapes/<name>.hpp). Kinds left out are empty.
 struct GridPrimitives {
-    std::span<const kernel::Sphere> spheres;
-    std::span<const kernel::Triangle> triangles;
-    std::span<const kernel::Ring> rings;
-    std::span<const kernel::Cylinder> cylinders;
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) std::span<const kernel::Name> names;
+#include "kernel/shapes/kinds.glsl"
 };
 
 // Builds the grid over every primitive but the loose ones (GridRequest::max_loose).
 // Within each leaf cell, and among the loose ones, the references are grouped by kind, in
-// the order spheres, triangles, rings, cylinders, each kind in index order: the
+// the order of shapes/kinds.glsl, each kind in index order: the
 // kernel walks a cell in one loop per kind (shaders/kernel/traversal.glsl). A
 // resolution that would not fit the device is reduced until it does; `note` then
 // says so. More than 2^29 primitives of one kind (the reference's index bits) is an

@@ -53,10 +53,9 @@ FeatureSet analyze_features(const Scene& scene) {
 
     // Only materials that some primitive uses can ask for shading code.
     std::vector<bool> used(scene.materials.size(), false);
-    for (const auto& s : scene.spheres) used[s.material] = true;
-    for (const auto& t : scene.triangles) used[t.material] = true;
-    for (const auto& r : scene.rings) used[r.material] = true;
-    for (const auto& c : scene.cylinders) used[c.material] = true;
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
+    for (const Name& primitive : scene.names) used[primitive.material] = true;
+#include "kernel/shapes/kinds.glsl"
     bool specular = false;
     bool emission = false;
     bool reflection = false;
@@ -78,10 +77,8 @@ FeatureSet analyze_features(const Scene& scene) {
                    m.normal_map.has_value() || m.emission_texture.has_value();
     }
 
-    f.set(Feature::HAS_SPHERES, !scene.spheres.empty());
-    f.set(Feature::HAS_TRIANGLES, !scene.triangles.empty());
-    f.set(Feature::HAS_RINGS, !scene.rings.empty());
-    f.set(Feature::HAS_CYLINDERS, !scene.cylinders.empty());
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) f.set(Feature::HAS_##NAMES, !scene.names.empty());
+#include "kernel/shapes/kinds.glsl"
     f.set(Feature::HAS_QUADS, std::any_of(scene.triangles.begin(), scene.triangles.end(),
                                           [](const Triangle& t) { return t.parallelogram; }));
     f.set(Feature::HAS_SMOOTH_NORMALS,

@@ -2,6 +2,7 @@
 
 #include "flatten/emission_footprint.hpp"
 #include "flatten/environment_table.hpp"
+#include "scene/shapes/support.hpp"
 #include "scene/texture_image.hpp"
 #include "scene/vec_math.hpp"
 
@@ -10,6 +11,7 @@
 #include <bit>
 #include <chrono>
 #include <limits>
+#include <numeric>
 #include <cmath>
 #include <span>
 
@@ -29,11 +31,6 @@ using kernel::uvec3;
 using kernel::uvec4;
 using kernel::vec3;
 using kernel::vec4;
-
-vec4 to_vec4(const dvec3& v, double w = 0.0) {
-    return vec4(static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z),
-                static_cast<float>(w));
-}
 
 // Where the kernel's coordinates start, in the scene's: the camera's eye rounded to a
 // multiple of 64 on each axis. Every position the kernel gets is the scene's minus
@@ -180,46 +177,6 @@ kernel::Light flatten(const Light& l, const dvec3& origin) {
     return kernel::Light(to_vec4(l.position - origin, 1.0), radiance, vec4(0.0f, 0.0f, 0.0f, 1.0f));
 }
 
-// Which shape a Triangle record holds (kernel::Triangle meta.z): a parallelogram with
-// perpendicular edges is a rectangle, which the kernel samples by solid angle when it
-// emits (kernel/emitters.glsl).
-std::uint32_t shape_of(const Triangle& t) {
-    if (!t.parallelogram) return kernel::SHAPE_TRIANGLE;
-    const dvec3 e1 = t.vertices[1] - t.vertices[0];
-    const dvec3 e2 = t.vertices[2] - t.vertices[1];
-    const bool perpendicular = std::abs(glm::dot(e1, e2)) <= 1e-6 * glm::length(e1) * glm::length(e2);
-    return perpendicular ? kernel::SHAPE_RECTANGLE : kernel::SHAPE_PARALLELOGRAM;
-}
-
-// A triangle's texture coordinates at p0, p1, p2: its own, or those of the unit
-// square's corners.
-std::array<glm::dvec2, 3> texture_corners(const Triangle& t) {
-    if (t.uvs) return *t.uvs;
-    return {glm::dvec2(0, 0), glm::dvec2(1, 0), t.parallelogram ? glm::dvec2(1, 1) : glm::dvec2(0, 1)};
-}
-
-kernel::Triangle flatten(const Triangle& t, const dvec3& origin) {
-    kernel::Triangle out{};
-    out.p0 = to_vec4(t.vertices[0] - origin);
-    out.p1 = to_vec4(t.vertices[1] - origin);
-    out.p2 = to_vec4(t.vertices[2] - origin);
-    if (t.normals) {
-        out.n0 = to_vec4((*t.normals)[0]);
-        out.n1 = to_vec4((*t.normals)[1]);
-        out.n2 = to_vec4((*t.normals)[2]);
-    }
-    // Texture coordinates in the w lanes (kernel::Triangle).
-    const std::array<glm::dvec2, 3> uv = texture_corners(t);
-    out.p0.w = float(uv[0].x);
-    out.p1.w = float(uv[0].y);
-    out.p2.w = float(uv[1].x);
-    out.n0.w = float(uv[1].y);
-    out.n1.w = float(uv[2].x);
-    out.n2.w = float(uv[2].y);
-    out.meta = uvec4(t.material, t.normals ? 1u : 0u, shape_of(t), 0u);
-    return out;
-}
-
 double mean(const dvec3& c) { return (c.x + c.y + c.z) / 3.0; }
 
 // The emissive primitives as area lights (kernel/emitters.glsl): one Emitter each,
@@ -233,7 +190,7 @@ void add_emitters(const Scene& scene, FlatScene& g) {
     struct Found {
         std::uint32_t ref;
         double power;            // area * mean radiance
-        std::uint32_t part = 0;  // of a cylinder: kernel::CYLINDER_SIDE, _BASE_CAP, _TOP_CAP
+        std::uint32_t part = 0;  // Emitter.prim.y: of a cylinder, kernel::CYLINDER_SIDE, _BASE_CAP, _TOP_CAP
     };
     std::vector<Found> found;
     auto add = [&](std::uint32_t kind, std::size_t i, double area, std::uint32_t material, std::uint32_t part = 0) {
@@ -241,22 +198,13 @@ void add_emitters(const Scene& scene, FlatScene& g) {
         if (weight > 0.0) found.push_back({(kind << kernel::REF_KIND_SHIFT) | std::uint32_t(i), area * weight, part});
     };
     EmissionFootprints footprints(scene);
-    const double pi = glm::pi<double>();
-    for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
-        const Sphere& s = scene.spheres[i];
-        add(kernel::REF_SPHERE, i, 4.0 * pi * s.radius * s.radius, s.material);
-    }
     const bool textured = g.features.has(Feature::HAS_TEXTURES);
-    for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
+    // A triangle with an emission texture weighs by its footprint, which its record
+    // carries for the kernel; an emitter of no power (a black footprint) is left out.
+    auto add_textured = [&](std::size_t i) {
         const Triangle& t = scene.triangles[i];
-        const dvec3 c = glm::cross(t.vertices[1] - t.vertices[0], t.vertices[2] - t.vertices[0]);
-        const double area = (t.parallelogram ? 1.0 : 0.5) * glm::length(c);
         const Material& m = scene.materials[t.material];
-        if (!textured || !m.emission_texture) {
-            add(kernel::REF_TRIANGLE, i, area, t.material);
-            continue;
-        }
-        if (!is_nonzero(m.emission)) continue;
+        if (!is_nonzero(m.emission)) return;
         const std::array<glm::dvec2, 3> uv = texture_corners(t);
         const std::array<glm::dvec2, 4> corners{uv[0], uv[1], uv[2], uv[0] + uv[2] - uv[1]};
         const double weight = footprints.mean_emission(m, std::span(corners).first(t.parallelogram ? 4 : 3));
@@ -264,22 +212,27 @@ void add_emitters(const Scene& scene, FlatScene& g) {
         // smallest normal float instead, so that an emitting footprint stays an emitter.
         const float bits = weight > 0.0 ? std::max(float(weight), std::numeric_limits<float>::min()) : 0.0f;
         g.triangles[i].meta.w = std::bit_cast<std::uint32_t>(bits);
-        if (bits > 0.0f) found.push_back({(kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | std::uint32_t(i), area * bits, 0});
-    }
-    for (std::size_t i = 0; i < scene.rings.size(); ++i) {
-        const Ring& r = scene.rings[i];
-        add(kernel::REF_RING, i, pi * (r.outer * r.outer - r.inner * r.inner), r.material);
-    }
-    // A cylinder is up to three emitters, its side and its caps, so that each is
-    // picked by its own power and sampled by its own parameterization.
-    for (std::size_t i = 0; i < scene.cylinders.size(); ++i) {
-        const Cylinder& c = scene.cylinders[i];
-        add(kernel::REF_CYLINDER, i, 2.0 * pi * c.radius * glm::length(c.top - c.base), c.material, kernel::CYLINDER_SIDE);
-        if (c.capped) {
-            add(kernel::REF_CYLINDER, i, pi * c.radius * c.radius, c.material, kernel::CYLINDER_BASE_CAP);
-            add(kernel::REF_CYLINDER, i, pi * c.radius * c.radius, c.material, kernel::CYLINDER_TOP_CAP);
+        if (bits > 0.0f) {
+            found.push_back({(kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT) | std::uint32_t(i),
+                             emitter_area(t, 0) * bits, 0});
         }
+    };
+    // Kind by kind, in the kernel's order, each primitive's parts in order (a
+    // cylinder's side, then its caps: each picked by its own power and sampled by its
+    // own parameterization).
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS)                                         \
+    for (std::size_t i = 0; i < scene.names.size(); ++i) {                                                  \
+        const Name& primitive = scene.names[i];                                                             \
+        if (kernel::REF_##NAME == kernel::REF_TRIANGLE && textured &&                                       \
+            scene.materials[primitive.material].emission_texture) {                                         \
+            add_textured(i);                                                                                \
+            continue;                                                                                       \
+        }                                                                                                   \
+        for (std::uint32_t part = 0; part < emitter_parts(primitive); ++part) {                             \
+            add(kernel::REF_##NAME, i, emitter_area(primitive, part), primitive.material, part);           \
+        }                                                                                                   \
     }
+#include "kernel/shapes/kinds.glsl"
     double total = 0.0;
     for (const Found& f : found) total += f.power;
     double running = 0.0;
@@ -348,11 +301,20 @@ constexpr std::size_t kMaxStretching = 32;
 // listed when no kind reaches the threshold (a grid forced on a small scene), and
 // when the scene gives the resolution: that asks for one particular grid, over the
 // whole scene (the README compares SPD balls with published figures for such grids).
-std::array<bool, 4> loose_kinds(const AccelPolicy& policy, bool resolution_given, const FlatScene& g) {
-    const std::array<std::size_t, 4> counts{g.spheres.size(), g.triangles.size(), g.rings.size(), g.cylinders.size()};
+// The primitives of each kind, indexed by kind.
+std::array<std::size_t, kernel::PRIMITIVE_KINDS> kind_counts(const FlatScene& g) {
+    return {
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) g.names.size(),
+#include "kernel/shapes/kinds.glsl"
+    };
+}
+
+std::array<bool, kernel::PRIMITIVE_KINDS> loose_kinds(const AccelPolicy& policy, bool resolution_given,
+                                                      const FlatScene& g) {
+    const std::array<std::size_t, kernel::PRIMITIVE_KINDS> counts = kind_counts(g);
     const bool any_large = std::any_of(counts.begin(), counts.end(),
                                        [&](std::size_t n) { return n >= policy.brute_force_below; });
-    std::array<bool, 4> loose{};
+    std::array<bool, kernel::PRIMITIVE_KINDS> loose{};
     for (std::size_t k = 0; k < counts.size(); ++k) {
         loose[k] = counts[k] != 0 && !resolution_given && any_large && counts[k] < policy.brute_force_below;
     }
@@ -362,18 +324,19 @@ std::array<bool, 4> loose_kinds(const AccelPolicy& policy, bool resolution_given
 // The features that say which kinds the cells list (GRID_) and which the loose
 // references hold (LOOSE_), and the stats' account of the loose ones: a kind loose
 // as a whole as "triangles: 2", some of a listed kind as "triangles: 2 of 49294".
-void note_kinds(const Grid& grid, const AccelPolicy& policy, const std::array<bool, 4>& whole, FlatScene& g) {
+void note_kinds(const Grid& grid, const AccelPolicy& policy, const std::array<bool, kernel::PRIMITIVE_KINDS>& whole,
+                FlatScene& g) {
     struct Kind {
         Feature listed, loose;
         const char* name;
         std::size_t count;
     };
-    const std::array<Kind, 4> kinds{
-        {{Feature::GRID_SPHERES, Feature::LOOSE_SPHERES, "spheres", g.spheres.size()},
-         {Feature::GRID_TRIANGLES, Feature::LOOSE_TRIANGLES, "triangles", g.triangles.size()},
-         {Feature::GRID_RINGS, Feature::LOOSE_RINGS, "rings", g.rings.size()},
-         {Feature::GRID_CYLINDERS, Feature::LOOSE_CYLINDERS, "cylinders", g.cylinders.size()}}};
-    std::array<std::size_t, 4> loose{};
+    const std::array<Kind, kernel::PRIMITIVE_KINDS> kinds{{
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
+    {Feature::GRID_##NAMES, Feature::LOOSE_##NAMES, #names, g.names.size()},
+#include "kernel/shapes/kinds.glsl"
+    }};
+    std::array<std::size_t, kernel::PRIMITIVE_KINDS> loose{};
     for (std::uint32_t i = 0; i < grid.loose; ++i) ++loose[grid.refs[i] >> kernel::REF_KIND_SHIFT];
     std::vector<std::string> small, stretching;
     for (std::size_t k = 0; k < kinds.size(); ++k) {
@@ -409,7 +372,11 @@ void add_grid(const Scene& scene, const AccelPolicy& policy, FlatScene& g) {
     request.eye = scene.camera.eye - g.origin;
     request.split = scene.render.grid.mode != GridMode::Uniform;
     std::string note;
-    Grid grid = build_grid(GridPrimitives{g.spheres, g.triangles, g.rings, g.cylinders}, request, note);
+    const GridPrimitives primitives{
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) g.names,
+#include "kernel/shapes/kinds.glsl"
+    };
+    Grid grid = build_grid(primitives, request, note);
     note_kinds(grid, policy, request.loose_kinds, g);
     kernel::Params& p = g.params;
     kernel::set_grid_min(p, vec3(grid.lo));
@@ -476,33 +443,15 @@ FlatScene flatten_scene(const Scene& scene, const AccelPolicy& policy) {
     if (any_geometry) {
         for (const Material& m : scene.materials) g.materials.push_back(flatten(m));
     }
-    if (g.features.has(Feature::HAS_SPHERES)) {
-        for (const Sphere& s : scene.spheres) {
-            g.spheres.push_back(kernel::Sphere(to_vec4(s.center - o, s.radius), uvec4(s.material, 0u, 0u, 0u)));
-        }
-    }
-    if (g.features.has(Feature::HAS_TRIANGLES)) {
-        for (const Triangle& t : scene.triangles) g.triangles.push_back(flatten(t, o));
-    }
-    if (g.features.has(Feature::HAS_RINGS)) {
-        for (const Ring& ring : scene.rings) {
-            g.rings.push_back(kernel::Ring(to_vec4(ring.center - o, ring.inner), to_vec4(ring.normal, ring.outer),
-                                           uvec4(ring.material, 0u, 0u, 0u)));
-        }
-    }
-    if (g.features.has(Feature::HAS_CYLINDERS)) {
-        for (const Cylinder& c : scene.cylinders) {
-            g.cylinders.push_back(kernel::Cylinder(to_vec4(c.base - o, c.radius), to_vec4(c.top - o, c.capped ? 1.0 : 0.0),
-                                                   uvec4(c.material, 0u, 0u, 0u)));
-        }
-    }
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS)                     \
+    if (g.features.has(Feature::HAS_##NAMES)) {                                       \
+        for (const Name& primitive : scene.names) g.names.push_back(flatten(primitive, o)); \
+    }                                                                                 \
+    kernel::set_##name##_count(p, static_cast<std::uint32_t>(g.names.size()));
+#include "kernel/shapes/kinds.glsl"
     if (g.features.has(Feature::HAS_POINT_LIGHTS)) {
         for (const Light& l : scene.lights) g.lights.push_back(flatten(l, o));
     }
-    kernel::set_sphere_count(p, static_cast<std::uint32_t>(g.spheres.size()));
-    kernel::set_triangle_count(p, static_cast<std::uint32_t>(g.triangles.size()));
-    kernel::set_ring_count(p, static_cast<std::uint32_t>(g.rings.size()));
-    kernel::set_cylinder_count(p, static_cast<std::uint32_t>(g.cylinders.size()));
     kernel::set_light_count(p, static_cast<std::uint32_t>(g.lights.size()));
     kernel::set_material_count(p, static_cast<std::uint32_t>(g.materials.size()));
     if (g.features.has(Feature::HAS_TEXTURES)) add_textures(scene, g);
@@ -517,8 +466,8 @@ FlatScene flatten_scene(const Scene& scene, const AccelPolicy& policy) {
                    g.features.has(Feature::HAS_GLOBAL) && scene.render.estimator == Estimator::Path && scene.render.nee &&
                        (g.features.has(Feature::HAS_AREA_LIGHTS) || kernel::environment_choice(p) > 0.0f));
 
-    g.grid.used = want_grid(scene, g.spheres.size() + g.triangles.size() + g.rings.size() + g.cylinders.size(),
-                            policy, g.grid.reason);
+    const std::array<std::size_t, kernel::PRIMITIVE_KINDS> counts = kind_counts(g);
+    g.grid.used = want_grid(scene, std::accumulate(counts.begin(), counts.end(), std::size_t(0)), policy, g.grid.reason);
     if (g.grid.used) add_grid(scene, policy, g);
     g.features.set(Feature::HAS_GRID, g.grid.used);
     g.features.set(Feature::DEFERRED_SPHERES, !g.grid.used && g.spheres.size() >= policy.deferred_spheres_from);

@@ -54,11 +54,10 @@ void check_counts(const FlatScene& scene) {
         }
     };
     const FeatureSet& f = scene.features;
-    if (f.has(Feature::HAS_SPHERES)) check("spheres", kernel::sphere_count(p), scene.spheres.size());
-    if (f.has(Feature::HAS_TRIANGLES)) check("triangles", kernel::triangle_count(p), scene.triangles.size());
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
+    if (f.has(Feature::HAS_##NAMES)) check(#names, kernel::name##_count(p), scene.names.size());
+#include "kernel/shapes/kinds.glsl"
     if (f.has(Feature::HAS_POINT_LIGHTS)) check("lights", kernel::light_count(p), scene.lights.size());
-    if (f.has(Feature::HAS_RINGS)) check("rings", kernel::ring_count(p), scene.rings.size());
-    if (f.has(Feature::HAS_CYLINDERS)) check("cylinders", kernel::cylinder_count(p), scene.cylinders.size());
     if (f.has(Feature::HAS_AREA_LIGHTS)) {
         check("emitters", kernel::emitter_count(p), scene.emitters.size());
         if (kernel::emitter_count(p) == 0) throw GpuError("scene: area lights on, but params count no emitters");

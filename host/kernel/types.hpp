@@ -23,12 +23,28 @@ using uint = std::uint32_t;
 // Sizes and offsets: vec4 members only, so these hold by construction (one 16-byte
 // texel a member); the asserts catch anyone adding a vec3 or a scalar.
 static_assert(sizeof(vec4) == 16 && sizeof(uvec4) == 16);
-static_assert(sizeof(Sphere) == 32);
-static_assert(sizeof(Triangle) == 112);
 static_assert(sizeof(Texture) == 32);
 static_assert(sizeof(Light) == 48);
-static_assert(sizeof(Ring) == 48);
-static_assert(sizeof(Cylinder) == 48);
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
+    static_assert(sizeof(Name) % 16 == 0, "shapes/" #name ".glsl: a record is whole texels");
+#include "kernel/shapes/kinds.glsl"
+
+// The kinds of shapes/kinds.glsl are numbered 0, 1, 2, ... in order, and leave kind 7
+// to REF_NONE.
+namespace kind_table {
+constexpr uint kIds[] = {
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) ID,
+#include "kernel/shapes/kinds.glsl"
+};
+consteval bool ids_in_order() {
+    for (uint i = 0; i < std::size(kIds); ++i) {
+        if (kIds[i] != i) return false;
+    }
+    return true;
+}
+static_assert(ids_in_order(), "shapes/kinds.glsl: the kinds' ids must run 0, 1, 2, ... in order");
+static_assert(PRIMITIVE_KINDS < (REF_NONE >> REF_KIND_SHIFT), "shapes/kinds.glsl: at most 7 kinds (kind 7 is REF_NONE)");
+}  // namespace kind_table
 static_assert(sizeof(Emitter) == 32);
 static_assert(sizeof(Params) == 16 * PARAM_TEXELS);
 static_assert(sizeof(Counters) == 64);

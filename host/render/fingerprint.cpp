@@ -12,15 +12,11 @@ bool is_acceleration_feature(std::uint32_t id) {
     switch (Feature(id)) {
     case Feature::DEFERRED_SPHERES:
     case Feature::HAS_GRID:
-    case Feature::GRID_SPLIT:
-    case Feature::GRID_SPHERES:
-    case Feature::GRID_TRIANGLES:
-    case Feature::GRID_RINGS:
-    case Feature::GRID_CYLINDERS:
-    case Feature::LOOSE_SPHERES:
-    case Feature::LOOSE_TRIANGLES:
-    case Feature::LOOSE_RINGS:
-    case Feature::LOOSE_CYLINDERS: return true;
+    case Feature::GRID_SPLIT: return true;
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
+    case Feature::GRID_##NAMES:                                   \
+    case Feature::LOOSE_##NAMES: return true;
+#include "kernel/shapes/kinds.glsl"
     default: return false;
     }
 }
@@ -43,11 +39,9 @@ std::uint64_t scene_fingerprint(const FlatScene& scene) {
     const std::uint8_t corners = scene.corners ? 1 : 0;
     h.add(&corners, 1);
     h.add(scene.materials);
-    h.add(scene.spheres);
-    h.add(scene.triangles);
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) h.add(scene.names);
+#include "kernel/shapes/kinds.glsl"
     h.add(scene.lights);
-    h.add(scene.rings);
-    h.add(scene.cylinders);
     h.add(scene.emitters);
     return h.value();
 }

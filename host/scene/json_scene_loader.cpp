@@ -31,17 +31,13 @@
 #include "scene/obj_mesh.hpp"
 #include "scene/read_text.hpp"
 #include "scene/scene_error.hpp"
+#include "scene/shapes/shape_reader.hpp"
 #include "scene/vec_math.hpp"
 
 namespace vkrt {
 namespace {
 
 using json::Node;
-
-// Two directions count as parallel when the sine of the angle between them is
-// below this: such a camera basis or triangle has no usable orientation in the
-// kernel's single precision, however exactly the file states it.
-constexpr double kParallelSine = 1e-9;
 
 bool parallel_or_zero(const dvec3& a, const dvec3& b) { return vkrt::parallel_or_zero(a, b, kParallelSine); }
 
@@ -392,114 +388,7 @@ std::uint32_t material_of(const Node& object, const MaterialIndex& materials) {
     return material_named(object.required("material"), materials);
 }
 
-Sphere read_sphere(const Node& n, const MaterialIndex& materials) {
-    n.allow_only({"center", "radius", "material", "type"});
-    Sphere s;
-    s.center = n.required("center").vec3();
-    s.radius = n.required("radius").number_above(0.0);
-    s.material = material_of(n, materials);
-    return s;
-}
-
-// What exporters write and the loader puts up with, counted for one warning each:
-// triangles of zero area, which are dropped, and zero vertex normals, for which the
-// face normal stands in (as in meshes, indexed_mesh.cpp).
-struct Tolerated {
-    std::size_t zero_area = 0;
-    std::string first_zero_area;    // the JSON path of the first
-    std::size_t zero_normals = 0;   // triangles with one or more
-    std::string first_zero_normal;
-};
-
-std::optional<Triangle> read_triangle(const Node& n, const MaterialIndex& materials, Tolerated& tolerated) {
-    n.allow_only({"vertices", "normals", "material", "type"});
-    Triangle t;
-    const Node vertices = n.required("vertices");
-    const auto v = vertices.elements(3, "an array of 3 points");
-    for (int i = 0; i < 3; ++i) t.vertices[i] = v[i].vec3();
-    std::optional<std::array<dvec3, 3>> normals;
-    std::optional<Node> first_zero;  // the first zero normal's place
-    if (auto given = n.find("normals")) {
-        const auto e = given->elements(3, "an array of 3 vectors");
-        normals.emplace();
-        for (int i = 0; i < 3; ++i) {
-            (*normals)[i] = e[i].vec3();
-            if (!first_zero && !is_nonzero((*normals)[i])) first_zero = e[i];
-        }
-    }
-    t.material = material_of(n, materials);
-    if (parallel_or_zero(t.vertices[1] - t.vertices[0], t.vertices[2] - t.vertices[0])) {
-        if (tolerated.zero_area++ == 0) tolerated.first_zero_area = vertices.path();
-        return std::nullopt;  // its normals do not count: it is not rendered
-    }
-    if (first_zero && tolerated.zero_normals++ == 0) tolerated.first_zero_normal = first_zero->path();
-    if (normals) {
-        const dvec3 face = robust_normalize(glm::cross(t.vertices[1] - t.vertices[0], t.vertices[2] - t.vertices[0]));
-        // Normalized here so the kernel can interpolate without renormalizing
-        // inputs; the file may give any length.
-        for (dvec3& x : *normals) x = is_nonzero(x) ? robust_normalize(x) : face;
-        t.normals = normals;
-    }
-    return t;
-}
-
-// One warning per kind of tolerated flaw, with how many and where the first is.
-void warn_tolerated(const Tolerated& tolerated, const std::string& file, std::vector<std::string>& warnings) {
-    if (tolerated.zero_area > 0) {
-        warnings.push_back(fmt::format("{}: skipped {} triangle{} of zero area (coinciding vertices or all on one "
-                                       "line), the first at {}",
-                                       file, tolerated.zero_area, tolerated.zero_area == 1 ? "" : "s",
-                                       tolerated.first_zero_area));
-    }
-    if (tolerated.zero_normals > 0) {
-        warnings.push_back(fmt::format("{}: {} triangle{} with a zero vertex normal, shaded with the face normal "
-                                       "there, the first at {}",
-                                       file, tolerated.zero_normals, tolerated.zero_normals == 1 ? "" : "s",
-                                       tolerated.first_zero_normal));
-    }
-}
-
-Ring read_ring(const Node& n, const MaterialIndex& materials) {
-    n.allow_only({"center", "normal", "inner", "outer", "material", "type"});
-    Ring r;
-    r.center = n.required("center").vec3();
-    const Node normal = n.required("normal");
-    r.normal = normal.vec3();
-    if (!is_nonzero(r.normal)) normal.fail("expected a non-zero vector, got [0, 0, 0]");
-    // Normalized here: the kernel's ring test and bounds take it as unit length.
-    r.normal = robust_normalize(r.normal);
-    if (auto inner = n.find("inner")) r.inner = inner->number_at_least(0.0);
-    r.outer = n.required("outer").number_above(0.0);
-    if (!(r.inner < r.outer)) {
-        n.fail_field("inner", fmt::format("expected inner < outer, got inner {} and outer {}", r.inner, r.outer));
-    }
-    r.material = material_of(n, materials);
-    return r;
-}
-
-Cylinder read_cylinder(const Node& n, const MaterialIndex& materials) {
-    n.allow_only({"base", "top", "radius", "capped", "material", "type"});
-    Cylinder c;
-    c.base = n.required("base").vec3();
-    const Node top = n.required("top");
-    c.top = top.vec3();
-    if (!is_nonzero(c.top - c.base)) {
-        top.fail(fmt::format("top must differ from base (both are {})", json::format_vec3(c.base)));
-    }
-    // The kernel gets floats: ends that round to one point would leave no axis.
-    const glm::vec3 base_f(c.base), top_f(c.top);
-    if (base_f == top_f) {
-        top.fail(fmt::format("top {} and base {} round to the same single-precision point, so the cylinder has "
-                             "no axis",
-                             json::format_vec3(c.top), json::format_vec3(c.base)));
-    }
-    c.radius = n.required("radius").number_above(0.0);
-    if (auto capped = n.find("capped")) c.capped = capped->boolean();
-    c.material = material_of(n, materials);
-    return c;
-}
-
-// A quad is one parallelogram (quad, scene.hpp).
+// A quad is one parallelogram (quad, scene/shapes/triangle.hpp).
 void read_quad(const Node& n, const MaterialIndex& materials, std::vector<Triangle>& out) {
     n.allow_only({"corner", "edge1", "edge2", "material", "type"});
     const dvec3 corner = n.required("corner").vec3();
@@ -527,21 +416,23 @@ void read_gltf_object(const Node& n, Scene& scene) {
     }
 }
 
+// The object types besides the kinds of primitive, each read by its own function.
+constexpr const char* kOtherObjects = "quad, mesh, gltf, random_spheres, sphereflake, torus_knot";
+
 void read_objects(const Node& n, const MaterialIndex& materials, Scene& scene) {
     const MaterialLookup lookup = [&materials](const Node& name) { return material_named(name, materials); };
-    Tolerated tolerated;
+    ShapeReader shapes{.material = lookup};
     for (const Node& object : n.elements()) {
         const Node type = object.required("type");
         const std::string t = type.string();
-        if (t == "sphere") {
-            scene.spheres.push_back(read_sphere(object, materials));
-        } else if (t == "triangle") {
-            if (auto triangle = read_triangle(object, materials, tolerated)) scene.triangles.push_back(*triangle);
-        } else if (t == "ring") {
-            scene.rings.push_back(read_ring(object, materials));
-        } else if (t == "cylinder") {
-            scene.cylinders.push_back(read_cylinder(object, materials));
-        } else if (t == "quad") {
+        // Each kind of primitive by its name (host/scene/shapes/<name>.cpp, read_shape).
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
+    if (t == #name) {                                             \
+        read_shape(object, shapes, scene.names);                  \
+        continue;                                                 \
+    }
+#include "kernel/shapes/kinds.glsl"
+        if (t == "quad") {
             read_quad(object, materials, scene.triangles);
         } else if (t == "mesh") {
             read_mesh(object, lookup, scene);
@@ -554,12 +445,15 @@ void read_objects(const Node& n, const MaterialIndex& materials, Scene& scene) {
         } else if (t == "gltf") {
             read_gltf_object(object, scene);
         } else {
-            type.fail(fmt::format("unknown object type {} (expected one of: sphere, triangle, quad, ring, "
-                                  "cylinder, mesh, gltf, random_spheres, sphereflake, torus_knot)",
-                                  json::quote_user(t)));
+            const std::vector<std::string> kinds{
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) #name,
+#include "kernel/shapes/kinds.glsl"
+            };
+            type.fail(fmt::format("unknown object type {} (expected one of: {}, {})", json::quote_user(t),
+                                  fmt::join(kinds, ", "), kOtherObjects));
         }
     }
-    warn_tolerated(tolerated, n.file(), scene.warnings);
+    shapes.warn(n.file(), scene.warnings);
 }
 
 // Local mode and the paper's estimator have the paper's Phong model only: they shade

@@ -33,10 +33,6 @@
 namespace vkrt {
 namespace {
 
-// As in the JSON loader: a camera basis whose directions meet at a smaller sine
-// has no usable orientation in the kernel's single precision.
-constexpr double kParallelSine = 1e-9;
-
 // A vertex count beyond this is a corrupt count, not a polygon.
 constexpr std::uint64_t kMaxPolygonVertices = std::uint64_t(1) << 20;
 

@@ -13,10 +13,8 @@ namespace {
 
 using glm::dvec3;
 
-// The JSON loader's zero-area rule (its kParallelSine): a triangle whose edges meet
-// at an angle with a smaller sine has no usable orientation in the kernel's single
-// precision, so it is left out here rather than handed on.
-constexpr double kParallelSine = 1e-9;
+// The JSON loader's zero-area rule (kParallelSine, vec_math.hpp): a triangle whose
+// edges meet at an angle with a smaller sine is left out here rather than handed on.
 
 bool degenerate(const dvec3& a, const dvec3& b, const dvec3& c) {
     return parallel_or_zero(b - a, c - a, kParallelSine);

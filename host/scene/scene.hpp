@@ -16,6 +16,7 @@
 #include "image/display.hpp"
 #include "scene/environment.hpp"
 #include "scene/texture_image.hpp"
+#include "scene_shapes.hpp"  // each kind of primitive's host/scene/shapes/<name>.hpp, generated
 
 namespace vkrt {
 
@@ -153,62 +154,16 @@ struct Light {
     double outer_angle = 0.25 * 3.14159265358979323846;
 };
 
-struct Sphere {
-    dvec3 center{0.0};
-    double radius = 1.0;
-    std::uint32_t material = 0;  // index into Scene::materials
-};
-
-// A triangle v0 v1 v2, or with `parallelogram` the parallelogram v0, v1, v2,
-// v0 + v2 - v1: a scene file's quad, one primitive. The front face is the side of
-// cross(v1 - v0, v2 - v0).
-struct Triangle {
-    std::array<dvec3, 3> vertices{};
-    std::optional<std::array<dvec3, 3>> normals;  // interpolated when present (triangles only)
-    std::uint32_t material = 0;
-    bool parallelogram = false;
-    // Texture coordinates of the three vertices; without them a triangle has (0, 0),
-    // (1, 0), (0, 1) and a parallelogram (0, 0), (1, 0), (1, 1): its corners.
-    std::optional<std::array<glm::dvec2, 3>> uvs{};
-};
-
-// The quad corner, corner + e1, corner + e1 + e2, corner + e2, facing cross(e1, e2):
-// what the scene file's "quad" is.
-inline Triangle quad(dvec3 corner, dvec3 e1, dvec3 e2, std::uint32_t material) {
-    return Triangle{{corner, corner + e1, corner + e1 + e2}, std::nullopt, material, true};
-}
-
-// An annulus: the points of the plane through `center` perpendicular to `normal`
-// whose distance from the centre lies in [inner, outer]; inner 0 is a disc. Its
-// front face is the side `normal` points to.
-struct Ring {
-    dvec3 center{0.0};
-    dvec3 normal{0.0, 1.0, 0.0};  // unit length (the loaders normalize it)
-    double inner = 0.0;           // 0 <= inner < outer
-    double outer = 1.0;
-    std::uint32_t material = 0;
-};
-
-// A cylinder of `radius` around the segment base -> top, open or closed by two
-// discs (`capped`). Its front face is the outside.
-struct Cylinder {
-    dvec3 base{0.0};
-    dvec3 top{0.0, 1.0, 0.0};  // differs from base
-    double radius = 1.0;
-    bool capped = false;
-    std::uint32_t material = 0;
-};
-
 struct Scene {
     std::filesystem::path source;  // the file it came from, for messages
     Camera camera;
     RenderSettings render;
     std::vector<Material> materials;
     std::vector<Light> lights;
-    std::vector<Sphere> spheres;
-    std::vector<Triangle> triangles;
-    std::vector<Ring> rings;
-    std::vector<Cylinder> cylinders;
+    // One array per kind of primitive (shaders/kernel/shapes/kinds.glsl): spheres,
+    // triangles, rings, cylinders. Each kind's record is in host/scene/shapes/<name>.hpp.
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) std::vector<Name> names;
+#include "kernel/shapes/kinds.glsl"
     std::vector<TextureImage> textures;  // Material::texture indexes them
     TexelStore texels;                   // every texture's texels (TextureImage::first_word)
     // The image around the scene; without it rays that leave see render.background.
@@ -221,7 +176,10 @@ struct Scene {
 
     // Primitives of every kind: what the grid holds and the kernel tests.
     std::size_t primitive_count() const {
-        return spheres.size() + triangles.size() + rings.size() + cylinders.size();
+        return 0
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) +names.size()
+#include "kernel/shapes/kinds.glsl"
+            ;
     }
 };
 

@@ -20,10 +20,7 @@
 #include "hemisphere.glsl"
 #include "solid_angle.glsl"
 #include "shapes/records.glsl"
-#include "shapes/sphere.glsl"
-#include "shapes/triangle.glsl"
-#include "shapes/ring.glsl"
-#include "shapes/cylinder.glsl"
+#include "shape_files.glsl"  // shapes/<name>.glsl of each kind, generated from shapes/kinds.glsl
 #include "traversal.glsl"
 #include "phong.glsl"
 #include "visibility.glsl"

@@ -52,14 +52,17 @@ const uint DECISION_INSIDE_CONE = 18u;       // ... or inside it
 
 // A grid cell's primitive reference: the primitive's kind in the top 3 bits, its
 // index into that kind's buffer in the low 29 (so at most 2^29 primitives of one
-// kind; host/accel/grid.cpp refuses more). Four kinds are used; REF_NONE is kind 7,
-// which no primitive has, so it cannot be mistaken for a real reference.
+// kind; host/accel/grid.cpp refuses more). The kinds are those of shapes/kinds.glsl,
+// REF_SPHERE = 0 and on; REF_NONE is kind 7, which no primitive has, so it cannot be
+// mistaken for a real reference.
 const uint REF_KIND_SHIFT = 29u;
 const uint REF_INDEX_MASK = (1u << REF_KIND_SHIFT) - 1u;
-const uint REF_SPHERE = 0u;
-const uint REF_TRIANGLE = 1u;
-const uint REF_RING = 2u;
-const uint REF_CYLINDER = 3u;
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) const uint REF_##NAME = uint(ID);
+#include "shapes/kinds.glsl"
+const uint PRIMITIVE_KINDS = 0u
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) + 1u
+#include "shapes/kinds.glsl"
+    ;
 const uint REF_NONE = 0xFFFFFFFFu;  // "no primitive": kind 7, which no primitive has
 
 // The grid (kernel/grid.glsl, host/accel/grid.cpp and grid_split.cpp). A root cell spans

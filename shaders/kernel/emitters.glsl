@@ -41,8 +41,8 @@ uint pick_emitter(float u) {
 EmitterPoint emitter_point(Emitter e, float u1, float u2) {
     uint kind = e.prim.x >> REF_KIND_SHIFT;
     uint index = e.prim.x & REF_INDEX_MASK;
-#define PRIMITIVE_KIND(REF, name, FEATURE, GRID, LOOSE, PARTS)    \
-    if (FEATURE && kind == REF) {                                 \
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
+    if (HAS_##NAMES && kind == REF_##NAME) {                      \
         return name##_emitter_point(index, e.prim.y, u1, u2);     \
     }
 #include "shapes/kinds.glsl"
@@ -74,9 +74,9 @@ LightSample sample_light_from(vec3 o, vec2 u) {
     uint kind = e.prim.x >> REF_KIND_SHIFT;
     uint index = e.prim.x & REF_INDEX_MASK;
     LightSample drawn = LightSample(vec3(0.0f), vec3(0.0f), vec3(0.0f), 0.0f);
-#define PRIMITIVE_KIND(REF, name, FEATURE, GRID, LOOSE, PARTS)                  \
-    if (FEATURE && kind == REF && name##_light_sample(o, index, u, drawn)) {    \
-        return drawn;                                                           \
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS)                       \
+    if (HAS_##NAMES && kind == REF_##NAME && name##_light_sample(o, index, u, drawn)) { \
+        return drawn;                                                                   \
     }
 #include "shapes/kinds.glsl"
     EmitterPoint y = emitter_point(e, u.x, u.y);
@@ -97,16 +97,16 @@ float light_pdf_of_hit(Ray ray, Hit hit) {
     uint index = hit.prim & REF_INDEX_MASK;
     Material m = load_material(hit.material);
     float weight = 0.0f;
-#define PRIMITIVE_KIND(REF, name, FEATURE, GRID, LOOSE, PARTS) \
-    if (FEATURE && kind == REF) {                              \
-        weight = name##_pick_weight(index, m);                 \
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
+    if (HAS_##NAMES && kind == REF_##NAME) {                      \
+        weight = name##_pick_weight(index, m);                    \
     }
 #include "shapes/kinds.glsl"
     float area_density = weight / emitter_power();
     float pdf = 0.0f;
-#define PRIMITIVE_KIND(REF, name, FEATURE, GRID, LOOSE, PARTS)                          \
-    if (FEATURE && kind == REF && name##_light_pdf(ray.origin, index, area_density, pdf)) { \
-        return pdf;                                                                     \
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS)                                      \
+    if (HAS_##NAMES && kind == REF_##NAME && name##_light_pdf(ray.origin, index, area_density, pdf)) { \
+        return pdf;                                                                                    \
     }
 #include "shapes/kinds.glsl"
     // geo_normal faces the ray, so this is the emitting face's cosine.

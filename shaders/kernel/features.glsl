@@ -6,66 +6,59 @@
 // Ids are dense, 0 to count - 1 (host/flatten/features.hpp checks).
 // A feature that is false is compiled out of the pipeline by the driver, and the
 // buffers only it reads are neither built nor uploaded.
-FEATURE(0, HAS_SPHERES)
-FEATURE(1, HAS_TRIANGLES)
-FEATURE(2, HAS_SMOOTH_NORMALS)
-FEATURE(3, HAS_POINT_LIGHTS)   // the scene's `lights`, of any kind: the loop over them (lights.glsl)
-FEATURE(4, HAS_SHADOWS)
-FEATURE(5, HAS_SPECULAR)
-FEATURE(6, HAS_AMBIENT)
-FEATURE(7, HAS_EMISSION)
-FEATURE(8, HAS_JITTER)
-FEATURE(9, HAS_GRID)
-FEATURE(10, HAS_RINGS)
-FEATURE(11, HAS_CYLINDERS)
-FEATURE(12, HAS_AREA_LIGHTS)  // the emitter list (emitters.glsl), sampled by local mode's light samples or HAS_NEXT_EVENT
-FEATURE(13, HAS_REFLECTION)   // mirror rays (material reflect)
-FEATURE(14, HAS_REFRACTION)   // refraction rays, and the reflection rays of glass (material transmit)
-FEATURE(15, HAS_GLOBAL)       // global illumination (global.glsl) instead of the local ray tree
-// With HAS_GRID, the kinds the grid's cells list, and the kinds among its loose
-// primitives, which are tested once per ray instead: a kind with few primitives as a
-// whole, and the few primitives of other kinds whose boxes would stretch the grid's
-// (host/flatten/flat_scene.cpp, host/accel/grid.cpp, docs/grid.md).
-FEATURE(16, GRID_SPHERES)
-FEATURE(17, GRID_TRIANGLES)
-FEATURE(18, GRID_RINGS)
-FEATURE(19, GRID_CYLINDERS)
-FEATURE(20, LOOSE_SPHERES)
-FEATURE(21, LOOSE_TRIANGLES)
-FEATURE(22, LOOSE_RINGS)
-FEATURE(23, LOOSE_CYLINDERS)
+FEATURE(0, HAS_SMOOTH_NORMALS)
+FEATURE(1, HAS_POINT_LIGHTS)   // the scene's `lights`, of any kind: the loop over them (lights.glsl)
+FEATURE(2, HAS_SHADOWS)
+FEATURE(3, HAS_SPECULAR)
+FEATURE(4, HAS_AMBIENT)
+FEATURE(5, HAS_EMISSION)
+FEATURE(6, HAS_JITTER)
+FEATURE(7, HAS_GRID)
+FEATURE(8, HAS_AREA_LIGHTS)  // the emitter list (emitters.glsl), sampled by local mode's light samples or HAS_NEXT_EVENT
+FEATURE(9, HAS_REFLECTION)   // mirror rays (material reflect)
+FEATURE(10, HAS_REFRACTION)   // refraction rays, and the reflection rays of glass (material transmit)
+FEATURE(11, HAS_GLOBAL)       // global illumination (global.glsl) instead of the local ray tree
 // Without the grid, whether the sphere loop tests the spheres a ray starts near
 // after it (deferred_spheres.glsl) rather than in place: on from
 // AccelPolicy::deferred_spheres_from spheres (host/accel/accel_policy.hpp), where it
 // pays on lavapipe.
-FEATURE(24, DEFERRED_SPHERES)
+FEATURE(12, DEFERRED_SPHERES)
 // Triangle records that hold parallelograms (quads): the triangle test becomes the
 // quad test, which takes a triangle as a quad with p3 = p2 (shapes/triangle.glsl).
-FEATURE(25, HAS_QUADS)
+FEATURE(13, HAS_QUADS)
 // With HAS_GRID, whether any cell is split into children (host/accel/grid_split.cpp):
 // without it every cell is a root cell, found in one step, as in a uniform grid.
-FEATURE(26, GRID_SPLIT)
+FEATURE(14, GRID_SPLIT)
 // Shadow rays of smooth triangles leave from the smooth surface their normals
 // describe (terminator.glsl): on with smooth normals and shadows, unless the scene
 // turns it off (render.terminator; the SPD rules do, to count rays as published).
-FEATURE(27, HAS_TERMINATOR)
+FEATURE(15, HAS_TERMINATOR)
 // A thin lens instead of the pinhole (camera.glsl): the camera's lens_radius > 0.
-FEATURE(28, HAS_LENS)
+FEATURE(16, HAS_LENS)
 // The metallic-roughness material's GGX lobe (lobes/ggx.glsl): global mode with a
 // material that has one.
-FEATURE(29, HAS_MICROFACET)
+FEATURE(17, HAS_MICROFACET)
 // Colour textures (texture.glsl): a material that the scene uses has one.
-FEATURE(30, HAS_TEXTURES)
+FEATURE(18, HAS_TEXTURES)
 // Spot or directional lights among the `lights`: their cone and direction (lights.glsl).
 // Without it every light is a point light, read and shaded as such, at no extra cost.
-FEATURE(31, HAS_DIRECTED_LIGHTS)
+FEATURE(19, HAS_DIRECTED_LIGHTS)
 // An equirectangular image around the scene instead of the one-colour background,
 // and in global mode a light that next-event estimation samples (environment.glsl).
-FEATURE(32, HAS_ENVIRONMENT_MAP)
+FEATURE(20, HAS_ENVIRONMENT_MAP)
 // Normal maps (normal_map.glsl): a triangle's material has one.
-FEATURE(33, HAS_NORMAL_MAPS)
+FEATURE(21, HAS_NORMAL_MAPS)
 // Global mode's next-event estimation (global.glsl, render.nee): each vertex of a
 // path draws a point on the emitters (HAS_AREA_LIGHTS) or a direction of the
 // environment image, weighted by multiple importance sampling. Only the path
 // estimator does; the scene's `lights` are shaded at every vertex without it.
-FEATURE(34, HAS_NEXT_EVENT)
+FEATURE(22, HAS_NEXT_EVENT)
+// Three per kind of primitive (shapes/kinds.glsl), after the others: HAS_<NAMES>, the
+// scene has some; with HAS_GRID, GRID_<NAMES>, the grid's cells list some, and
+// LOOSE_<NAMES>, its loose primitives, which are tested once per ray instead, hold
+// some: a kind with few primitives as a whole, and the few primitives of other kinds
+// whose boxes would stretch the grid's (host/flatten/flat_scene.cpp,
+// host/accel/grid.cpp, docs/grid.md).
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
+    FEATURE((23 + 3 * ID), HAS_##NAMES) FEATURE((23 + 3 * ID + 1), GRID_##NAMES) FEATURE((23 + 3 * ID + 2), LOOSE_##NAMES)
+#include "shapes/kinds.glsl"

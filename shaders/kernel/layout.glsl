@@ -7,59 +7,12 @@
 // from its texels, fetched by the host's fetch_texel(array, t) (render.comp).
 // Unused .w lanes are documented as such and written as 0 by the host.
 
-// A sphere: centre in xyz, radius in w; meta.x = material index.
-struct Sphere {
-    vec4 center_radius;
-    uvec4 meta;
-};
-#define Sphere_FROM_TEXELS(b, i) Sphere(fetch_vec4(b, 2u * (i)), fetch_texel(b, 2u * (i) + 1u))
-
-// A triangle stores its own vertices (no index indirection: one fetch per primitive).
-// Vertex normals are used only when meta.y != 0 (the scene gave normals); the front
-// face is the side of cross(p1 - p0, p2 - p0). meta.x = material index; meta.z =
-// SHAPE_TRIANGLE, or SHAPE_PARALLELOGRAM / SHAPE_RECTANGLE for the parallelogram p0,
-// p1, p2, p0 + p2 - p1 (constants.glsl), which has no vertex normals. The texture
-// coordinates of p0, p1, p2 ride in the w lanes: (p0.w, p1.w), (p2.w, n0.w), (n1.w, n2.w).
-// meta.w: with an emission texture, the float bits of the triangle's emitter weight
-// (shapes/triangle.glsl, triangle_emitter_weight): the mean textured emission over its
-// footprint in the texture, 0 where the footprint is black; 0 otherwise.
-struct Triangle {
-    vec4 p0;
-    vec4 p1;
-    vec4 p2;
-    vec4 n0;
-    vec4 n1;
-    vec4 n2;
-    uvec4 meta;
-};
-#define Triangle_FROM_TEXELS(b, i)                                                                      \
-    Triangle(fetch_vec4(b, 7u * (i)), fetch_vec4(b, 7u * (i) + 1u), fetch_vec4(b, 7u * (i) + 2u),        \
-             fetch_vec4(b, 7u * (i) + 3u), fetch_vec4(b, 7u * (i) + 4u), fetch_vec4(b, 7u * (i) + 5u),   \
-             fetch_texel(b, 7u * (i) + 6u))
-
-// A ring (annulus) in the plane through `center` perpendicular to `normal`: the points
-// whose distance from the centre lies in [inner, outer] (inner 0: a disc). The normal
-// is unit length (the loader normalizes it) and marks the front face. meta.x =
-// material index.
-struct Ring {
-    vec4 center_inner;  // xyz centre, w inner radius
-    vec4 normal_outer;  // xyz unit normal (front side), w outer radius
-    uvec4 meta;
-};
-#define Ring_FROM_TEXELS(b, i) Ring(fetch_vec4(b, 3u * (i)), fetch_vec4(b, 3u * (i) + 1u), fetch_texel(b, 3u * (i) + 2u))
-
-// A cylinder around the segment from `base` to `top`: the side, and with capped != 0
-// the two end discs. The ends are stored rather than an axis and a length, so the host
-// bounds it from the very floats the kernel intersects, and the kernel derives the unit
-// axis per test (one square root). The outside is the front face. meta.x = material
-// index.
-struct Cylinder {
-    vec4 base_radius;  // xyz centre of the base disc, w radius
-    vec4 top_capped;   // xyz centre of the top disc, w = 1 capped, 0 open
-    uvec4 meta;
-};
-#define Cylinder_FROM_TEXELS(b, i) \
-    Cylinder(fetch_vec4(b, 3u * (i)), fetch_vec4(b, 3u * (i) + 1u), fetch_texel(b, 3u * (i) + 2u))
+// Each kind of primitive's record, Name and Name_FROM_TEXELS, is in its file
+// (shapes/<name>.glsl, the part under SHAPE_RECORDS), included here in the order of
+// shapes/kinds.glsl through the list generated from it (cmake/PrimitiveKinds.cmake).
+#define SHAPE_RECORDS
+#include "shape_files.glsl"
+#undef SHAPE_RECORDS
 
 // A material: the fields of kernel/material_fields.glsl, each named for what it
 // holds, MATERIAL_TEXELS texels in all. render.comp assembles one from its texels
@@ -119,7 +72,9 @@ struct Emitter {
 
 // Per-render constants: PARAM_TEXELS texels, each value named in kernel/params.glsl
 // and read through its accessor (camera_eye(), max_depth(), ...), never by lane.
-const uint PARAM_TEXELS = 17u;
+// The kinds' counts take the last texels (params.glsl), as many as PRIMITIVE_KINDS need.
+const uint PARAM_KIND_TEXEL = 16u;
+const uint PARAM_TEXELS = PARAM_KIND_TEXEL + (PRIMITIVE_KINDS + 3u) / 4u;
 struct Params {
     uvec4 texels[PARAM_TEXELS];
 };

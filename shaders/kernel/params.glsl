@@ -26,43 +26,60 @@ PARAM(uint, aa_per_side, 6, z)       // an aa x aa grid of samples per pixel
 PARAM(uint, sample_seed, 6, w)
 
 // How many entries of each scene array the kernel reads.
-PARAM(uint, sphere_count, 7, x)
-PARAM(uint, triangle_count, 7, y)
-PARAM(uint, ring_count, 7, z)
-PARAM(uint, cylinder_count, 7, w)
-PARAM(uint, light_count, 8, x)       // point lights
-PARAM(uint, material_count, 8, y)
-PARAM(uint, emitter_count, 8, z)     // emissive primitives, for area lights (kernel/emitters.glsl)
-PARAM(uint, light_samples, 8, w)     // shadow rays each hit sends toward the emitters
+PARAM(uint, light_count, 7, x)       // point lights
+PARAM(uint, material_count, 7, y)
+PARAM(uint, emitter_count, 7, z)     // emissive primitives, for area lights (kernel/emitters.glsl)
+PARAM(uint, light_samples, 7, w)     // shadow rays each hit sends toward the emitters
 
 // Bounds on one invocation's work (kernel/budget.glsl) and on the ray tree (sample.glsl).
-PARAM(uint, loop_budget, 9, x)       // loop iterations before the sample is given up
-PARAM(uint, max_depth, 9, y)         // reflection and refraction generations after the eye ray
-PARAM(float, min_ray_weight, 9, z)   // secondary rays of a smaller weight are dropped (0: none)
-PARAM(float, emitter_power, 9, w)    // total power of the emitters over pi: sum of area * mean radiance
+PARAM(uint, loop_budget, 8, x)       // loop iterations before the sample is given up
+PARAM(uint, max_depth, 8, y)         // reflection and refraction generations after the eye ray
+PARAM(float, min_ray_weight, 8, z)   // secondary rays of a smaller weight are dropped (0: none)
+PARAM(float, emitter_power, 8, w)    // total power of the emitters over pi: sum of area * mean radiance
 
 // Global illumination (kernel/global.glsl).
-PARAM(uint, estimator, 10, x)        // ESTIMATOR_*
-PARAM(uint, hemisphere_rule, 10, y)  // HEMISPHERE_*
-PARAM(uint, max_bounces, 10, z)      // scattering events after the first hit
-PARAM(uint, sampler_kind, 10, w)     // SAMPLER_* (rng.glsl)
+PARAM(uint, estimator, 9, x)        // ESTIMATOR_*
+PARAM(uint, hemisphere_rule, 9, y)  // HEMISPHERE_*
+PARAM(uint, max_bounces, 9, z)      // scattering events after the first hit
+PARAM(uint, sampler_kind, 9, w)     // SAMPLER_* (rng.glsl)
 
 // The grid (kernel/grid.glsl, host/accel/grid.cpp): root cell (i, j, k) spans
 // grid_min() + (i, j, k) * grid_cell() to grid_min() + (i+1, j+1, k+1) * grid_cell();
 // grid_max() bounds the box rays are clipped to.
-PARAM3(vec3, grid_min, 11)
-PARAM3(vec3, grid_max, 12)
-PARAM3(vec3, grid_cell, 13)
-PARAM3(vec3, grid_inv_cell, 14)      // 1 / grid_cell(), per axis
-PARAM3(uvec3, grid_resolution, 15)   // root cells per axis
+PARAM3(vec3, grid_min, 10)
+PARAM3(vec3, grid_max, 11)
+PARAM3(vec3, grid_cell, 12)
+PARAM3(vec3, grid_inv_cell, 13)      // 1 / grid_cell(), per axis
+PARAM3(uvec3, grid_resolution, 14)   // root cells per axis
 
 // A thin lens (kernel/camera.glsl, HAS_LENS).
-PARAM(float, lens_scale, 16, x)      // the lens radius over a pixel's width on the plane at distance 1
-PARAM(float, focus_distance, 16, y)  // along the view axis, to the plane in focus
+PARAM(float, lens_scale, 15, x)      // the lens radius over a pixel's width on the plane at distance 1
+PARAM(float, focus_distance, 15, y)  // along the view axis, to the plane in focus
 
 // The environment image (kernel/environment.glsl, HAS_ENVIRONMENT_MAP).
-PARAM(uint, environment_first_word, 16, z)  // where its header starts in table_words
-PARAM(float, environment_choice, 16, w)     // the chance next-event estimation picks it (0: never)
+PARAM(uint, environment_first_word, 15, z)  // where its header starts in table_words
+PARAM(float, environment_choice, 15, w)     // the chance next-event estimation picks it (0: never)
+
+// Each kind of primitive's count (shapes/kinds.glsl), <name>_count(): four a texel
+// from PARAM_KIND_TEXEL on (layout.glsl), kind ID in lane ID % 4 (at most 7 kinds,
+// constants.glsl).
+#define KIND_LANE_0 x
+#define KIND_LANE_1 y
+#define KIND_LANE_2 z
+#define KIND_LANE_3 w
+#define KIND_LANE_4 x
+#define KIND_LANE_5 y
+#define KIND_LANE_6 z
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
+    PARAM(uint, name##_count, (PARAM_KIND_TEXEL + ID / 4), KIND_LANE_##ID)
+#include "shapes/kinds.glsl"
+#undef KIND_LANE_0
+#undef KIND_LANE_1
+#undef KIND_LANE_2
+#undef KIND_LANE_3
+#undef KIND_LANE_4
+#undef KIND_LANE_5
+#undef KIND_LANE_6
 
 #undef PARAM3
 #undef PARAM

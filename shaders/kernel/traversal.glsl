@@ -53,16 +53,16 @@ bool trace_done(bool any_hit, Nearest nearest) {
 // loop reached with the budget spent tests one primitive and stops.
 bool test_cell(Ray ray, uint i, uint end, bool any_hit, bool loose, INOUT(Nearest) nearest) {
     uint ref = load_ref(i);
-#define PRIMITIVE_KIND(REF, name, FEATURE, GRID, LOOSE, PARTS)                                       \
-    if ((loose ? LOOSE : GRID) && (ref >> REF_KIND_SHIFT) == REF) {                                 \
-        loop_enter();                                                                               \
-        do {                                                                                        \
-            test_##name(ray, ref & REF_INDEX_MASK, any_hit, nearest);                               \
-            ref = next_ref(i, end);                                                                 \
-        } while (loop_tick() && (ref >> REF_KIND_SHIFT) == REF && !blocker_found(any_hit, nearest)); \
-        if (trace_done(any_hit, nearest)) {                                                         \
-            return false;                                                                           \
-        }                                                                                           \
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS)                                           \
+    if ((loose ? LOOSE_##NAMES : GRID_##NAMES) && (ref >> REF_KIND_SHIFT) == REF_##NAME) {                  \
+        loop_enter();                                                                                       \
+        do {                                                                                                \
+            test_##name(ray, ref & REF_INDEX_MASK, any_hit, nearest);                                       \
+            ref = next_ref(i, end);                                                                         \
+        } while (loop_tick() && (ref >> REF_KIND_SHIFT) == REF_##NAME && !blocker_found(any_hit, nearest)); \
+        if (trace_done(any_hit, nearest)) {                                                                 \
+            return false;                                                                                   \
+        }                                                                                                   \
     }
 #include "shapes/kinds.glsl"
     return true;
@@ -133,15 +133,15 @@ void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
             return;
         }
     }
-#define PRIMITIVE_KIND(REF, name, FEATURE, GRID, LOOSE, PARTS)                                            \
-    if (FEATURE && tested_in_place(REF, any_hit)) {                                                      \
-        loop_enter();                                                                                    \
-        for (uint i = 0u; i < name##_count() && loop_tick() && !blocker_found(any_hit, nearest); ++i) {  \
-            test_##name(ray, i, any_hit, nearest);                                                       \
-        }                                                                                                \
-        if (trace_done(any_hit, nearest)) {                                                              \
-            return;                                                                                      \
-        }                                                                                                \
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS)                                       \
+    if (HAS_##NAMES && tested_in_place(REF_##NAME, any_hit)) {                                          \
+        loop_enter();                                                                                   \
+        for (uint i = 0u; i < name##_count() && loop_tick() && !blocker_found(any_hit, nearest); ++i) { \
+            test_##name(ray, i, any_hit, nearest);                                                      \
+        }                                                                                               \
+        if (trace_done(any_hit, nearest)) {                                                             \
+            return;                                                                                     \
+        }                                                                                               \
     }
 #include "shapes/kinds.glsl"
 }
@@ -149,7 +149,7 @@ void brute_force_trace(Ray ray, bool any_hit, INOUT(Nearest) nearest) {
 // Whether the grid may have loose primitives, of any kind.
 bool may_have_loose() {
     bool any = false;
-#define PRIMITIVE_KIND(REF, name, FEATURE, GRID, LOOSE, PARTS) any = any || LOOSE;
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) any = any || LOOSE_##NAMES;
 #include "shapes/kinds.glsl"
     return any;
 }
@@ -182,9 +182,9 @@ Hit make_hit(Ray ray, Nearest nearest) {
     }
     uint index = nearest.ref & REF_INDEX_MASK;
     uint kind = nearest.ref >> REF_KIND_SHIFT;
-#define PRIMITIVE_KIND(REF, name, FEATURE, GRID, LOOSE, PARTS) \
-    if (FEATURE && kind == REF) {                              \
-        return name##_hit(ray, index, nearest);                \
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
+    if (HAS_##NAMES && kind == REF_##NAME) {                      \
+        return name##_hit(ray, index, nearest);                   \
     }
 #include "shapes/kinds.glsl"
     return no_hit();
@@ -197,9 +197,9 @@ Hit closest_hit(Ray ray, float t_max) {
     // What was hit, which part of it (a cylinder's side or cap), and from which side:
     // near wall or far wall, outside or in, are decisions too.
     note_decision(nearest.ref);
-#define PRIMITIVE_KIND(REF, name, FEATURE, GRID, LOOSE, PARTS)         \
-    if (FEATURE && PARTS && (nearest.ref >> REF_KIND_SHIFT) == REF) { \
-        note_decision(nearest.part);                                   \
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS)                \
+    if (HAS_##NAMES && PARTS && (nearest.ref >> REF_KIND_SHIFT) == REF_##NAME) { \
+        note_decision(nearest.part);                                             \
     }
 #include "shapes/kinds.glsl"
     note_decision(hit.front_face ? DECISION_FRONT_FACE : DECISION_BACK_FACE);

@@ -20,6 +20,7 @@
 
 #include "accel/box_overlap.hpp"
 #include "accel/grid.hpp"
+#include "scene/scene.hpp"  // each kind's bounds()
 
 namespace {
 

@@ -1,9 +1,26 @@
-// The cylinder (Cylinder, layout.glsl): the side around the segment from base to top,
+// The cylinder (Cylinder, its record below): the side around the segment from base to top,
 // and with `capped` the discs closing its ends; its outside is the front face. Its
 // intersection, which reports the part hit, its test for the traversal, its hit
 // record, and the points drawn on it when it emits, uniformly by area on one part
 // (the host lists each part as an emitter of its own). The contract this file
 // fulfils is in shapes/kinds.glsl.
+
+#ifdef SHAPE_RECORDS  // the record, which layout.glsl includes
+
+// A cylinder around the segment from `base` to `top`: the side, and with capped != 0
+// the two end discs. The ends are stored rather than an axis and a length, so the host
+// bounds it from the very floats the kernel intersects, and the kernel derives the unit
+// axis per test (one square root). The outside is the front face. meta.x = material
+// index.
+struct Cylinder {
+    vec4 base_radius;  // xyz centre of the base disc, w radius
+    vec4 top_capped;   // xyz centre of the top disc, w = 1 capped, 0 open
+    uvec4 meta;
+};
+#define Cylinder_FROM_TEXELS(b, i) \
+    Cylinder(fetch_vec4(b, 3u * (i)), fetch_vec4(b, 3u * (i) + 1u), fetch_texel(b, 3u * (i) + 2u))
+
+#else  // the rest, which all.glsl includes
 
 // Result of a ray-cylinder test: t (INFINITY_T for a miss) and the part hit
 // (CYLINDER_SIDE, CYLINDER_BASE_CAP or CYLINDER_TOP_CAP, constants.glsl).
@@ -160,3 +177,5 @@ bool cylinder_light_sample(vec3, uint, vec2, INOUT(LightSample)) {
 bool cylinder_light_pdf(vec3, uint, float, INOUT(float)) {
     return false;
 }
+
+#endif  // SHAPE_RECORDS

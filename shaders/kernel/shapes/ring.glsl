@@ -1,7 +1,22 @@
-// The ring (Ring, layout.glsl): an annulus around a centre, in the plane across its
+// The ring (Ring, its record below): an annulus around a centre, in the plane across its
 // normal, the front face on the normal's side. Its intersection, its test for the
 // traversal, its hit record, and the points drawn on it when it emits, uniformly by
 // area. The contract this file fulfils is in shapes/kinds.glsl.
+
+#ifdef SHAPE_RECORDS  // the record, which layout.glsl includes
+
+// A ring (annulus) in the plane through `center` perpendicular to `normal`: the points
+// whose distance from the centre lies in [inner, outer] (inner 0: a disc). The normal
+// is unit length (the loader normalizes it) and marks the front face. meta.x =
+// material index.
+struct Ring {
+    vec4 center_inner;  // xyz centre, w inner radius
+    vec4 normal_outer;  // xyz unit normal (front side), w outer radius
+    uvec4 meta;
+};
+#define Ring_FROM_TEXELS(b, i) Ring(fetch_vec4(b, 3u * (i)), fetch_vec4(b, 3u * (i) + 1u), fetch_texel(b, 3u * (i) + 2u))
+
+#else  // the rest, which all.glsl includes
 
 // Nearest t in (t_min, t_max) where the ray meets the ring (annulus) around `center`
 // in the plane perpendicular to `normal`, or INFINITY_T. Both faces are hit; a ray
@@ -73,3 +88,5 @@ bool ring_light_sample(vec3, uint, vec2, INOUT(LightSample)) {
 bool ring_light_pdf(vec3, uint, float, INOUT(float)) {
     return false;
 }
+
+#endif  // SHAPE_RECORDS

@@ -1,8 +1,19 @@
-// The sphere (Sphere, layout.glsl): a centre and a radius. Its intersection, in a
+// The sphere (Sphere, its record below): a centre and a radius. Its intersection, in a
 // rounded form and an error-free one; its tests for the traversal; its hit record;
 // and the points drawn on it when it emits, through the cone it fills as seen from
 // the point lit (solid_angle.glsl) or uniformly by area. The contract this file
 // fulfils is in shapes/kinds.glsl.
+
+#ifdef SHAPE_RECORDS  // the record, which layout.glsl includes
+
+// A sphere: centre in xyz, radius in w; meta.x = material index.
+struct Sphere {
+    vec4 center_radius;
+    uvec4 meta;
+};
+#define Sphere_FROM_TEXELS(b, i) Sphere(fetch_vec4(b, 2u * (i)), fetch_texel(b, 2u * (i) + 1u))
+
+#else  // the rest, which all.glsl includes
 
 // ---------------------------------------------------------------- intersection
 
@@ -279,3 +290,5 @@ bool sphere_light_pdf(vec3 o, uint index, float area_density, INOUT(float) pdf) 
     pdf = area_density * sphere_area(radius) / omega;
     return true;
 }
+
+#endif  // SHAPE_RECORDS

@@ -1,9 +1,36 @@
-// The triangle (Triangle, layout.glsl), and the parallelogram that shares its record
+// The triangle (Triangle, its record below), and the parallelogram that shares its record
 // (meta.z != SHAPE_TRIANGLE, decision 0022): the watertight intersection, the test
 // for the traversal, the hit record with its shading normal, terminator lift and
 // texture coordinates, and the points drawn on it when it emits: through a
 // rectangle's spherical rectangle (solid_angle.glsl) where that pays, else uniformly
 // by area. The contract this file fulfils is in shapes/kinds.glsl.
+
+#ifdef SHAPE_RECORDS  // the record, which layout.glsl includes
+
+// A triangle stores its own vertices (no index indirection: one fetch per primitive).
+// Vertex normals are used only when meta.y != 0 (the scene gave normals); the front
+// face is the side of cross(p1 - p0, p2 - p0). meta.x = material index; meta.z =
+// SHAPE_TRIANGLE, or SHAPE_PARALLELOGRAM / SHAPE_RECTANGLE for the parallelogram p0,
+// p1, p2, p0 + p2 - p1 (constants.glsl), which has no vertex normals. The texture
+// coordinates of p0, p1, p2 ride in the w lanes: (p0.w, p1.w), (p2.w, n0.w), (n1.w, n2.w).
+// meta.w: with an emission texture, the float bits of the triangle's emitter weight
+// (shapes/triangle.glsl, triangle_emitter_weight): the mean textured emission over its
+// footprint in the texture, 0 where the footprint is black; 0 otherwise.
+struct Triangle {
+    vec4 p0;
+    vec4 p1;
+    vec4 p2;
+    vec4 n0;
+    vec4 n1;
+    vec4 n2;
+    uvec4 meta;
+};
+#define Triangle_FROM_TEXELS(b, i)                                                                      \
+    Triangle(fetch_vec4(b, 7u * (i)), fetch_vec4(b, 7u * (i) + 1u), fetch_vec4(b, 7u * (i) + 2u),        \
+             fetch_vec4(b, 7u * (i) + 3u), fetch_vec4(b, 7u * (i) + 4u), fetch_vec4(b, 7u * (i) + 5u),   \
+             fetch_texel(b, 7u * (i) + 6u))
+
+#else  // the rest, which all.glsl includes
 
 // ---------------------------------------------------------------- intersection
 
@@ -362,3 +389,5 @@ bool triangle_light_pdf(vec3 o, uint index, float area_density, INOUT(float) pdf
     pdf = area_density * rect_area(q) / sr.solid_angle;
     return true;
 }
+
+#endif  // SHAPE_RECORDS
