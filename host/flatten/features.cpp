@@ -18,6 +18,22 @@ constexpr std::array<const char*, kFeatureCount> kFeatureIds = [] {
 }();
 
 
+// The order in which the logs list features: the kinds of primitive the scene holds
+// (HAS_SPHERES, ...) first, then the others by id.
+constexpr std::array<std::uint32_t, kFeatureCount> kDisplayOrder = [] {
+    std::array<std::uint32_t, kFeatureCount> order{};
+    std::array<bool, kFeatureCount> listed{};
+    std::uint32_t n = 0;
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
+    order[n++] = std::uint32_t(Feature::HAS_##NAMES);             \
+    listed[std::uint32_t(Feature::HAS_##NAMES)] = true;
+#include "kernel/shapes/kinds.glsl"
+    for (std::uint32_t id = 0; id < kFeatureCount; ++id) {
+        if (!listed[id]) order[n++] = id;
+    }
+    return order;
+}();
+
 }  // namespace
 
 std::string feature_name(std::uint32_t id) {
@@ -32,7 +48,7 @@ std::string feature_name(std::uint32_t id) {
 
 std::vector<std::string> FeatureSet::kept() const {
     std::vector<std::string> names;
-    for (std::uint32_t id = 0; id < kFeatureCount; ++id) {
+    for (std::uint32_t id : kDisplayOrder) {
         if (on_[id]) names.push_back(feature_name(id));
     }
     return names;
@@ -40,7 +56,7 @@ std::vector<std::string> FeatureSet::kept() const {
 
 std::vector<std::string> FeatureSet::left_out() const {
     std::vector<std::string> names;
-    for (std::uint32_t id = 0; id < kFeatureCount; ++id) {
+    for (std::uint32_t id : kDisplayOrder) {
         if (!on_[id]) names.push_back(feature_name(id));
     }
     return names;

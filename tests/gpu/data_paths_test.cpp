@@ -46,17 +46,19 @@ TEST(ScenePack, ArraysFollowOneAnotherAndTheBasesSayWhere) {
     const std::uint32_t end = triangles + kTriangle;
     const std::uint32_t words = (end + 15) / 16 * 16;
     ASSERT_LT(end, words) << "the example needs padding before the words";
-    // By id (kernel/arrays.glsl): materials, spheres, triangles, rings, ...
-    EXPECT_EQ(pack.bases[0], 0u);
-    EXPECT_EQ(pack.bases[1], spheres);
-    EXPECT_EQ(pack.bases[2], triangles);
-    EXPECT_EQ(pack.bases[3], end);       // empty arrays take no room
-    EXPECT_EQ(pack.bases[6], end);
+    // In the order of kernel/arrays.glsl's lines (materials, spheres, triangles, rings,
+    // ...), each base found by its array's id.
+    auto base = [&](ArrayId id) { return pack.bases[static_cast<std::uint32_t>(id)]; };
+    EXPECT_EQ(base(ArrayId::materials), 0u);
+    EXPECT_EQ(base(ArrayId::spheres), spheres);
+    EXPECT_EQ(base(ArrayId::triangles), triangles);
+    EXPECT_EQ(base(ArrayId::rings), end);       // empty arrays take no room
+    EXPECT_EQ(base(ArrayId::emitters), end);
     // The uint arrays from the next multiple of 16 texels, counted in words.
     EXPECT_EQ(pack.words_start, words);
     EXPECT_EQ(pack.bases[gpu::kSceneArrays], words);
-    EXPECT_EQ(pack.bases[8], 0u);        // grid_nodes, in words
-    EXPECT_EQ(pack.bases[9], 3u);        // grid_refs
+    EXPECT_EQ(base(ArrayId::grid_nodes), 0u);   // in words
+    EXPECT_EQ(base(ArrayId::grid_refs), 3u);
     EXPECT_EQ(pack.word_count, 8u);
     EXPECT_EQ(pack.texel_count, words + 2);
     // The element is where its base says, bit for bit.
