@@ -2,6 +2,7 @@
 
 #include "flatten/emission_footprint.hpp"
 #include "flatten/environment_table.hpp"
+#include "flatten/ggx_albedo.hpp"
 #include "scene/shapes/support.hpp"
 #include "scene/texture_image.hpp"
 #include "scene/vec_math.hpp"
@@ -155,6 +156,14 @@ void add_environment(const Scene& scene, FlatScene& g) {
     const bool nee = g.features.has(Feature::HAS_GLOBAL) && r.estimator == Estimator::Path && r.nee;
     const float choice = !(nee && sampled) ? 0.0f : g.features.has(Feature::HAS_AREA_LIGHTS) ? 0.5f : 1.0f;
     kernel::set_environment_choice(g.params, choice);
+}
+
+// The rough lobe's albedo tables, which its multiple-scattering lobe reads
+// (kernel/lobes/ggx_multiple.glsl), after what table_words holds already.
+void add_ggx_tables(FlatScene& g) {
+    const std::vector<std::uint32_t>& table = ggx_albedo_table();
+    kernel::set_ggx_table_first_word(g.params, static_cast<std::uint32_t>(g.table_words.size()));
+    g.table_words.insert(g.table_words.end(), table.begin(), table.end());
 }
 
 // A light as the kernel reads it (kernel/layout.glsl, Light): a directional light as
@@ -460,6 +469,7 @@ FlatScene flatten_scene(const Scene& scene, const AccelPolicy& policy) {
     // primitive emits; the kernel's search must never see an empty list.
     if (g.emitters.empty()) g.features.set(Feature::HAS_AREA_LIGHTS, false);
     if (g.features.has(Feature::HAS_ENVIRONMENT_MAP)) add_environment(scene, g);
+    if (g.features.has(Feature::HAS_MICROFACET)) add_ggx_tables(g);
     // Next-event estimation, once it is known what it can sample: emitters, or the
     // environment with a nonzero chance.
     g.features.set(Feature::HAS_NEXT_EVENT,

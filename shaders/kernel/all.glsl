@@ -35,6 +35,7 @@
 #include "lobes/diffuse.glsl"
 #include "lobes/glossy.glsl"
 #include "lobes/ggx.glsl"
+#include "lobes/ggx_multiple.glsl"
 #include "bsdf.glsl"
 #include "global.glsl"
 #include "sample.glsl"

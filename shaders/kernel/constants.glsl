@@ -97,6 +97,8 @@ const uint SHAPE_RECTANGLE = 2u;
 // this, so that a roughness of 0 (a polished metal) stays a lobe that next-event
 // estimation and MIS can weigh. Its peak, 1 / (pi alpha^2), is far inside float's range.
 const float MIN_GGX_ALPHA = 0.001f;
+// Knots per axis of the rough lobe's albedo tables (lobes/ggx_multiple.glsl).
+const uint GGX_TABLE_SIZE = 32u;
 
 // How a texture continues beyond [0, 1] (Texture.info.w, two bits per axis).
 const uint WRAP_REPEAT = 0u;

@@ -73,7 +73,7 @@ struct Emitter {
 // Per-render constants: PARAM_TEXELS texels, each value named in kernel/params.glsl
 // and read through its accessor (camera_eye(), max_depth(), ...), never by lane.
 // The kinds' counts take the last texels (params.glsl), as many as PRIMITIVE_KINDS need.
-const uint PARAM_KIND_TEXEL = 16u;
+const uint PARAM_KIND_TEXEL = 17u;
 const uint PARAM_TEXELS = PARAM_KIND_TEXEL + (PRIMITIVE_KINDS + 3u) / 4u;
 struct Params {
     uvec4 texels[PARAM_TEXELS];

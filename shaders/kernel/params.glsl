@@ -60,6 +60,9 @@ PARAM(float, focus_distance, 15, y)  // along the view axis, to the plane in foc
 PARAM(uint, environment_first_word, 15, z)  // where its header starts in table_words
 PARAM(float, environment_choice, 15, w)     // the chance next-event estimation picks it (0: never)
 
+// The rough lobe's albedo tables (kernel/lobes/ggx_multiple.glsl, HAS_MICROFACET).
+PARAM(uint, ggx_table_first_word, 16, x)    // where they start in table_words
+
 // Each kind of primitive's count (shapes/kinds.glsl), <name>_count(): four a texel
 // from PARAM_KIND_TEXEL on (layout.glsl), kind ID in lane ID % 4 (at most 7 kinds,
 // constants.glsl).
