@@ -1,9 +1,9 @@
 #pragma once
-// The tables of the rough lobe's single-scattering albedo that its multiple-scattering
-// lobe reads (shaders/kernel/lobes/ggx_multiple.glsl): E(mu, alpha) at
-// GGX_TABLE_SIZE^2 knots, mu fastest, then E_avg(alpha) at GGX_TABLE_SIZE knots, as
-// float bits, computed from the kernel's own sampling and masking functions
-// (ggx.glsl) in the C++ reference.
+// The tables of the rough lobe's single-scattering albedos that the lobes beside it
+// read (shaders/kernel/lobes/ggx_albedo.glsl): for E(mu, alpha), then for E_s(mu,
+// alpha), GGX_TABLE_SIZE^2 knots, mu fastest, then the means over mu at
+// GGX_TABLE_SIZE knots of alpha, as float bits, computed from the kernel's own
+// sampling, masking and Fresnel functions (ggx.glsl, fresnel.glsl) in the C++ reference.
 #include <cstdint>
 #include <vector>
 

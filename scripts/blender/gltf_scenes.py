@@ -8,7 +8,8 @@
 #
 # Materials are Principled BSDFs set only through what glTF carries (base colour,
 # metallic, roughness, emission; Specular stays 0.5, glTF's 4% reflectance), and
-# Cycles renders them as they are, with single-scattering GGX (vkrt's model; the
+# Cycles renders them as they are, with its multiple-scattering GGX, which vkrt's
+# compensated GGX stands for (docs/decisions/0040-ggx-multiple-scattering.md; the
 # diffuse lobes still differ, docs/decisions/0029-metallic-roughness.md); the
 # world is the uniform grey of radiance 0.05 that vkrt puts behind a glTF file
 # with lights of its own.
@@ -40,7 +41,7 @@ def principled(name, rgb, metallic=0.0, roughness=1.0, emission=None, strength=0
     m = bpy.data.materials.new(name)
     m.use_nodes = True
     bsdf = m.node_tree.nodes["Principled BSDF"]
-    bsdf.distribution = "GGX"
+    bsdf.distribution = "MULTI_GGX"
     bsdf.inputs["Base Color"].default_value = (*rgb, 1.0)
     bsdf.inputs["Metallic"].default_value = metallic
     bsdf.inputs["Roughness"].default_value = roughness

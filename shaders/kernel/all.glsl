@@ -29,6 +29,7 @@
 #include "area_lights.glsl"
 #include "shade.glsl"
 #include "lobes/fresnel.glsl"
+#include "lobes/ggx_albedo.glsl"
 #include "lobes/mirror.glsl"
 #include "lobes/glass.glsl"
 #include "sample_result.glsl"

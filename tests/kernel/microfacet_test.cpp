@@ -279,9 +279,10 @@ TEST(MetallicRoughness, IsReciprocal) {
 }
 
 // The sum of the diffuse and rough lobes of a white dielectric and of a white metal
-// reflects at most all the light, from every direction, by quadrature of the
-// kernel's own evaluation; the white metal, its single and multiple scattering
-// together, nearly all of it.
+// reflects at most all the light, and nearly all of it, from every direction, by
+// quadrature of the kernel's own evaluation: the metal by its single and multiple
+// scattering together, the dielectric by the diffuse lobe that takes what the
+// rough lobe leaves.
 TEST(MetallicRoughness, ConservesEnergy) {
     Kernel k = kernel_with_tables();
     for (float metallic : {0.0f, 1.0f}) {
@@ -294,13 +295,8 @@ TEST(MetallicRoughness, ConservesEnergy) {
                 std::printf("metallic %.0f roughness %.1f cos_o %.1f: %.4f\n", metallic, roughness, co, reflected);
                 SCOPED_TRACE(testing::Message() << "metallic " << metallic << " roughness " << roughness << " cos_o " << co);
                 EXPECT_LE(reflected, 1.0 + 2e-3);
-                if (metallic == 1.0f) {
-                    EXPECT_GE(reflected, 0.98);
-                } else if (co == 1.0) {
-                    // Seen from above, a white dielectric reflects nearly all: the
-                    // diffuse lobe's 1 - 0.04 and most of the rough lobe's 0.04.
-                    EXPECT_GT(reflected, 0.97);
-                }
+                // White under a rough coat, or a white metal: nearly all.
+                EXPECT_GE(reflected, metallic == 1.0f ? 0.98 : 0.95);
             }
         }
     }
@@ -343,7 +339,7 @@ TEST(MetallicRoughness, MixtureSamplingMatchesItsDensity) {
 TEST(GgxTables, HoldTheAlbedoAtTheirKnots) {
     const std::vector<std::uint32_t>& table = vkrt::ggx_albedo_table();
     constexpr int n = int(vkrt::kernel::GGX_TABLE_SIZE);
-    ASSERT_EQ(table.size(), std::size_t(n * n + n));
+    ASSERT_EQ(table.size(), std::size_t(2 * (n * n + n)));  // E, then E_s
     for (int j : {1, 6, 15, 31}) {
         for (int i : {3, 10, 22, 31}) {
             const double r = double(j) / (n - 1), mu = double(i * i) / ((n - 1) * (n - 1));

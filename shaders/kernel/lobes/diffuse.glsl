@@ -2,49 +2,59 @@
 // rule (hemisphere.glsl).
 //
 // Under a rough lobe (a metallic-roughness material) it gets the light the rough lobe
-// leaves, by the coupling of Shirley, Hu, Smits and Lafortune ("A Practitioners'
-// Assessment of Light Reflection Models", 1997), for the rough lobe's reflectance f0
-// at normal incidence:
+// leaves, as Kulla and Conty ("Revisiting Physically Based Shading at Imageworks",
+// 2017) layer a diffuse base under a specular coat. With R(mu) what the rough lobe
+// reflects from cos(theta) = mu, single and multiple scattering together, and R_avg
+// its mean over the cosine-weighted hemisphere (ggx_albedo.glsl):
 //
-//   diffuse * (1 - f0) * 21 / (20 pi) * (1 - (1 - cos_i)^5) (1 - (1 - cos_o)^5)
+//   diffuse (1 - R(mu_o)) (1 - R(mu_i)) / (pi (1 - R_avg))
 //
-// symmetric in wi and wo, and leaving from wo exactly the light a lobe of Schlick's
-// reflectance f0 + (1 - f0)(1 - cos_o)^5 does not take; the rough lobe reflects no
-// more than that, so the sum stays at most 1 (glTF's reference mix, (1 - F(wo.h))
-// diffuse / pi, exceeds 1 near grazing angles).
+// symmetric in wi and wo, and reflecting from wo diffuse (1 - R(mu_o)): a white base
+// under any rough coat reflects all the light, and no base more.
 
 struct DiffuseLobe {
     vec3 albedo;    // kd * diffuse
     bool coupled;   // under the material's rough lobe
     vec3 f0;        // that lobe's reflectance at normal incidence (0 when not coupled)
+    float alpha;    // its width (0 when not coupled)
+    vec3 scale;     // the value but for the (1 - R) factors: albedo / (pi (1 - R_avg)), or albedo / pi
     float weight;   // its albedo seen from wo: the selection weight
 };
 
-// The lobe of material m seen from cos(theta_o) = cos_o. Coupled, its albedo seen
-// from wo is the weight (the coupling's constant makes the cos_i factor integrate
-// to 1); from below it is 0.
+// The lobe of material m seen from cos(theta_o) = cos_o; from below a coupled one
+// weighs 0.
 DiffuseLobe diffuse_lobe(Material m, float cos_o) {
     DiffuseLobe l;
     l.albedo = m.diffuse * m.kd;
     l.coupled = HAS_MICROFACET && m.ggx_alpha > 0.0f;
     l.f0 = l.coupled ? m.ggx_f0 : vec3(0.0f);
+    l.alpha = l.coupled ? m.ggx_alpha : 0.0f;
+    l.scale = l.albedo * (1.0f / PI);
     l.weight = mean3(l.albedo);
     if (l.coupled) {
-        l.weight = cos_o > 0.0f ? mean3(l.albedo * (vec3(1.0f) - l.f0)) * (1.0f - schlick_scalar(cos_o)) : 0.0f;
+        // R_avg < 1 unless f0 = 1, which only a metal without a diffuse lobe has.
+        vec3 left = vec3(1.0f) - ggx_mean_reflectance(l.f0, l.alpha);
+        l.scale = vec3(left.x > 0.0f ? l.scale.x / left.x : 0.0f, left.y > 0.0f ? l.scale.y / left.y : 0.0f,
+                       left.z > 0.0f ? l.scale.z / left.z : 0.0f);
+        l.weight = cos_o > 0.0f ? mean3(l.albedo * (vec3(1.0f) - ggx_reflectance(l.f0, cos_o, l.alpha))) : 0.0f;
     }
     return l;
 }
 
-// Evaluated whatever its weight: a coupled lobe seen from below still has a value.
+// Evaluated whatever its weight (an uncoupled lobe has a value from below too).
 bool diffuse_present(DiffuseLobe) {
     return true;
 }
 
 vec3 diffuse_eval(DiffuseLobe l, vec3 n, vec3 wo, vec3 wi) {
-    vec3 f = l.albedo * (1.0f / PI);
+    vec3 f = l.scale;
     if (l.coupled) {
-        float coupling = (1.0f - schlick_scalar(dot(n, wi))) * (1.0f - schlick_scalar(dot(n, wo)));
-        f *= (vec3(1.0f) - l.f0) * (21.0f / 20.0f * coupling);
+        float co = dot(n, wo);
+        float ci = dot(n, wi);
+        if (!(co > 0.0f && ci > 0.0f)) {
+            return vec3(0.0f);
+        }
+        f *= (vec3(1.0f) - ggx_reflectance(l.f0, co, l.alpha)) * (vec3(1.0f) - ggx_reflectance(l.f0, ci, l.alpha));
     }
     return f;
 }

@@ -6,51 +6,13 @@
 //
 // E(mu) is the single-scattering lobe's albedo at cos(theta) = mu with a Fresnel of 1,
 // and E_avg = 2 int_0^1 E(mu) mu dmu its mean over the cosine-weighted hemisphere, both
-// for the material's alpha: tables the host builds from ggx.glsl's own functions
-// (host/flatten/ggx_albedo.cpp) and the kernel interpolates. Seen from wo, f_ms
-// reflects F_ms (1 - E(mu_o)): with F = 1 exactly what the single-scattering lobe
-// loses, so a white rough metal keeps all the light. F_ms is the Fresnel of the
-// light that bounces on: F_avg^2 E_avg / (1 - F_avg (1 - E_avg)), F_avg the mean of
-// Schlick's Fresnel over the cosine-weighted hemisphere, f0 + (1 - f0) / 21.
+// for the material's alpha (ggx_albedo.glsl). Seen from wo, f_ms reflects
+// F_ms (1 - E(mu_o)): with F = 1 exactly what the single-scattering lobe loses, so a
+// white rough metal keeps all the light. F_ms is the Fresnel of the light that
+// bounces on (ggx_multiple_fresnel).
 //
 // Drawn from the cosine-weighted hemisphere, whatever the render's hemisphere rule:
 // f_ms is smooth and its cos(theta_i) factor dominates.
-
-// The tables in table_words from ggx_table_first_word(): GGX_TABLE_SIZE^2 values of
-// E, mu fastest, then GGX_TABLE_SIZE values of E_avg, each at the knots
-// mu = (i / (GGX_TABLE_SIZE - 1))^2 and r = j / (GGX_TABLE_SIZE - 1), alpha = r^2:
-// linear in sqrt(mu) and in r, so that the knots crowd where E changes fastest,
-// near grazing and for smooth lobes.
-float ggx_table_value(uint i) {
-    return uintBitsToFloat(load_table_word(ggx_table_first_word() + i));
-}
-
-// Linear interpolation between knots of a table axis for x in [0, 1]: the lower knot
-// and the weight of the upper one.
-uint ggx_table_knot(float x, INOUT(float) t) {
-    float s = clamp(x, 0.0f, 1.0f) * float(GGX_TABLE_SIZE - 1u);
-    uint k = min(uint(s), GGX_TABLE_SIZE - 2u);
-    t = s - float(k);
-    return k;
-}
-
-float ggx_albedo(float mu, float alpha) {
-    float tm = 0.0f;
-    float tr = 0.0f;
-    uint i = ggx_table_knot(sqrt(max(mu, 0.0f)), tm);
-    uint j = ggx_table_knot(sqrt(alpha), tr);
-    uint n = GGX_TABLE_SIZE;
-    float low = mix(ggx_table_value(j * n + i), ggx_table_value(j * n + i + 1u), tm);
-    float high = mix(ggx_table_value((j + 1u) * n + i), ggx_table_value((j + 1u) * n + i + 1u), tm);
-    return mix(low, high, tr);
-}
-
-float ggx_mean_albedo(float alpha) {
-    float tr = 0.0f;
-    uint j = ggx_table_knot(sqrt(alpha), tr);
-    uint base = GGX_TABLE_SIZE * GGX_TABLE_SIZE;
-    return mix(ggx_table_value(base + j), ggx_table_value(base + j + 1u), tr);
-}
 
 // Members in an order no other lobe record has (smooth_lobes.glsl says why).
 struct GgxMultipleLobe {
@@ -66,8 +28,7 @@ GgxMultipleLobe ggx_multiple_lobe(Material m, float cos_o) {
     l.weight = 0.0f;
     if (l.alpha > 0.0f && cos_o > 0.0f) {
         float e_avg = ggx_mean_albedo(l.alpha);
-        vec3 f_avg = m.ggx_f0 + (vec3(1.0f) - m.ggx_f0) * (1.0f / 21.0f);
-        vec3 f_ms = f_avg * f_avg * e_avg / (vec3(1.0f) - f_avg * (1.0f - e_avg));
+        vec3 f_ms = ggx_multiple_fresnel(m.ggx_f0, e_avg);
         // E_avg < 1 where E(mu) < 1 somewhere, which any alpha > 0 has; the guard keeps
         // a table rounded to 1 from dividing by zero.
         l.scale = e_avg < 1.0f ? f_ms * (1.0f / (PI * (1.0f - e_avg))) : vec3(0.0f);
