@@ -1,6 +1,7 @@
 #include "image/png_encode.hpp"
 
 #include <array>
+#include <span>
 #include <string_view>
 
 #include <zlib.h>
@@ -22,18 +23,18 @@ void put_chunk(std::vector<std::uint8_t>& out, std::string_view type, const std:
     put_u32(out, std::uint32_t(crc));
 }
 
-}  // namespace
-
-std::vector<std::uint8_t> encode_png(const Image& image, const Display& display) {
-    const std::vector<std::uint8_t> rgb = to_srgb8(image, display);
-    const std::size_t row = std::size_t(image.width) * 3;
+// The PNG of 8-bit scanlines of `channels` bytes a pixel: 3 (RGB) or 4 (RGBA).
+std::vector<std::uint8_t> encode_scanlines(std::uint32_t width, std::uint32_t height, int channels,
+                                           std::span<const std::uint8_t> pixels) {
+    const std::size_t row = std::size_t(width) * channels;
+    if (pixels.size() != row * height) throw ImageError("encoding a PNG: the pixels do not fill the image");
     // Each scanline starts with its filter type; 0 (none) keeps encoding cheap.
     std::vector<std::uint8_t> scanlines;
-    scanlines.reserve((row + 1) * image.height);
-    for (std::uint32_t y = 0; y < image.height; ++y) {
+    scanlines.reserve((row + 1) * height);
+    for (std::uint32_t y = 0; y < height; ++y) {
         scanlines.push_back(0);
-        scanlines.insert(scanlines.end(), rgb.begin() + std::ptrdiff_t(y * row),
-                         rgb.begin() + std::ptrdiff_t((y + 1) * row));
+        scanlines.insert(scanlines.end(), pixels.begin() + std::ptrdiff_t(y * row),
+                         pixels.begin() + std::ptrdiff_t((y + 1) * row));
     }
     uLongf packed_size = compressBound(uLong(scanlines.size()));
     std::vector<std::uint8_t> packed(packed_size);
@@ -43,9 +44,10 @@ std::vector<std::uint8_t> encode_png(const Image& image, const Display& display)
     packed.resize(packed_size);
 
     std::vector<std::uint8_t> header;
-    put_u32(header, image.width);
-    put_u32(header, image.height);
-    header.insert(header.end(), {8, 2, 0, 0, 0});  // 8 bits, RGB, deflate, adaptive filters, no interlace
+    put_u32(header, width);
+    put_u32(header, height);
+    // 8 bits, colour type 2 (RGB) or 6 (RGBA), deflate, adaptive filters, no interlace
+    header.insert(header.end(), {8, std::uint8_t(channels == 4 ? 6 : 2), 0, 0, 0});
 
     constexpr std::array<std::uint8_t, 8> kSignature{137, 'P', 'N', 'G', '\r', '\n', 26, '\n'};
     std::vector<std::uint8_t> png(kSignature.begin(), kSignature.end());
@@ -53,6 +55,16 @@ std::vector<std::uint8_t> encode_png(const Image& image, const Display& display)
     put_chunk(png, "IDAT", packed);
     put_chunk(png, "IEND", {});
     return png;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encode_png(const Image& image, const Display& display) {
+    return encode_scanlines(image.width, image.height, 3, to_srgb8(image, display));
+}
+
+std::vector<std::uint8_t> encode_png_rgba8(std::uint32_t width, std::uint32_t height, std::span<const std::uint8_t> rgba) {
+    return encode_scanlines(width, height, 4, rgba);
 }
 
 }  // namespace vkrt
