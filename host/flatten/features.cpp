@@ -1,5 +1,7 @@
 #include "flatten/features.hpp"
 
+#include "flatten/coverage.hpp"
+
 #include "scene/vec_math.hpp"
 
 #include <algorithm>
@@ -93,6 +95,9 @@ FeatureSet analyze_features(const Scene& scene) {
                    m.normal_map.has_value() || m.emission_texture.has_value();
     }
 
+    const std::vector<bool> tested = coverage_tested(scene);
+    f.set(Feature::HAS_ALPHA, std::any_of(scene.triangles.begin(), scene.triangles.end(),
+                                          [&](const Triangle& t) { return tested[t.material]; }));
 #define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) f.set(Feature::HAS_##NAMES, !scene.names.empty());
 #include "kernel/shapes/kinds.glsl"
     f.set(Feature::HAS_QUADS, std::any_of(scene.triangles.begin(), scene.triangles.end(),

@@ -1,5 +1,6 @@
 #include "flatten/flat_scene.hpp"
 
+#include "flatten/coverage.hpp"
 #include "flatten/emission_footprint.hpp"
 #include "flatten/environment_table.hpp"
 #include "flatten/ggx_albedo.hpp"
@@ -120,7 +121,18 @@ kernel::Material flatten(const Material& m) {
         out.fresnel = m.fresnel ? 1u : 0u;
     }
     set_texture_fields(m, out);
+    out.alpha_mode = std::uint32_t(m.alpha_mode);
+    out.alpha = float(m.alpha);
+    out.alpha_cutoff = float(m.alpha_cutoff);
     return out;
+}
+
+// Marks the triangles whose material's coverage the kernel tests (coverage.hpp).
+void mark_coverage_tested(const Scene& scene, FlatScene& g) {
+    const std::vector<bool> tested = coverage_tested(scene);
+    for (std::size_t i = 0; i < g.triangles.size(); ++i) {
+        if (tested[scene.triangles[i].material]) g.triangles[i].meta.y |= kernel::TRIANGLE_ALPHA_TESTED;
+    }
 }
 
 static_assert(std::uint32_t(Wrap::Repeat) == kernel::WRAP_REPEAT && std::uint32_t(Wrap::Clamp) == kernel::WRAP_CLAMP &&
@@ -463,6 +475,7 @@ FlatScene flatten_scene(const Scene& scene, const AccelPolicy& policy) {
     }
     kernel::set_light_count(p, static_cast<std::uint32_t>(g.lights.size()));
     kernel::set_material_count(p, static_cast<std::uint32_t>(g.materials.size()));
+    if (g.features.has(Feature::HAS_ALPHA)) mark_coverage_tested(scene, g);
     if (g.features.has(Feature::HAS_TEXTURES)) add_textures(scene, g);
     if (g.features.has(Feature::HAS_AREA_LIGHTS)) add_emitters(scene, g);
     // Every emissive primitive kind has its sampler, so the list is empty only if no

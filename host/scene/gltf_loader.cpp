@@ -192,7 +192,7 @@ private:
             if (base.size() == 4) mr.base_color = color(dvec3(base[0], base[1], base[2]), 1.0, element + ".pbrMetallicRoughness.baseColorFactor");
             mr.metallic = unit(pbr.metallicFactor, element + ".pbrMetallicRoughness.metallicFactor");
             mr.roughness = unit(pbr.roughnessFactor, element + ".pbrMetallicRoughness.roughnessFactor");
-            if (base.size() == 4 && base[3] < 1.0) note_unsupported("materials with a base colour alpha below 1, rendered opaque");
+            if (base.size() == 4) m.alpha = unit(base[3], element + ".pbrMetallicRoughness.baseColorFactor[3]");
             double strength = 1.0;
             if (auto e = g.extensions.find("KHR_materials_emissive_strength"); e != g.extensions.end()) {
                 const tinygltf::Value& s = e->second.Get("emissiveStrength");
@@ -217,7 +217,7 @@ private:
                 textures_.texture(g.emissiveTexture, element + ".emissiveTexture", Encoding::SrgbUnlessFloat, m);
             m.normal_map = textures_.normal_texture(g.normalTexture, element + ".normalTexture", m);
             if (g.occlusionTexture.index >= 0) note_unsupported("occlusion maps (not needed by a path tracer)");
-            if (g.alphaMode != "OPAQUE") note_unsupported(fmt::format("materials with alphaMode {}, rendered opaque", g.alphaMode));
+            read_alpha_mode(g, element, m);
             materials_.push_back(static_cast<std::uint32_t>(scene_.materials.size()));
             scene_.materials.push_back(m);
         }
@@ -229,6 +229,24 @@ private:
                                                     &m.emission_texture}) {
                 if (*t) *t = textures[**t];
             }
+        }
+    }
+
+    // alphaMode and alphaCutoff (glTF 2.0, 3.9.4): the opacity is the base colour's
+    // alpha (read with it) times its texture's. Opaque ignores both, as the
+    // specification says.
+    void read_alpha_mode(const tinygltf::Material& g, const std::string& element, Material& m) {
+        if (g.alphaMode == "MASK") {
+            m.alpha_mode = AlphaMode::Mask;
+            if (!(g.alphaCutoff >= 0.0)) {
+                fail_at(element + ".alphaCutoff", fmt::format("expected a number of at least 0, got {}", g.alphaCutoff));
+            }
+            m.alpha_cutoff = g.alphaCutoff;
+        } else if (g.alphaMode == "BLEND") {
+            m.alpha_mode = AlphaMode::Blend;
+        } else if (g.alphaMode != "OPAQUE") {
+            fail_at(element + ".alphaMode",
+                    fmt::format("unknown alpha mode \"{}\" (expected OPAQUE, MASK or BLEND)", g.alphaMode));
         }
     }
 
@@ -244,13 +262,14 @@ private:
         double alpha = 1.0;
         const gltf::SpecularGlossiness factors = gltf::read_specular_glossiness(e->second, at, file_.string(), alpha);
         m.metallic_roughness = gltf::to_metallic_roughness(factors);
-        if (alpha < 1.0) note_unsupported("materials with a base colour alpha below 1, rendered opaque");
+        m.alpha = alpha;
         const auto diffuse = gltf::read_texture_info(e->second, "diffuseTexture", at, file_.string());
         const auto specular = gltf::read_texture_info(e->second, "specularGlossinessTexture", at, file_.string());
         const auto converted = textures_.specular_glossiness(diffuse ? &*diffuse : nullptr,
                                                              specular ? &*specular : nullptr, at, factors, alpha, m);
         if (converted) {
             m.metallic_roughness = Material::MetallicRoughness{dvec3(1.0), 1.0, 1.0};
+            m.alpha = 1.0;  // in the converted texture's alpha
             m.texture = converted->base_color;
             m.metallic_roughness_texture = converted->metallic_roughness;
         }

@@ -267,13 +267,37 @@ void read_texture(const Node& n, Material& m, Scene& scene) {
     }
 }
 
+// A material's coverage (glTF's alphaMode): "alpha_mode" "opaque", "mask" or "blend",
+// the opacity "alpha" and, for a mask, "alpha_cutoff" (scene.hpp).
+void read_alpha(const Node& n, Material& m) {
+    auto mode = n.find("alpha_mode");
+    if (mode) {
+        const std::string v = mode->string();
+        if (v == "opaque") m.alpha_mode = AlphaMode::Opaque;
+        else if (v == "mask") m.alpha_mode = AlphaMode::Mask;
+        else if (v == "blend") m.alpha_mode = AlphaMode::Blend;
+        else mode->fail(fmt::format("unknown alpha mode {} (expected \"opaque\", \"mask\" or \"blend\")", json::quote_user(v)));
+    }
+    if (auto v = n.find("alpha")) {
+        if (m.alpha_mode == AlphaMode::Opaque) {
+            n.fail_field("alpha", "an opacity needs \"alpha_mode\": \"mask\" or \"blend\" (an opaque material has none)");
+        }
+        m.alpha = v->number_between(0.0, 1.0);
+    }
+    if (auto v = n.find("alpha_cutoff")) {
+        if (m.alpha_mode != AlphaMode::Mask) n.fail_field("alpha_cutoff", "an alpha cutoff needs \"alpha_mode\": \"mask\"");
+        m.alpha_cutoff = v->number_between(0.0, 1.0);
+    }
+}
+
 Material read_material(const std::string& name, const Node& n, Scene& scene) {
     n.allow_only({"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit", "ior", "fresnel", "emission",
                   "base_color", "metallic", "roughness", "texture", "texture_transform", "normal_map", "normal_scale",
-                  "emission_texture"});
+                  "emission_texture", "alpha_mode", "alpha", "alpha_cutoff"});
     Material m;
     m.name = name;
     read_texture(n, m, scene);
+    read_alpha(n, m);
     if (auto v = n.find("emission")) m.emission = v->color();
     if (n.find("base_color") || n.find("metallic") || n.find("roughness")) {
         m.metallic_roughness = read_metallic_roughness(n);
@@ -421,15 +445,27 @@ constexpr const char* kOtherObjects = "quad, mesh, gltf, random_spheres, spheref
 
 void read_objects(const Node& n, const MaterialIndex& materials, Scene& scene) {
     const MaterialLookup lookup = [&materials](const Node& name) { return material_named(name, materials); };
+    // Only triangles have the texture coordinates that coverage needs (kernel/alpha.glsl).
+    const MaterialLookup opaque = [&materials, &scene](const Node& name) {
+        const std::uint32_t i = material_named(name, materials);
+        const Material& m = scene.materials[i];
+        if (m.alpha_mode != AlphaMode::Opaque) {
+            name.fail(fmt::format("material {} has \"alpha_mode\": \"{}\", which applies to triangles, quads and "
+                                  "meshes only (they have texture coordinates); give this object an opaque material",
+                                  json::quote_user(m.name), m.alpha_mode == AlphaMode::Mask ? "mask" : "blend"));
+        }
+        return i;
+    };
     ShapeReader shapes{.material = lookup};
+    ShapeReader solids{.material = opaque};
     for (const Node& object : n.elements()) {
         const Node type = object.required("type");
         const std::string t = type.string();
         // Each kind of primitive by its name (host/scene/shapes/<name>.cpp, read_shape).
 #define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
-    if (t == #name) {                                             \
-        read_shape(object, shapes, scene.names);                  \
-        continue;                                                 \
+    if (t == #name) {                                                                    \
+        read_shape(object, kernel::REF_##NAME == kernel::REF_TRIANGLE ? shapes : solids, scene.names); \
+        continue;                                                                        \
     }
 #include "kernel/shapes/kinds.glsl"
         if (t == "quad") {
@@ -437,9 +473,9 @@ void read_objects(const Node& n, const MaterialIndex& materials, Scene& scene) {
         } else if (t == "mesh") {
             read_mesh(object, lookup, scene);
         } else if (t == "random_spheres") {
-            read_random_spheres(object, lookup, scene.spheres);
+            read_random_spheres(object, opaque, scene.spheres);
         } else if (t == "sphereflake") {
-            read_sphereflake(object, lookup, scene.spheres);
+            read_sphereflake(object, opaque, scene.spheres);
         } else if (t == "torus_knot") {
             read_torus_knot(object, lookup, scene);
         } else if (t == "gltf") {
@@ -454,6 +490,7 @@ void read_objects(const Node& n, const MaterialIndex& materials, Scene& scene) {
         }
     }
     shapes.warn(n.file(), scene.warnings);
+    solids.warn(n.file(), scene.warnings);
 }
 
 // Local mode and the paper's estimator have the paper's Phong model only: they shade

@@ -96,6 +96,8 @@ struct RenderSettings {
     }
 };
 
+enum class AlphaMode : std::uint32_t { Opaque = kernel::ALPHA_OPAQUE, Mask = kernel::ALPHA_MASK, Blend = kernel::ALPHA_BLEND };
+
 struct Material {
     std::string name;
     dvec3 diffuse{0.0};
@@ -132,6 +134,13 @@ struct Material {
     // must be nonzero for the material to emit at all).
     std::optional<std::uint32_t> emission_texture;
     std::array<double, 6> uv_transform{1.0, 0.0, 0.0, 0.0, 1.0, 0.0};
+    // Coverage (glTF's alphaMode; kernel/alpha.glsl): the opacity at a point is
+    // `alpha` times the colour texture's alpha there. Mask: the surface is there
+    // where the opacity reaches alpha_cutoff; blend: with probability the opacity.
+    // Triangles and quads only: other shapes have no texture coordinates.
+    AlphaMode alpha_mode = AlphaMode::Opaque;
+    double alpha = 1.0;         // 0 to 1
+    double alpha_cutoff = 0.5;  // 0 to 1, for a mask
 };
 
 enum class LightType { Point, Spot, Directional };

@@ -14,6 +14,7 @@
 #include "texture.glsl"
 #include "normal_map.glsl"
 #include "budget.glsl"
+#include "alpha.glsl"
 #include "environment.glsl"
 #include "camera.glsl"
 #include "grid.glsl"

@@ -92,6 +92,15 @@ const uint CYLINDER_TOP_CAP = 2u;
 const uint SHAPE_TRIANGLE = 0u;
 const uint SHAPE_PARALLELOGRAM = 1u;
 const uint SHAPE_RECTANGLE = 2u;
+// Flags of a Triangle record (Triangle.meta.y): the scene gave vertex normals; its
+// material's coverage is tested where a ray meets it (alpha.glsl).
+const uint TRIANGLE_NORMALS = 1u;
+const uint TRIANGLE_ALPHA_TESTED = 2u;
+
+// A material's coverage (Material.alpha_mode, alpha.glsl), glTF's alphaMode.
+const uint ALPHA_OPAQUE = 0u;
+const uint ALPHA_MASK = 1u;    // opaque where the opacity reaches the cutoff, absent elsewhere
+const uint ALPHA_BLEND = 2u;   // present with probability equal to the opacity
 
 // The narrowest GGX lobe (lobes/ggx.glsl): alpha = roughness^2 down to
 // this, so that a roughness of 0 (a polished metal) stays a lobe that next-event

@@ -53,6 +53,9 @@ FEATURE(21, HAS_NORMAL_MAPS)
 // environment image, weighted by multiple importance sampling. Only the path
 // estimator does; the scene's `lights` are shaded at every vertex without it.
 FEATURE(22, HAS_NEXT_EVENT)
+// Triangles whose material is not opaque (alphaMode MASK or BLEND): the traversal
+// tests their coverage where a ray meets them (alpha.glsl).
+FEATURE(23, HAS_ALPHA)
 // Three per kind of primitive (shapes/kinds.glsl), after the others: HAS_<NAMES>, the
 // scene has some; with HAS_GRID, GRID_<NAMES>, the grid's cells list some, and
 // LOOSE_<NAMES>, its loose primitives, which are tested once per ray instead, hold
@@ -60,5 +63,5 @@ FEATURE(22, HAS_NEXT_EVENT)
 // whose boxes would stretch the grid's (host/flatten/flat_scene.cpp,
 // host/accel/grid.cpp, docs/grid.md).
 #define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
-    FEATURE((23 + 3 * ID), HAS_##NAMES) FEATURE((23 + 3 * ID + 1), GRID_##NAMES) FEATURE((23 + 3 * ID + 2), LOOSE_##NAMES)
+    FEATURE((24 + 3 * ID), HAS_##NAMES) FEATURE((24 + 3 * ID + 1), GRID_##NAMES) FEATURE((24 + 3 * ID + 2), LOOSE_##NAMES)
 #include "shapes/kinds.glsl"

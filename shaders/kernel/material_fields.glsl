@@ -43,6 +43,13 @@ MATERIAL_FIELD(float, roughness, 8, w)
 MATERIAL_FIELD3(vec3, base_color, 9)   // the metallic-roughness base colour
 MATERIAL_PAD(9, w)
 
+// Coverage (alpha.glsl): glTF's alphaMode. The opacity at a point is `alpha` times
+// the colour texture's alpha there.
+MATERIAL_FIELD(uint, alpha_mode, 10, x)    // ALPHA_OPAQUE, ALPHA_MASK or ALPHA_BLEND
+MATERIAL_FIELD(float, alpha, 10, y)        // the opacity factor (glTF's base colour alpha)
+MATERIAL_FIELD(float, alpha_cutoff, 10, z) // ALPHA_MASK: opaque where the opacity is at least this
+MATERIAL_PAD(10, w)
+
 #undef MATERIAL_PAD
 #undef MATERIAL_FIELD3
 #undef MATERIAL_FIELD

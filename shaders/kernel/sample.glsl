@@ -132,6 +132,9 @@ SampleResult render_sample(uint px, uint py, uint sample_index) {
     work_reset();
     SampleResult s = SampleResult(vec3(0.0f), 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, false, false);
     Rng rng = rng_start(py * image_width() + px, sample_index, sample_seed());
+    if (HAS_ALPHA) {
+        alpha_start_sample(rng);
+    }
     vec2 sub = subpixel_position(sample_index, rng);
     vec2 lens = lens_position(rng);
     rng_seek(rng, SLOT_PATH);

@@ -161,6 +161,9 @@ bool may_have_loose() {
 // lavapipe inlines costs it time when it creates the pipeline (docs/grid.md).
 Nearest trace(Ray ray, float t_max, bool any_hit) {
     Nearest nearest = Nearest(t_max, REF_NONE, vec2(0.0f), 0u);
+    if (HAS_ALPHA) {
+        alpha_start_ray();
+    }
     if (HAS_GRID) {
         uint loose_end = may_have_loose() ? load_grid_node(0u) : 0u;
         if (loose_end != 0u) {   // test_cell needs a reference to test (the reference's tests turn every feature on)

@@ -149,6 +149,20 @@ std::vector<BadInput> cases() {
         {"transform_zero_scale",
          scene(kCamera, R"([{"type": "torus_knot", "material": "chalk", "transform": {"scale": [1, 0, 1]}}])"),
          {"objects[0].transform.scale[1]", "non-zero"}},
+        // Coverage (alpha.glsl): a mode by name, an opacity and a cutoff only where the
+        // mode uses them, and only on shapes with texture coordinates.
+        {"alpha_mode_unknown", scene(kCamera, kSphere, R"({"chalk": {"diffuse": [1, 1, 1], "alpha_mode": "clip"}})"),
+         {"materials.chalk.alpha_mode", "unknown alpha mode 'clip'", "\"mask\""}},
+        {"alpha_without_mode", scene(kCamera, kSphere, R"({"chalk": {"diffuse": [1, 1, 1], "alpha": 0.5}})"),
+         {"materials.chalk.alpha", "needs \"alpha_mode\""}},
+        {"alpha_above_one",
+         scene(kCamera, kSphere, R"({"chalk": {"diffuse": [1, 1, 1], "alpha_mode": "blend", "alpha": 1.5}})"),
+         {"materials.chalk.alpha", "between 0 and 1", "1.5"}},
+        {"alpha_cutoff_without_mask",
+         scene(kCamera, kSphere, R"({"chalk": {"diffuse": [1, 1, 1], "alpha_mode": "blend", "alpha_cutoff": 0.5}})"),
+         {"materials.chalk.alpha_cutoff", "needs \"alpha_mode\": \"mask\""}},
+        {"alpha_on_a_sphere", scene(kCamera, kSphere, R"({"chalk": {"diffuse": [1, 1, 1], "alpha_mode": "mask"}})"),
+         {"objects[0].material", "'chalk'", "triangles, quads and meshes only"}},
     };
 }
 

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <fmt/format.h>
@@ -275,6 +276,39 @@ TEST(Gltf, EmissiveStrengthScalesTheEmission) {
     EXPECT_EQ(s.materials.at(s.triangles[0].material).emission, dvec3(4, 2, 0));
     // Emission is a detail of the model, not its lighting: the sky stays white.
     EXPECT_EQ(s.render.background, dvec3(1.0));
+}
+
+// alphaMode, alphaCutoff and the base colour's alpha become the material's coverage
+// (kernel/alpha.glsl); OPAQUE keeps an alpha below 1 but ignores it.
+TEST(Gltf, AlphaModeAndCutoffAreRead) {
+    const std::string material = R"("metallicFactor": 0}})";
+    for (const auto& [rest, mode, alpha, cutoff] :
+         {std::tuple{R"("metallicFactor": 0}, "alphaMode": "MASK", "alphaCutoff": 0.3})", vkrt::AlphaMode::Mask, 0.5, 0.3},
+          std::tuple{R"("metallicFactor": 0}, "alphaMode": "MASK"})", vkrt::AlphaMode::Mask, 0.5, 0.5},
+          std::tuple{R"("metallicFactor": 0}, "alphaMode": "BLEND"})", vkrt::AlphaMode::Blend, 0.5, 0.5},
+          std::tuple{R"("metallicFactor": 0}})", vkrt::AlphaMode::Opaque, 0.5, 0.5}}) {
+        std::string json = gltf_json("mesh.bin", kOneNode);
+        json.replace(json.find("[0.5, 0.5, 0.5, 1]"), 18, "[0.5, 0.5, 0.5, 0.5]");
+        json.replace(json.find(material), material.size(), rest);
+        const Scene s = vkrt::load_scene(write_gltf("alpha", json));
+        const vkrt::Material& m = s.materials.at(s.triangles[0].material);
+        EXPECT_EQ(m.alpha_mode, mode) << rest;
+        EXPECT_EQ(m.alpha, alpha) << rest;
+        EXPECT_EQ(m.alpha_cutoff, cutoff) << rest;
+        EXPECT_FALSE(has_warning(s, "alpha")) << rest;
+    }
+}
+
+TEST(GltfErrors, AnUnknownAlphaModeIsNamed) {
+    const std::string material = R"("metallicFactor": 0}})";
+    std::string json = gltf_json("mesh.bin", kOneNode);
+    json.replace(json.find(material), material.size(), R"("metallicFactor": 0}, "alphaMode": "CLIP"})");
+    vkrt::test::expect_error_message(load_error(write_gltf("alpha_mode", json)), "",
+                                     {"materials[0].alphaMode", "unknown alpha mode \"CLIP\"", "OPAQUE, MASK or BLEND"});
+    json = gltf_json("mesh.bin", kOneNode);
+    json.replace(json.find("[0.5, 0.5, 0.5, 1]"), 18, "[0.5, 0.5, 0.5, 1.5]");
+    vkrt::test::expect_error_message(load_error(write_gltf("alpha_factor", json)), "",
+                                     {"materials[0].pbrMetallicRoughness.baseColorFactor[3]", "from 0 to 1, got 1.5"});
 }
 
 TEST(Gltf, WhatIsNotRenderedIsNamedOnce) {

@@ -79,7 +79,7 @@ kernel::Triangle flatten(const Triangle& t, const glm::dvec3& origin) {
     out.n0.w = float(uv[1].y);
     out.n1.w = float(uv[2].x);
     out.n2.w = float(uv[2].y);
-    out.meta = kernel::uvec4(t.material, t.normals ? 1u : 0u, shape_of(t), 0u);
+    out.meta = kernel::uvec4(t.material, t.normals ? kernel::TRIANGLE_NORMALS : 0u, shape_of(t), 0u);
     return out;
 }
 

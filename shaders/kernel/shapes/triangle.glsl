@@ -8,8 +8,10 @@
 #ifdef SHAPE_RECORDS  // the record, which layout.glsl includes
 
 // A triangle stores its own vertices (no index indirection: one fetch per primitive).
-// Vertex normals are used only when meta.y != 0 (the scene gave normals); the front
-// face is the side of cross(p1 - p0, p2 - p0). meta.x = material index; meta.z =
+// Vertex normals are used only when meta.y has TRIANGLE_NORMALS (the scene gave
+// normals); TRIANGLE_ALPHA_TESTED there marks a material that is not opaque
+// (alpha.glsl). The front face is the side of cross(p1 - p0, p2 - p0). meta.x =
+// material index; meta.z =
 // SHAPE_TRIANGLE, or SHAPE_PARALLELOGRAM / SHAPE_RECTANGLE for the parallelogram p0,
 // p1, p2, p0 + p2 - p1 (constants.glsl), which has no vertex normals. The texture
 // coordinates of p0, p1, p2 ride in the w lanes: (p0.w, p1.w), (p2.w, n0.w), (n1.w, n2.w).
@@ -196,6 +198,21 @@ vec3 interpolate_normal(vec3 n0, vec3 n1, vec3 n2, float u, float v, vec3 face_n
 
 // ---------------------------------------------------------------- traversal
 
+// The texture coordinates at a hit of weights u (of p1) and v (of p2). A
+// parallelogram's weights are half its coordinates along its edges
+// (intersect_quad), at which its corners' coordinates are extended.
+vec2 triangle_uv(Triangle tri, float u, float v) {
+    vec2 t0 = vec2(tri.p0.w, tri.p1.w);
+    vec2 t1 = vec2(tri.p2.w, tri.n0.w);
+    vec2 t2 = vec2(tri.n1.w, tri.n2.w);
+    if (HAS_QUADS && tri.meta.z != SHAPE_TRIANGLE) {
+        return t0 + (2.0f * u) * (t1 - t0) + (2.0f * v) * (t2 - t1);
+    }
+    return t0 + u * (t1 - t0) + v * (t2 - t0);
+}
+
+// A hit on a triangle whose material is not opaque counts only where the surface is
+// there (alpha.glsl).
 void test_triangle(Ray ray, uint index, bool, INOUT(Nearest) nearest) {
     g_intersection_tests += 1u;
     Triangle tri = load_triangle(index);
@@ -211,24 +228,12 @@ void test_triangle(Ray ray, uint index, bool, INOUT(Nearest) nearest) {
     } else {
         th = intersect_triangle(ray, p0, p1, p2, 0.0f, nearest.t);
     }
-    if (th.t < nearest.t) {
+    bool tested = HAS_ALPHA && (tri.meta.y & TRIANGLE_ALPHA_TESTED) != 0u;
+    if (th.t < nearest.t && (!tested || alpha_stops_ray(tri.meta.x, triangle_uv(tri, th.u, th.v), index))) {
         nearest.t = th.t;
         nearest.ref = (REF_TRIANGLE << REF_KIND_SHIFT) | index;
         nearest.uv = vec2(th.u, th.v);
     }
-}
-
-// The texture coordinates at a hit of weights u (of p1) and v (of p2). A
-// parallelogram's weights are half its coordinates along its edges
-// (intersect_quad), at which its corners' coordinates are extended.
-vec2 triangle_uv(Triangle tri, float u, float v) {
-    vec2 t0 = vec2(tri.p0.w, tri.p1.w);
-    vec2 t1 = vec2(tri.p2.w, tri.n0.w);
-    vec2 t2 = vec2(tri.n1.w, tri.n2.w);
-    if (HAS_QUADS && tri.meta.z != SHAPE_TRIANGLE) {
-        return t0 + (2.0f * u) * (t1 - t0) + (2.0f * v) * (t2 - t1);
-    }
-    return t0 + u * (t1 - t0) + v * (t2 - t0);
 }
 
 Hit triangle_hit(Ray ray, uint index, Nearest nearest) {
@@ -237,7 +242,7 @@ Hit triangle_hit(Ray ray, uint index, Nearest nearest) {
     float v = nearest.uv.y;
     vec3 ng = triangle_face_normal(vec3(tri.p0), vec3(tri.p1), vec3(tri.p2));
     vec3 ns = ng;
-    if (HAS_SMOOTH_NORMALS && tri.meta.y != 0u) {
+    if (HAS_SMOOTH_NORMALS && (tri.meta.y & TRIANGLE_NORMALS) != 0u) {
         ns = interpolate_normal(vec3(tri.n0), vec3(tri.n1), vec3(tri.n2), u, v, ng);
     }
     bool front = dot(ng, ray.dir) < 0.0f;
@@ -247,7 +252,7 @@ Hit triangle_hit(Ray ray, uint index, Nearest nearest) {
     note_decision(flip ? DECISION_NORMAL_FLIPPED : DECISION_NORMAL_KEPT);
     vec3 s = flip ? -ns : ns;
     vec3 lift = vec3(0.0f);
-    if (HAS_TERMINATOR && tri.meta.y != 0u) {
+    if (HAS_TERMINATOR && (tri.meta.y & TRIANGLE_NORMALS) != 0u) {
         lift = terminator_lift(tri, u, v, flip ? -1.0f : 1.0f, g);
     }
     vec2 uv = vec2(0.0f);
@@ -277,12 +282,17 @@ float triangle_pick_weight(uint index, Material m) {
 }
 
 // The radiance a triangle or quad of material m emits at the point of weights
-// (u, v) (triangle_uv): its emission, times its emission texture there.
+// (u, v) (triangle_uv): its emission, times its emission texture there, and where
+// its material is not opaque, times its coverage there (alpha.glsl).
 vec3 triangle_emission(Material m, Triangle tri, float u, float v) {
+    vec3 emission = m.emission;
     if (HAS_TEXTURES && m.emission_map != 0u) {
-        return textured_emission(m, material_uv(m, triangle_uv(tri, u, v)));
+        emission = textured_emission(m, material_uv(m, triangle_uv(tri, u, v)));
     }
-    return m.emission;
+    if (HAS_ALPHA && (tri.meta.y & TRIANGLE_ALPHA_TESTED) != 0u) {
+        emission *= surface_coverage(m, triangle_uv(tri, u, v));
+    }
+    return emission;
 }
 
 // A parallelogram Triangle record (meta.z != SHAPE_TRIANGLE) as a corner and its two
@@ -362,7 +372,8 @@ bool triangle_light_sample(vec3 o, uint index, vec2 u, INOUT(LightSample) drawn)
     Material m = load_material(tri.meta.x);
     vec3 y = spherical_rect_point(sr, u.x, u.y);
     vec3 emission = m.emission;
-    if (HAS_TEXTURES && m.emission_map != 0u) {
+    bool varies = (HAS_TEXTURES && m.emission_map != 0u) || (HAS_ALPHA && (tri.meta.y & TRIANGLE_ALPHA_TESTED) != 0u);
+    if (varies) {
         // The point's coordinates along the edges, halved as triangle_uv takes them.
         vec3 d = y - q.corner;
         emission = triangle_emission(m, tri, 0.5f * dot(d, q.ex) / dot(q.ex, q.ex),
