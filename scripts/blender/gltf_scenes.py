@@ -27,7 +27,7 @@ import bpy
 def arguments():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     p = argparse.ArgumentParser()
-    p.add_argument("--scene", default="still_life", choices=["still_life", "metals"])
+    p.add_argument("--scene", default="still_life", choices=["still_life", "metals", "leaves"])
     p.add_argument("--out", required=True)
     p.add_argument("--render", help="also render with Cycles to this .exr")
     p.add_argument("--spp", type=int, default=256)
@@ -125,6 +125,97 @@ def metals():
     lamp_and_camera()
 
 
+def leaf_png(path, size=256):
+    # An 8-bit RGBA PNG of one leaf: an ellipse pointed at both ends, green shading
+    # toward its rim, a pale midrib; alpha 255 inside, 0 outside (a cut-out).
+    rows = bytearray()
+    for y in range(size):
+        rows.append(0)
+        v = (y + 0.5) / size * 2 - 1
+        for x in range(size):
+            u = (x + 0.5) / size * 2 - 1
+            half_width = 0.45 * (1 - v * v) ** 0.8
+            inside = abs(v) < 0.96 and abs(u) < half_width
+            rim = min(abs(u) / half_width, 1.0) if half_width > 0 else 1.0
+            rib = abs(u) < 0.025 and inside
+            r, g, b = (150, 190, 90) if rib else (int(40 + 30 * rim), int(120 + 40 * (1 - rim)), int(30 + 10 * rim))
+            rows += bytes((r, g, b, 255 if inside else 0))
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", size, size, 8, 6, 0, 0, 0)) +
+                chunk(b"IDAT", zlib.compress(bytes(rows), 9)) + chunk(b"IEND", b""))
+
+
+def cut_out(name, png, roughness):
+    # A dielectric whose base colour and alpha are an RGBA image, in Blender's
+    # "Alpha Clip" blend mode: the exporter writes alphaMode MASK, alphaCutoff 0.5.
+    m = textured(name, png, roughness)
+    image_node = m.node_tree.nodes["Image Texture"]
+    m.node_tree.links.new(image_node.outputs["Alpha"], m.node_tree.nodes["Principled BSDF"].inputs["Alpha"])
+    m.blend_method = "CLIP"
+    m.alpha_threshold = 0.5
+    m.shadow_method = "CLIP"
+    return m
+
+
+def threshold_alpha_for_cycles():
+    # Cycles ignores a material's blend mode and takes any alpha as partial
+    # transparency; glTF's MASK (and EEVEE's Alpha Clip) is opaque where the alpha
+    # reaches the cutoff and absent elsewhere. After the export, each clipped
+    # material's alpha goes through that step for Cycles: alpha >= threshold.
+    for m in bpy.data.materials:
+        if m.blend_method != "CLIP" or not m.use_nodes:
+            continue
+        tree = m.node_tree
+        bsdf = tree.nodes["Principled BSDF"]
+        source = bsdf.inputs["Alpha"].links[0].from_socket
+        step = tree.nodes.new("ShaderNodeMath")
+        step.operation = "LESS_THAN"  # 1 where alpha < threshold: then 1 - that
+        step.inputs[1].default_value = m.alpha_threshold
+        tree.links.new(source, step.inputs[0])
+        invert = tree.nodes.new("ShaderNodeMath")
+        invert.operation = "SUBTRACT"
+        invert.inputs[0].default_value = 1.0
+        tree.links.new(step.outputs[0], invert.inputs[1])
+        tree.links.new(invert.outputs[0], bsdf.inputs["Alpha"])
+
+
+def leaves():
+    # Cut-out leaves (alpha MASK) on a branch of planes over the ground, lit by the
+    # sun (a delta light, angle 0: hard shadows) under the grey world, and a sheet
+    # of red plastic at opacity 0.5 (alpha BLEND) that lets half the light through.
+    png = os.path.join(tempfile.mkdtemp(), "leaf.png")
+    leaf_png(png)
+    bpy.ops.mesh.primitive_plane_add(size=8, location=(0, 0, 0))
+    give(bpy.context.object, principled("ground", (0.6, 0.6, 0.55), roughness=0.5))
+    leaf = cut_out("leaf", png, roughness=0.6)
+    for x, y, z, tilt, turn, size in [(-1.0, 0.3, 1.3, 20, 10, 1.0), (-0.2, 0.0, 1.5, -15, 40, 1.1),
+                                      (0.6, 0.4, 1.2, 30, -30, 0.9), (0.2, -0.5, 1.0, 10, 80, 0.8),
+                                      (-0.6, -0.4, 1.7, -25, -60, 1.0), (1.2, -0.2, 1.6, 15, 20, 1.0)]:
+        bpy.ops.mesh.primitive_plane_add(size=size, location=(x, y, z),
+                                         rotation=(math.radians(tilt), 0, math.radians(turn)))
+        give(bpy.context.object, leaf)
+    sheet = principled("sheet", (0.8, 0.1, 0.1), roughness=0.5)
+    sheet.node_tree.nodes["Principled BSDF"].inputs["Alpha"].default_value = 0.5
+    sheet.blend_method = "BLEND"
+    bpy.ops.mesh.primitive_plane_add(size=1.0, location=(1.6, 1.2, 0.8), rotation=(0, math.radians(-20), 0))
+    give(bpy.context.object, sheet)
+    bpy.ops.object.light_add(type="SUN", location=(0, 0, 5), rotation=(math.radians(30), math.radians(15), 0))
+    sun = bpy.context.object
+    sun.data.energy = 4.0
+    sun.data.angle = 0.0
+    bpy.ops.object.camera_add(location=(0, -5.5, 3.2))
+    cam = bpy.context.object
+    direction = (0, 5.5, -2.4)
+    cam.rotation_euler = (math.atan2(math.hypot(direction[0], direction[1]), -direction[2]), 0, 0)
+    cam.data.sensor_fit = "VERTICAL"
+    cam.data.angle_y = math.radians(40)
+    bpy.context.scene.camera = cam
+
+
 def main():
     args = arguments()
     bpy.ops.wm.read_factory_settings(use_empty=True)
@@ -136,10 +227,11 @@ def main():
     world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.05, 0.05, 0.05, 1)
     world.node_tree.nodes["Background"].inputs["Strength"].default_value = 1.0
     scene.world = world
-    {"still_life": still_life, "metals": metals}[args.scene]()
+    {"still_life": still_life, "metals": metals, "leaves": leaves}[args.scene]()
     bpy.ops.export_scene.gltf(filepath=args.out, export_format="GLB", export_cameras=True, export_lights=True,
                               export_apply=True, export_yup=True)
     if args.render:
+        threshold_alpha_for_cycles()
         scene.render.engine = "CYCLES"
         scene.cycles.device = "CPU"
         scene.cycles.samples = args.spp
