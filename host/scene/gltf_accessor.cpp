@@ -4,6 +4,8 @@
 #include <cstring>
 
 #include <fmt/format.h>
+#include <glm/common.hpp>
+#include <glm/vec4.hpp>
 #include <tiny_gltf.h>
 
 #include "scene/scene_error.hpp"
@@ -66,7 +68,10 @@ Elements locate(const tinygltf::Model& model, int index, int type, const char* t
     e.count = a.count;
     e.normalized = a.normalized;
     if (e.size == 0) fail(origin, fmt::format("{} has component type {}, which glTF does not define", name, a.componentType));
-    const std::size_t components = type == TINYGLTF_TYPE_VEC3 ? 3 : type == TINYGLTF_TYPE_VEC2 ? 2 : 1;
+    const std::size_t components = type == TINYGLTF_TYPE_VEC4   ? 4
+                                   : type == TINYGLTF_TYPE_VEC3 ? 3
+                                   : type == TINYGLTF_TYPE_VEC2 ? 2
+                                                                : 1;
     const std::size_t element = e.size * components;
     if (a.bufferView < 0 || static_cast<std::size_t>(a.bufferView) >= model.bufferViews.size()) {
         fail(origin, fmt::format("{} refers to bufferView {}, which does not exist (the file has {})", name,
@@ -169,6 +174,24 @@ std::vector<glm::dvec3> read_vec3(const tinygltf::Model& model, int accessor, co
 std::vector<glm::dvec2> read_vec2(const tinygltf::Model& model, int accessor, const Origin& origin,
                                   Integers integers) {
     return read_floats<2, glm::dvec2>(model, accessor, TINYGLTF_TYPE_VEC2, "a VEC2", origin, integers);
+}
+
+std::vector<glm::vec4> read_colors(const tinygltf::Model& model, int accessor, const Origin& origin) {
+    const bool rgba = accessor >= 0 && std::size_t(accessor) < model.accessors.size() &&
+                      model.accessors[std::size_t(accessor)].type == TINYGLTF_TYPE_VEC4;
+    std::vector<glm::dvec4> read;
+    if (rgba) {
+        read = read_floats<4, glm::dvec4>(model, accessor, TINYGLTF_TYPE_VEC4, "a VEC3 or VEC4", origin,
+                                          Integers::Normalized);
+    } else {
+        for (const glm::dvec3& c : read_floats<3, glm::dvec3>(model, accessor, TINYGLTF_TYPE_VEC3, "a VEC3 or VEC4",
+                                                              origin, Integers::Normalized)) {
+            read.emplace_back(c, 1.0);
+        }
+    }
+    std::vector<glm::vec4> out(read.size());
+    for (std::size_t i = 0; i < read.size(); ++i) out[i] = glm::vec4(glm::clamp(read[i], 0.0, 1.0));
+    return out;
 }
 
 std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int accessor, std::uint32_t limit,

@@ -9,6 +9,7 @@
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 namespace tinygltf {
 class Model;
@@ -37,6 +38,10 @@ std::vector<glm::dvec3> read_vec3(const tinygltf::Model& model, int accessor, co
 // A VEC2 accessor, as read_vec3 (texture coordinates).
 std::vector<glm::dvec2> read_vec2(const tinygltf::Model& model, int accessor, const Origin& origin,
                                   Integers integers = Integers::Normalized);
+
+// A COLOR_0 accessor: VEC3 (alpha 1) or VEC4, of floats or normalized unsigned bytes or
+// shorts, each component clamped into [0, 1].
+std::vector<glm::vec4> read_colors(const tinygltf::Model& model, int accessor, const Origin& origin);
 
 // A SCALAR accessor of unsigned bytes, shorts or ints, each below `limit`.
 std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int accessor, std::uint32_t limit,
