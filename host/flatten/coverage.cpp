@@ -24,11 +24,17 @@ bool fully_opaque(const Scene& scene, const TextureImage& t) {
 
 std::vector<bool> coverage_tested(const Scene& scene) {
     std::vector<bool> tested(scene.materials.size(), false);
+    // Materials of a triangle whose vertex colours have an alpha below 1.
+    std::vector<bool> vertex_alpha(scene.materials.size(), false);
+    for (const Triangle& t : scene.triangles) {
+        if (!t.colors) continue;
+        for (const glm::vec4& c : *t.colors) vertex_alpha[t.material] = vertex_alpha[t.material] || c.a < 1.0f;
+    }
     std::map<std::uint32_t, bool> opaque_texture;
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         const Material& m = scene.materials[i];
         if (m.alpha_mode == AlphaMode::Opaque) continue;
-        bool constant = true;  // the opacity is m.alpha everywhere
+        bool constant = !vertex_alpha[i];  // the opacity is m.alpha everywhere
         if (m.texture) {
             auto [at, fresh] = opaque_texture.try_emplace(*m.texture, false);
             if (fresh) at->second = fully_opaque(scene, scene.textures[*m.texture]);

@@ -3,7 +3,8 @@
 // (kernel/alpha.glsl): those whose alphaMode is not opaque, unless their opacity is
 // the same everywhere and the mode makes that opaque: a mask whose alpha reaches its
 // cutoff, or a blend of alpha 1, either without a colour texture or with one whose
-// every texel has alpha 1 (exporters write BLEND for opaque textures often).
+// every texel has alpha 1 (exporters write BLEND for opaque textures often), and
+// on no triangle with a vertex colour's alpha below 1.
 #include <cstddef>
 #include <vector>
 

@@ -95,6 +95,8 @@ FeatureSet analyze_features(const Scene& scene) {
                    m.normal_map.has_value() || m.emission_texture.has_value();
     }
 
+    f.set(Feature::HAS_VERTEX_COLORS, std::any_of(scene.triangles.begin(), scene.triangles.end(),
+                                                  [](const Triangle& t) { return t.colors.has_value(); }));
     const std::vector<bool> tested = coverage_tested(scene);
     f.set(Feature::HAS_ALPHA, std::any_of(scene.triangles.begin(), scene.triangles.end(),
                                           [&](const Triangle& t) { return tested[t.material]; }));

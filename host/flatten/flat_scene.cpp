@@ -178,6 +178,21 @@ void add_ggx_tables(FlatScene& g) {
     g.table_words.insert(g.table_words.end(), table.begin(), table.end());
 }
 
+// Every triangle's vertex colours, six words each (kernel/vertex_color.glsl): half
+// floats (r, g), (b, a) per vertex; a triangle without colours holds zeros, which
+// the kernel never reads.
+void add_vertex_colors(const Scene& scene, FlatScene& g) {
+    kernel::set_vertex_color_first_word(g.params, static_cast<std::uint32_t>(g.table_words.size()));
+    g.table_words.reserve(g.table_words.size() + 6 * scene.triangles.size());
+    for (const Triangle& t : scene.triangles) {
+        for (int k = 0; k < 3; ++k) {
+            const glm::vec4 c = t.colors ? (*t.colors)[k] : glm::vec4(0.0f);
+            g.table_words.push_back(glm::packHalf2x16(glm::vec2(c.r, c.g)));
+            g.table_words.push_back(glm::packHalf2x16(glm::vec2(c.b, c.a)));
+        }
+    }
+}
+
 // A light as the kernel reads it (kernel/layout.glsl, Light): a directional light as
 // the point at infinity toward it (w = 0), which no origin moves; a spot light's
 // axis and cone angles folded into the cone's linear ramp in the cosine, with the
@@ -483,6 +498,7 @@ FlatScene flatten_scene(const Scene& scene, const AccelPolicy& policy) {
     if (g.emitters.empty()) g.features.set(Feature::HAS_AREA_LIGHTS, false);
     if (g.features.has(Feature::HAS_ENVIRONMENT_MAP)) add_environment(scene, g);
     if (g.features.has(Feature::HAS_MICROFACET)) add_ggx_tables(g);
+    if (g.features.has(Feature::HAS_VERTEX_COLORS)) add_vertex_colors(scene, g);
     // Next-event estimation, once it is known what it can sample: emitters, or the
     // environment with a nonzero chance.
     g.features.set(Feature::HAS_NEXT_EVENT,

@@ -422,6 +422,14 @@ private:
                         fmt::format("{} texture coordinates for {} positions", mesh.uvs.size(), mesh.positions.size()));
             }
         }
+        const auto color = prim.attributes.find("COLOR_0");
+        if (color != prim.attributes.end()) {
+            mesh.colors = gltf::read_colors(model_, color->second, {file_.string(), element + ".attributes.COLOR_0"});
+            if (mesh.colors.size() != mesh.positions.size()) {
+                fail_at(element + ".attributes.COLOR_0",
+                        fmt::format("{} colours for {} positions", mesh.colors.size(), mesh.positions.size()));
+            }
+        }
         if (mesh.positions.size() > std::numeric_limits<std::uint32_t>::max()) fail_at(element, "too many vertices");
         const auto vertices = static_cast<std::uint32_t>(mesh.positions.size());
         std::vector<std::uint32_t> indices;
@@ -441,6 +449,7 @@ private:
             f.position = {indices[i], indices[i + 1], indices[i + 2]};
             if (smooth) f.normal = f.position;
             if (!mesh.uvs.empty()) f.uv = f.position;
+            if (!mesh.colors.empty()) f.color = f.position;
             mesh.faces.push_back(f);
         }
         transform_mesh(mesh, t);

@@ -11,6 +11,7 @@
 #include "ray.glsl"
 #include "exact.glsl"
 #include "terminator.glsl"
+#include "vertex_color.glsl"
 #include "texture.glsl"
 #include "normal_map.glsl"
 #include "budget.glsl"

@@ -1,6 +1,7 @@
 // Coverage (HAS_ALPHA): glTF's alphaMode, on triangles and quads, the shapes with
 // texture coordinates. A surface's opacity at a point is its material's `alpha` times
-// its colour texture's alpha there (bilinear, as the colour):
+// its colour texture's alpha there (bilinear, as the colour) times its vertex
+// colours' (vertex_color.glsl):
 //   ALPHA_MASK   the surface is there where the opacity reaches alpha_cutoff and absent
 //                elsewhere: leaves, fences, decals;
 //   ALPHA_BLEND  the surface is there with probability equal to the opacity, decided
@@ -36,9 +37,10 @@ void alpha_start_ray() {
 }
 
 // The opacity of material m at texture coordinates uv (before the material's
-// transform): alpha times the colour texture's alpha.
-float surface_opacity(Material m, vec2 uv) {
-    float opacity = m.alpha;
+// transform) where the vertex colours' alpha is vertex_alpha: alpha times the colour
+// texture's alpha times vertex_alpha.
+float surface_opacity(Material m, vec2 uv, float vertex_alpha) {
+    float opacity = m.alpha * vertex_alpha;
     if (HAS_TEXTURES && m.color_map != 0u) {
         opacity *= texture_bilinear(load_texture(m.color_map - 1u), material_uv(m, uv)).a;
     }
@@ -49,19 +51,25 @@ float surface_opacity(Material m, vec2 uv) {
 // 1 for a mask, the opacity for a blend. Next-event estimation weighs a point it draws
 // by it; a ray that meets the emitter sees its full emission, having met it with this
 // probability (alpha_stops_ray).
-float surface_coverage(Material m, vec2 uv) {
-    float opacity = surface_opacity(m, uv);
+float surface_coverage(Material m, vec2 uv, float vertex_alpha) {
+    float opacity = surface_opacity(m, uv, vertex_alpha);
     if (m.alpha_mode == ALPHA_MASK) {
         return opacity >= m.alpha_cutoff ? 1.0f : 0.0f;
     }
     return m.alpha_mode == ALPHA_BLEND ? opacity : 1.0f;
 }
 
-// Whether the ray being traced stops at triangle `index` (material `material`) where
-// it meets it at texture coordinates uv.
-bool alpha_stops_ray(uint material, vec2 uv, uint index) {
-    Material m = load_material(material);
-    float opacity = surface_opacity(m, uv);
+// The alpha of triangle tri's (index `index`) vertex colours at weights bary: 1 for
+// a triangle without them.
+float vertex_alpha(Triangle tri, uint index, vec2 bary) {
+    return HAS_VERTEX_COLORS && (tri.meta.y & TRIANGLE_COLORS) != 0u ? vertex_color(index, bary).a : 1.0f;
+}
+
+// Whether the ray being traced stops at triangle tri (index `index`) where it meets
+// it at weights bary and texture coordinates uv.
+bool alpha_stops_ray(Triangle tri, uint index, vec2 bary, vec2 uv) {
+    Material m = load_material(tri.meta.x);
+    float opacity = surface_opacity(m, uv, vertex_alpha(tri, index, bary));
     bool stops;
     if (m.alpha_mode == ALPHA_MASK) {
         stops = opacity >= m.alpha_cutoff;

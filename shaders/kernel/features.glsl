@@ -56,6 +56,9 @@ FEATURE(22, HAS_NEXT_EVENT)
 // Triangles whose material is not opaque (alphaMode MASK or BLEND): the traversal
 // tests their coverage where a ray meets them (alpha.glsl).
 FEATURE(23, HAS_ALPHA)
+// Triangles with vertex colours (glTF's COLOR_0): they multiply the colour and the
+// opacity of the material (vertex_color.glsl).
+FEATURE(24, HAS_VERTEX_COLORS)
 // Three per kind of primitive (shapes/kinds.glsl), after the others: HAS_<NAMES>, the
 // scene has some; with HAS_GRID, GRID_<NAMES>, the grid's cells list some, and
 // LOOSE_<NAMES>, its loose primitives, which are tested once per ray instead, hold
@@ -63,5 +66,5 @@ FEATURE(23, HAS_ALPHA)
 // whose boxes would stretch the grid's (host/flatten/flat_scene.cpp,
 // host/accel/grid.cpp, docs/grid.md).
 #define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
-    FEATURE((24 + 3 * ID), HAS_##NAMES) FEATURE((24 + 3 * ID + 1), GRID_##NAMES) FEATURE((24 + 3 * ID + 2), LOOSE_##NAMES)
+    FEATURE((25 + 3 * ID), HAS_##NAMES) FEATURE((25 + 3 * ID + 1), GRID_##NAMES) FEATURE((25 + 3 * ID + 2), LOOSE_##NAMES)
 #include "shapes/kinds.glsl"

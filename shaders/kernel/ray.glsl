@@ -14,6 +14,7 @@ struct Hit {
     bool front_face;  // the ray arrived on the side the primitive calls its front
     uint prim;        // what was hit, as a grid reference (kind << REF_KIND_SHIFT | index); REF_NONE for nothing
     vec2 uv;          // texture coordinates (triangles and quads with HAS_TEXTURES; 0 elsewhere)
+    vec2 bary;        // a triangle's weights of p1 and p2 at the hit (vertex_color.glsl); 0 elsewhere
 };
 
 // v / |v|, by a correctly rounded sqrt and division. Not normalize(): lavapipe
@@ -44,7 +45,7 @@ bool is_unit(vec3 v) {
 }
 
 Hit no_hit() {
-    return Hit(INFINITY_T, vec3(0.0f), vec3(0.0f), vec3(0.0f), 0u, false, REF_NONE, vec2(0.0f));
+    return Hit(INFINITY_T, vec3(0.0f), vec3(0.0f), vec3(0.0f), 0u, false, REF_NONE, vec2(0.0f), vec2(0.0f));
 }
 
 // Moves a point off a surface along its geometric normal by an amount proportional to

@@ -101,21 +101,29 @@ vec3 textured_emission(Material m, vec2 uv) {
 // colour texture; a metallic-roughness material rebuilt from its factors (flat_scene.cpp)
 // times its textures: base colour times the colour texture, metallic times the
 // metallic-roughness texture's blue channel, roughness times its green (glTF's
-// packing); the emission times the emission texture. Only triangles and quads have
-// texture coordinates; other shapes keep the untextured material.
+// packing); the emission times the emission texture. Vertex colours multiply the
+// colour as the colour texture does (vertex_color.glsl). Only triangles and quads
+// have texture coordinates and vertex colours; other shapes keep the untextured
+// material.
 Material surface_material(Hit hit) {
     Material m = load_material(hit.material);
-    if (HAS_TEXTURES && m.emission_map != 0u && (hit.prim >> REF_KIND_SHIFT) == REF_TRIANGLE) {
+    bool triangle = (hit.prim >> REF_KIND_SHIFT) == REF_TRIANGLE;
+    if (HAS_TEXTURES && m.emission_map != 0u && triangle) {
         m.emission = textured_emission(m, material_uv(m, hit.uv));
     }
-    if (HAS_TEXTURES && (m.color_map != 0u || m.metal_rough_map != 0u) && (hit.prim >> REF_KIND_SHIFT) == REF_TRIANGLE) {
+    bool textured = HAS_TEXTURES && (m.color_map != 0u || m.metal_rough_map != 0u) && triangle;
+    bool tinted = HAS_VERTEX_COLORS && triangle && triangle_has_colors(hit.prim & REF_INDEX_MASK);
+    if (textured || tinted) {
         vec2 uv = material_uv(m, hit.uv);
-        vec3 c = m.color_map != 0u ? vec3(texture_bilinear(load_texture(m.color_map - 1u), uv)) : vec3(1.0f);
+        vec3 c = HAS_TEXTURES && m.color_map != 0u ? vec3(texture_bilinear(load_texture(m.color_map - 1u), uv)) : vec3(1.0f);
+        if (tinted) {
+            c = c * vec3(vertex_color(hit.prim & REF_INDEX_MASK, hit.bary));
+        }
         if (m.ggx_alpha > 0.0f) {
             vec3 base = m.base_color * c;
             float metallic = m.metallic;
             float roughness = m.roughness;
-            if (m.metal_rough_map != 0u) {
+            if (HAS_TEXTURES && m.metal_rough_map != 0u) {
                 vec4 mr = texture_bilinear(load_texture(m.metal_rough_map - 1u), uv);
                 metallic = clamp(metallic * mr.b, 0.0f, 1.0f);
                 roughness = clamp(roughness * mr.g, 0.0f, 1.0f);

@@ -299,6 +299,37 @@ TEST(Gltf, AlphaModeAndCutoffAreRead) {
     }
 }
 
+// COLOR_0 as normalized unsigned bytes (VEC4) or floats (VEC3, alpha 1), per vertex,
+// each triangle taking its corners' colours; out-of-range floats are clamped.
+TEST(Gltf, VertexColoursAreRead) {
+    std::string bytes = octahedron_bytes();
+    for (int v = 0; v < 6; ++v) bytes += std::string{char(v * 51), char(255), char(0), char(128)};  // 24 bytes
+    for (int v = 0; v < 6; ++v) {
+        const float rgb[3] = {v * 0.2f, 1.5f, -0.5f};
+        bytes.append(reinterpret_cast<const char*>(rgb), 12);  // 72 bytes
+    }
+    for (const auto& [accessor, alpha, clamped] : {std::tuple{R"({"bufferView": 3, "componentType": 5121, "normalized": true, "count": 6, "type": "VEC4"})", 128.0f / 255.0f, false},
+                                                  std::tuple{R"({"bufferView": 4, "componentType": 5126, "count": 6, "type": "VEC3"})", 1.0f, true}}) {
+        std::string json = gltf_json("mesh.bin", kOneNode);
+        json.replace(json.find(R"("byteLength": 192)"), 17, R"("byteLength": 288)");
+        json.replace(json.find(R"("NORMAL": 1})"), 12, R"("NORMAL": 1, "COLOR_0": 3})");
+        const std::string views = R"({"buffer": 0, "byteOffset": 144, "byteLength": 48})";
+        json.replace(json.find(views), views.size(), std::string(views) + R"(, {"buffer": 0, "byteOffset": 192, "byteLength": 24}, {"buffer": 0, "byteOffset": 216, "byteLength": 72})");
+        const std::string last = R"("count": 24, "type": "SCALAR"})";
+        json.replace(json.find(last), last.size(), last + ", " + accessor);
+        const Scene s = vkrt::load_scene(write_gltf("colors", json, bytes));
+        ASSERT_EQ(s.triangles.size(), 8u);
+        // The first face is vertices 0, 2, 4.
+        const auto& c = s.triangles[0].colors;
+        ASSERT_TRUE(c.has_value());
+        EXPECT_FLOAT_EQ((*c)[1].r, clamped ? 0.4f : 102.0f / 255.0f);
+        EXPECT_FLOAT_EQ((*c)[1].g, 1.0f);
+        EXPECT_FLOAT_EQ((*c)[1].b, 0.0f);
+        EXPECT_FLOAT_EQ((*c)[1].a, alpha);
+        EXPECT_FALSE(has_warning(s, "COLOR_0"));
+    }
+}
+
 TEST(GltfErrors, AnUnknownAlphaModeIsNamed) {
     const std::string material = R"("metallicFactor": 0}})";
     std::string json = gltf_json("mesh.bin", kOneNode);

@@ -29,7 +29,7 @@ std::array<glm::dvec2, 3> texture_corners(const Triangle& t) {
 }
 
 void read_shape(const json::Node& n, ShapeReader& reader, std::vector<Triangle>& out) {
-    n.allow_only({"vertices", "normals", "material", "type"});
+    n.allow_only({"vertices", "normals", "colors", "material", "type"});
     Triangle t;
     const json::Node vertices = n.required("vertices");
     const auto v = vertices.elements(3, "an array of 3 points");
@@ -43,6 +43,11 @@ void read_shape(const json::Node& n, ShapeReader& reader, std::vector<Triangle>&
             (*normals)[i] = e[i].vec3();
             if (!first_zero && !is_nonzero((*normals)[i])) first_zero = e[i];
         }
+    }
+    if (auto given = n.find("colors")) {
+        const auto e = given->elements(3, "an array of 3 colours");
+        t.colors.emplace();
+        for (int i = 0; i < 3; ++i) (*t.colors)[i] = glm::vec4(glm::vec3(e[i].unit_color()), 1.0f);
     }
     t.material = reader.material_of(n);
     if (parallel_or_zero(t.vertices[1] - t.vertices[0], t.vertices[2] - t.vertices[0], kParallelSine)) {
@@ -79,7 +84,8 @@ kernel::Triangle flatten(const Triangle& t, const glm::dvec3& origin) {
     out.n0.w = float(uv[1].y);
     out.n1.w = float(uv[2].x);
     out.n2.w = float(uv[2].y);
-    out.meta = kernel::uvec4(t.material, t.normals ? kernel::TRIANGLE_NORMALS : 0u, shape_of(t), 0u);
+    const std::uint32_t flags = (t.normals ? kernel::TRIANGLE_NORMALS : 0u) | (t.colors ? kernel::TRIANGLE_COLORS : 0u);
+    out.meta = kernel::uvec4(t.material, flags, shape_of(t), 0u);
     return out;
 }
 

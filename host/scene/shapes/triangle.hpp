@@ -10,6 +10,7 @@
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "scene/shapes/shape_reader.hpp"
 #include "scene/shapes/support.hpp"
@@ -27,6 +28,9 @@ struct Triangle {
     // Texture coordinates of the three vertices; without them a triangle has (0, 0),
     // (1, 0), (0, 1) and a parallelogram (0, 0), (1, 0), (1, 1): its corners.
     std::optional<std::array<glm::dvec2, 3>> uvs{};
+    // Linear RGBA colours of the three vertices (glTF's COLOR_0), each in [0, 1]:
+    // they multiply the material's colour and opacity (kernel/vertex_color.glsl).
+    std::optional<std::array<glm::vec4, 3>> colors{};
 };
 
 // The quad corner, corner + e1, corner + e1 + e2, corner + e2, facing cross(e1, e2):

@@ -141,7 +141,7 @@ Hit cylinder_hit(Ray ray, uint index, Nearest nearest) {
     bool front = dot(n, ray.dir) < 0.0f;
     vec3 facing = front ? n : -n;
     return Hit(nearest.t, facing, facing, vec3(0.0f), c.meta.x, front, (REF_CYLINDER << REF_KIND_SHIFT) | index,
-               vec2(0.0f));
+               vec2(0.0f), vec2(0.0f));
 }
 
 float cylinder_pick_weight(uint, Material m) {

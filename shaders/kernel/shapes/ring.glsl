@@ -59,7 +59,7 @@ Hit ring_hit(Ray ray, uint index, Nearest nearest) {
     bool front = dot(n, ray.dir) < 0.0f;
     vec3 facing = front ? n : -n;
     return Hit(nearest.t, facing, facing, vec3(0.0f), r.meta.x, front, (REF_RING << REF_KIND_SHIFT) | index,
-               vec2(0.0f));
+               vec2(0.0f), vec2(0.0f));
 }
 
 float ring_pick_weight(uint, Material m) {

@@ -233,7 +233,7 @@ Hit sphere_hit(Ray ray, uint index, Nearest nearest) {
     bool front = dot(n, ray.dir) < 0.0f;
     vec3 facing = front ? n : -n;
     return Hit(nearest.t, facing, facing, vec3(0.0f), s.meta.x, front, (REF_SPHERE << REF_KIND_SHIFT) | index,
-               vec2(0.0f));
+               vec2(0.0f), vec2(0.0f));
 }
 
 // ---------------------------------------------------------------- emission

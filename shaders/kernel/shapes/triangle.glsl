@@ -229,7 +229,7 @@ void test_triangle(Ray ray, uint index, bool, INOUT(Nearest) nearest) {
         th = intersect_triangle(ray, p0, p1, p2, 0.0f, nearest.t);
     }
     bool tested = HAS_ALPHA && (tri.meta.y & TRIANGLE_ALPHA_TESTED) != 0u;
-    if (th.t < nearest.t && (!tested || alpha_stops_ray(tri.meta.x, triangle_uv(tri, th.u, th.v), index))) {
+    if (th.t < nearest.t && (!tested || alpha_stops_ray(tri, index, vec2(th.u, th.v), triangle_uv(tri, th.u, th.v)))) {
         nearest.t = th.t;
         nearest.ref = (REF_TRIANGLE << REF_KIND_SHIFT) | index;
         nearest.uv = vec2(th.u, th.v);
@@ -259,7 +259,7 @@ Hit triangle_hit(Ray ray, uint index, Nearest nearest) {
     if (HAS_TEXTURES) {
         uv = triangle_uv(tri, u, v);
     }
-    return Hit(nearest.t, s, g, lift, tri.meta.x, front, (REF_TRIANGLE << REF_KIND_SHIFT) | index, uv);
+    return Hit(nearest.t, s, g, lift, tri.meta.x, front, (REF_TRIANGLE << REF_KIND_SHIFT) | index, uv, nearest.uv);
 }
 
 // ---------------------------------------------------------------- emission
@@ -284,13 +284,13 @@ float triangle_pick_weight(uint index, Material m) {
 // The radiance a triangle or quad of material m emits at the point of weights
 // (u, v) (triangle_uv): its emission, times its emission texture there, and where
 // its material is not opaque, times its coverage there (alpha.glsl).
-vec3 triangle_emission(Material m, Triangle tri, float u, float v) {
+vec3 triangle_emission(Material m, Triangle tri, uint index, float u, float v) {
     vec3 emission = m.emission;
     if (HAS_TEXTURES && m.emission_map != 0u) {
         emission = textured_emission(m, material_uv(m, triangle_uv(tri, u, v)));
     }
     if (HAS_ALPHA && (tri.meta.y & TRIANGLE_ALPHA_TESTED) != 0u) {
-        emission *= surface_coverage(m, triangle_uv(tri, u, v));
+        emission *= surface_coverage(m, triangle_uv(tri, u, v), vertex_alpha(tri, index, vec2(u, v)));
     }
     return emission;
 }
@@ -341,7 +341,7 @@ EmitterPoint triangle_emitter_point(uint index, uint, float u1, float u2) {
         Rect q = rect_of(tri);
         precise vec3 y = q.corner + u1 * q.ex + u2 * q.ey;
         // triangle_uv's weights are half a parallelogram's edge coordinates.
-        return EmitterPoint(y, triangle_face_normal(p0, p1, p2), triangle_emission(m, tri, 0.5f * u1, 0.5f * u2),
+        return EmitterPoint(y, triangle_face_normal(p0, p1, p2), triangle_emission(m, tri, index, 0.5f * u1, 0.5f * u2),
                             weight);
     }
     // The square-root parameterization (Osada et al., "Shape Distributions",
@@ -349,7 +349,7 @@ EmitterPoint triangle_emitter_point(uint index, uint, float u1, float u2) {
     // uniform by area.
     float su = sqrt(u1);
     precise vec3 y = (1.0f - su) * p0 + (su * (1.0f - u2)) * p1 + (su * u2) * p2;
-    return EmitterPoint(y, triangle_face_normal(p0, p1, p2), triangle_emission(m, tri, su * (1.0f - u2), su * u2),
+    return EmitterPoint(y, triangle_face_normal(p0, p1, p2), triangle_emission(m, tri, index, su * (1.0f - u2), su * u2),
                         weight);
 }
 
@@ -376,7 +376,7 @@ bool triangle_light_sample(vec3 o, uint index, vec2 u, INOUT(LightSample) drawn)
     if (varies) {
         // The point's coordinates along the edges, halved as triangle_uv takes them.
         vec3 d = y - q.corner;
-        emission = triangle_emission(m, tri, 0.5f * dot(d, q.ex) / dot(q.ex, q.ex),
+        emission = triangle_emission(m, tri, index, 0.5f * dot(d, q.ex) / dot(q.ex, q.ex),
                                      0.5f * dot(d, q.ey) / dot(q.ey, q.ey));
     }
     float choice = triangle_emitter_weight(m, tri) * rect_area(q) / emitter_power();
