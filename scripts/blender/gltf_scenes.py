@@ -23,6 +23,9 @@ import zlib
 
 import bpy
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cycles_still import render_still  # noqa: E402
+
 
 def arguments():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
@@ -88,12 +91,17 @@ def lamp_and_camera():
     # A square lamp facing down: an emissive mesh, exported with its strength.
     bpy.ops.mesh.primitive_plane_add(size=1.2, location=(0, 0, 3), rotation=(math.pi, 0, 0))
     give(bpy.context.object, principled("lamp", (0, 0, 0), emission=(1, 1, 1), strength=12.0))
-    bpy.ops.object.camera_add(location=(0, -5, 2.4))
+    aim_camera((0, -5, 2.4), (0, 5, -1.9), 38)
+
+
+def aim_camera(location, direction, degrees_high):
+    # A camera at `location` looking along `direction` (in the y-z plane), its
+    # vertical field of view `degrees_high`.
+    bpy.ops.object.camera_add(location=location)
     cam = bpy.context.object
-    direction = (0, 5, -1.9)
     cam.rotation_euler = (math.atan2(math.hypot(direction[0], direction[1]), -direction[2]), 0, 0)
     cam.data.sensor_fit = "VERTICAL"
-    cam.data.angle_y = math.radians(38)
+    cam.data.angle_y = math.radians(degrees_high)
     bpy.context.scene.camera = cam
 
 
@@ -207,13 +215,7 @@ def leaves():
     sun = bpy.context.object
     sun.data.energy = 4.0
     sun.data.angle = 0.0
-    bpy.ops.object.camera_add(location=(0, -5.5, 3.2))
-    cam = bpy.context.object
-    direction = (0, 5.5, -2.4)
-    cam.rotation_euler = (math.atan2(math.hypot(direction[0], direction[1]), -direction[2]), 0, 0)
-    cam.data.sensor_fit = "VERTICAL"
-    cam.data.angle_y = math.radians(40)
-    bpy.context.scene.camera = cam
+    aim_camera((0, -5.5, 3.2), (0, 5.5, -2.4), 40)
 
 
 def main():
@@ -232,22 +234,7 @@ def main():
                               export_apply=True, export_yup=True)
     if args.render:
         threshold_alpha_for_cycles()
-        scene.render.engine = "CYCLES"
-        scene.cycles.device = "CPU"
-        scene.cycles.samples = args.spp
-        scene.cycles.seed = args.seed
-        scene.cycles.use_adaptive_sampling = False
-        scene.cycles.use_denoising = False
-        scene.cycles.sample_clamp_direct = 0
-        scene.cycles.sample_clamp_indirect = 0
-        scene.cycles.filter_width = 1.0
-        scene.cycles.max_bounces = 8
-        scene.cycles.diffuse_bounces = 8
-        scene.view_settings.view_transform = "Standard"
-        scene.render.image_settings.file_format = "OPEN_EXR"
-        scene.render.image_settings.color_depth = "32"
-        scene.render.filepath = args.render
-        bpy.ops.render.render(write_still=True)
+        render_still(scene, args.render, args.spp, bounces=8, seed=args.seed)
 
 
 main()
