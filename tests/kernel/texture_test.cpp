@@ -122,6 +122,9 @@ TEST(Texture, MetallicRoughnessTexturesScaleTheFactors) {
     pbr.roughness = 0.6f;
     const std::vector<kernel::Material> materials = {pbr};
     k.materials = materials;
+    // The triangle hit: its record says it has no vertex colours.
+    const std::vector<kernel::Triangle> triangles(1);
+    k.triangles = triangles;
     Kernel::Hit hit = k.no_hit();
     hit.material = 0u;
     hit.prim = kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT;
