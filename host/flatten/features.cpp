@@ -97,6 +97,10 @@ FeatureSet analyze_features(const Scene& scene) {
 
     f.set(Feature::HAS_VERTEX_COLORS, std::any_of(scene.triangles.begin(), scene.triangles.end(),
                                                   [](const Triangle& t) { return t.colors.has_value(); }));
+    // Tangents only orient normal maps.
+    f.set(Feature::HAS_TANGENTS, std::any_of(scene.triangles.begin(), scene.triangles.end(), [&](const Triangle& t) {
+              return t.tangents.has_value() && scene.materials[t.material].normal_map.has_value();
+          }));
     const std::vector<bool> tested = coverage_tested(scene);
     f.set(Feature::HAS_ALPHA, std::any_of(scene.triangles.begin(), scene.triangles.end(),
                                           [&](const Triangle& t) { return tested[t.material]; }));

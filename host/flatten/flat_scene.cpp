@@ -178,19 +178,22 @@ void add_ggx_tables(FlatScene& g) {
     g.table_words.insert(g.table_words.end(), table.begin(), table.end());
 }
 
-// Every triangle's vertex colours, six words each (kernel/vertex_color.glsl): half
-// floats (r, g), (b, a) per vertex; a triangle without colours holds zeros, which
-// the kernel never reads.
-void add_vertex_colors(const Scene& scene, FlatScene& g) {
-    kernel::set_vertex_color_first_word(g.params, static_cast<std::uint32_t>(g.table_words.size()));
+// Per triangle, six words of table_words (kernel/vertex_data.glsl): the half floats
+// (x, y), (z, w) of each corner of `corners(t)`, zeros for a triangle without them,
+// which the kernel never reads. Returns where they start.
+template <class Corners>
+std::uint32_t add_corner_words(const Scene& scene, Corners corners, FlatScene& g) {
+    const auto first = static_cast<std::uint32_t>(g.table_words.size());
     g.table_words.reserve(g.table_words.size() + 6 * scene.triangles.size());
     for (const Triangle& t : scene.triangles) {
+        const auto& given = corners(t);
         for (int k = 0; k < 3; ++k) {
-            const glm::vec4 c = t.colors ? (*t.colors)[k] : glm::vec4(0.0f);
-            g.table_words.push_back(glm::packHalf2x16(glm::vec2(c.r, c.g)));
-            g.table_words.push_back(glm::packHalf2x16(glm::vec2(c.b, c.a)));
+            const glm::vec4 c = given ? (*given)[k] : glm::vec4(0.0f);
+            g.table_words.push_back(glm::packHalf2x16(glm::vec2(c.x, c.y)));
+            g.table_words.push_back(glm::packHalf2x16(glm::vec2(c.z, c.w)));
         }
     }
+    return first;
 }
 
 // A light as the kernel reads it (kernel/layout.glsl, Light): a directional light as
@@ -498,7 +501,12 @@ FlatScene flatten_scene(const Scene& scene, const AccelPolicy& policy) {
     if (g.emitters.empty()) g.features.set(Feature::HAS_AREA_LIGHTS, false);
     if (g.features.has(Feature::HAS_ENVIRONMENT_MAP)) add_environment(scene, g);
     if (g.features.has(Feature::HAS_MICROFACET)) add_ggx_tables(g);
-    if (g.features.has(Feature::HAS_VERTEX_COLORS)) add_vertex_colors(scene, g);
+    if (g.features.has(Feature::HAS_VERTEX_COLORS)) {
+        kernel::set_vertex_color_first_word(p, add_corner_words(scene, [](const Triangle& t) -> const auto& { return t.colors; }, g));
+    }
+    if (g.features.has(Feature::HAS_TANGENTS)) {
+        kernel::set_tangent_first_word(p, add_corner_words(scene, [](const Triangle& t) -> const auto& { return t.tangents; }, g));
+    }
     // Next-event estimation, once it is known what it can sample: emitters, or the
     // environment with a nonzero chance.
     g.features.set(Feature::HAS_NEXT_EVENT,

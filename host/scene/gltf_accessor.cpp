@@ -176,6 +176,11 @@ std::vector<glm::dvec2> read_vec2(const tinygltf::Model& model, int accessor, co
     return read_floats<2, glm::dvec2>(model, accessor, TINYGLTF_TYPE_VEC2, "a VEC2", origin, integers);
 }
 
+std::vector<glm::dvec4> read_vec4(const tinygltf::Model& model, int accessor, const Origin& origin,
+                                  Integers integers) {
+    return read_floats<4, glm::dvec4>(model, accessor, TINYGLTF_TYPE_VEC4, "a VEC4", origin, integers);
+}
+
 std::vector<glm::vec4> read_colors(const tinygltf::Model& model, int accessor, const Origin& origin) {
     const bool rgba = accessor >= 0 && std::size_t(accessor) < model.accessors.size() &&
                       model.accessors[std::size_t(accessor)].type == TINYGLTF_TYPE_VEC4;

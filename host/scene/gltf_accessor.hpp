@@ -39,6 +39,10 @@ std::vector<glm::dvec3> read_vec3(const tinygltf::Model& model, int accessor, co
 std::vector<glm::dvec2> read_vec2(const tinygltf::Model& model, int accessor, const Origin& origin,
                                   Integers integers = Integers::Normalized);
 
+// A VEC4 accessor, as read_vec3 (tangents).
+std::vector<glm::dvec4> read_vec4(const tinygltf::Model& model, int accessor, const Origin& origin,
+                                  Integers integers = Integers::Normalized);
+
 // A COLOR_0 accessor: VEC3 (alpha 1) or VEC4, of floats or normalized unsigned bytes or
 // shorts, each component clamped into [0, 1].
 std::vector<glm::vec4> read_colors(const tinygltf::Model& model, int accessor, const Origin& origin);

@@ -410,8 +410,13 @@ private:
                                                                     mesh.normals.size(), mesh.positions.size()));
             }
         }
-        if (prim.attributes.count("TANGENT")) {
-            note_unsupported("TANGENT attributes (normal maps derive tangents from the texture coordinates)");
+        const auto tangent = prim.attributes.find("TANGENT");
+        if (tangent != prim.attributes.end()) {
+            mesh.tangents = gltf::read_vec4(model_, tangent->second, {file_.string(), element + ".attributes.TANGENT"});
+            if (mesh.tangents.size() != mesh.positions.size()) {
+                fail_at(element + ".attributes.TANGENT",
+                        fmt::format("{} tangents for {} positions", mesh.tangents.size(), mesh.positions.size()));
+            }
         }
         const auto texcoord = prim.attributes.find("TEXCOORD_0");
         if (texcoord != prim.attributes.end()) {
@@ -450,6 +455,7 @@ private:
             if (smooth) f.normal = f.position;
             if (!mesh.uvs.empty()) f.uv = f.position;
             if (!mesh.colors.empty()) f.color = f.position;
+            if (!mesh.tangents.empty()) f.tangent = f.position;
             mesh.faces.push_back(f);
         }
         transform_mesh(mesh, t);

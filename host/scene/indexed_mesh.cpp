@@ -18,12 +18,19 @@ void transform_mesh(IndexedMesh& mesh, const Transform& t) {
     for (dvec3& n : mesh.normals) {
         if (is_nonzero(n)) n = t.apply_normal(n);
     }
+    // A tangent turns with the surface (not as a normal does); a mirror flips the
+    // bitangent's sign, which glTF gives as cross(n, t) w.
+    for (glm::dvec4& v : mesh.tangents) {
+        const dvec3 x(v);
+        if (is_nonzero(x)) v = glm::dvec4(robust_normalize(t.linear * robust_normalize(x)), t.mirrors ? -v.w : v.w);
+    }
     if (t.mirrors) {
         for (IndexedMesh::Face& f : mesh.faces) {
             std::swap(f.position[1], f.position[2]);
             std::swap(f.normal[1], f.normal[2]);
             std::swap(f.uv[1], f.uv[2]);
             std::swap(f.color[1], f.color[2]);
+            std::swap(f.tangent[1], f.tangent[2]);
         }
     }
 }
@@ -106,6 +113,18 @@ bool needs_computed_normals(const IndexedMesh& mesh) {
     return false;
 }
 
+// A face's tangents, in float, each w +-1; none when a corner's is zero (the kernel
+// then derives the frame from the texture coordinates).
+std::optional<std::array<glm::vec4, 3>> given_tangents(const IndexedMesh& mesh, const IndexedMesh::Face& f) {
+    std::array<glm::vec4, 3> out{};
+    for (int k = 0; k < 3; ++k) {
+        const glm::dvec4& v = mesh.tangents[f.tangent[k]];
+        if (!is_nonzero(dvec3(v))) return std::nullopt;
+        out[k] = glm::vec4(glm::vec3(dvec3(v)), v.w < 0.0 ? -1.0f : 1.0f);
+    }
+    return out;
+}
+
 }  // namespace
 
 std::optional<dvec3> vertex_beyond_limit(const IndexedMesh& mesh) {
@@ -132,6 +151,7 @@ std::size_t append_mesh(const IndexedMesh& mesh, const MeshOptions& options, Sce
         Triangle tri{{p[0], p[1], p[2]}, std::nullopt, material};
         if (options.smooth) tri.normals = corner_normals(mesh, f, computed, p);
         if (f.uv[0] != IndexedMesh::kNoUv) tri.uvs = {mesh.uvs[f.uv[0]], mesh.uvs[f.uv[1]], mesh.uvs[f.uv[2]]};
+        if (f.tangent[0] != IndexedMesh::kNoTangent) tri.tangents = given_tangents(mesh, f);
         if (f.color[0] != IndexedMesh::kNoColor) {
             tri.colors = {mesh.colors[f.color[0]], mesh.colors[f.color[1]], mesh.colors[f.color[2]]};
         }

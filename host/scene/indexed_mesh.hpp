@@ -12,6 +12,7 @@
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "scene/json_reader.hpp"
 #include "scene/scene.hpp"
@@ -24,6 +25,7 @@ struct IndexedMesh {
     static constexpr std::uint32_t kNoMaterial = 0xFFFFFFFFu;
     static constexpr std::uint32_t kNoUv = 0xFFFFFFFFu;
     static constexpr std::uint32_t kNoColor = 0xFFFFFFFFu;
+    static constexpr std::uint32_t kNoTangent = 0xFFFFFFFFu;
 
     struct Face {
         std::array<std::uint32_t, 3> position{};                          // into positions
@@ -31,12 +33,15 @@ struct IndexedMesh {
         std::uint32_t material = kNoMaterial;                             // into materials
         std::array<std::uint32_t, 3> uv{kNoUv, kNoUv, kNoUv};           // into uvs
         std::array<std::uint32_t, 3> color{kNoColor, kNoColor, kNoColor};  // into colors
+        std::array<std::uint32_t, 3> tangent{kNoTangent, kNoTangent, kNoTangent};  // into tangents
     };
 
     std::vector<glm::dvec3> positions;
     std::vector<glm::dvec3> normals;  // given by the source (OBJ "vn"); may be empty
     std::vector<glm::dvec2> uvs;      // texture coordinates (OBJ "vt", glTF TEXCOORD_0); may be empty
     std::vector<glm::vec4> colors;    // linear RGBA vertex colours (glTF COLOR_0); may be empty
+    // Unit tangents along +u and, in w, the bitangent's sign (glTF TANGENT); may be empty.
+    std::vector<glm::dvec4> tangents;
     std::vector<Face> faces;          // front face = cross(p1 - p0, p2 - p0)
     std::vector<Material> materials;  // the source's own (OBJ "usemtl" from its MTL file); may be empty
     std::vector<std::string> material_textures;  // per material, its colour texture file (OBJ map_Kd) or ""

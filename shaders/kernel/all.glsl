@@ -11,7 +11,7 @@
 #include "ray.glsl"
 #include "exact.glsl"
 #include "terminator.glsl"
-#include "vertex_color.glsl"
+#include "vertex_data.glsl"
 #include "texture.glsl"
 #include "normal_map.glsl"
 #include "budget.glsl"

@@ -1,7 +1,7 @@
 // Coverage (HAS_ALPHA): glTF's alphaMode, on triangles and quads, the shapes with
 // texture coordinates. A surface's opacity at a point is its material's `alpha` times
 // its colour texture's alpha there (bilinear, as the colour) times its vertex
-// colours' (vertex_color.glsl):
+// colours' (vertex_data.glsl):
 //   ALPHA_MASK   the surface is there where the opacity reaches alpha_cutoff and absent
 //                elsewhere: leaves, fences, decals;
 //   ALPHA_BLEND  the surface is there with probability equal to the opacity, decided

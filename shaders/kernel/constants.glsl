@@ -94,10 +94,11 @@ const uint SHAPE_PARALLELOGRAM = 1u;
 const uint SHAPE_RECTANGLE = 2u;
 // Flags of a Triangle record (Triangle.meta.y): the scene gave vertex normals; its
 // material's coverage is tested where a ray meets it (alpha.glsl); it has vertex
-// colours.
+// colours; it has vertex tangents.
 const uint TRIANGLE_NORMALS = 1u;
 const uint TRIANGLE_ALPHA_TESTED = 2u;
-const uint TRIANGLE_COLORS = 4u;        // it has vertex colours (vertex_color.glsl)
+const uint TRIANGLE_COLORS = 4u;        // it has vertex colours (vertex_data.glsl)
+const uint TRIANGLE_TANGENTS = 8u;      // it has vertex tangents (vertex_data.glsl)
 
 // A material's coverage (Material.alpha_mode, alpha.glsl), glTF's alphaMode.
 const uint ALPHA_OPAQUE = 0u;

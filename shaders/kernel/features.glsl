@@ -57,8 +57,11 @@ FEATURE(22, HAS_NEXT_EVENT)
 // tests their coverage where a ray meets them (alpha.glsl).
 FEATURE(23, HAS_ALPHA)
 // Triangles with vertex colours (glTF's COLOR_0): they multiply the colour and the
-// opacity of the material (vertex_color.glsl).
+// opacity of the material (vertex_data.glsl).
 FEATURE(24, HAS_VERTEX_COLORS)
+// Normal-mapped triangles with the file's own tangents (glTF's TANGENT) instead of
+// those derived from the texture coordinates (normal_map.glsl).
+FEATURE(25, HAS_TANGENTS)
 // Three per kind of primitive (shapes/kinds.glsl), after the others: HAS_<NAMES>, the
 // scene has some; with HAS_GRID, GRID_<NAMES>, the grid's cells list some, and
 // LOOSE_<NAMES>, its loose primitives, which are tested once per ray instead, hold
@@ -66,5 +69,5 @@ FEATURE(24, HAS_VERTEX_COLORS)
 // whose boxes would stretch the grid's (host/flatten/flat_scene.cpp,
 // host/accel/grid.cpp, docs/grid.md).
 #define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
-    FEATURE((25 + 3 * ID), HAS_##NAMES) FEATURE((25 + 3 * ID + 1), GRID_##NAMES) FEATURE((25 + 3 * ID + 2), LOOSE_##NAMES)
+    FEATURE((26 + 3 * ID), HAS_##NAMES) FEATURE((26 + 3 * ID + 1), GRID_##NAMES) FEATURE((26 + 3 * ID + 2), LOOSE_##NAMES)
 #include "shapes/kinds.glsl"

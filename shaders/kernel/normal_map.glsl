@@ -5,15 +5,30 @@
 // scale (Texture.decode.x), +x toward +u, +y up the image (toward -v, since v runs
 // down), +z along the surface normal.
 //
-// The tangent frame is derived per triangle, not read per vertex
-// (docs/decisions/0032-normal-maps.md): the tangent is dp/du of the triangle's
-// texture coordinates (after the material's transform), made perpendicular to the
-// interpolated shading normal (Gram-Schmidt); the bitangent is their cross product,
-// its sign from the handedness of the coordinates on the face, so that +y points
-// up the image on mirrored coordinates too.
+// The tangent frame is the file's where a triangle has vertex tangents (glTF's
+// TANGENT, HAS_TANGENTS, vertex_data.glsl): the tangent interpolated and made
+// perpendicular to the interpolated shading normal (Gram-Schmidt), the bitangent
+// cross(n, t) times the tangent's sign w, as glTF defines it. Elsewhere it is derived
+// per triangle (docs/decisions/0032-normal-maps.md): the tangent is dp/du of the
+// triangle's texture coordinates (after the material's transform), made
+// perpendicular likewise; the bitangent is their cross product, its sign from the
+// handedness of the coordinates on the face, so that +y points up the image on
+// mirrored coordinates too.
 
 // A mapped normal is kept at least this cosine toward the viewer (below).
 const float MIN_MAPPED_COSINE = 0.01f;
+
+// A bent normal may turn away from the viewer (a steep bump seen at a grazing
+// angle); shading would then see its own surface from behind. Its component along wo
+// is then replaced by MIN_MAPPED_COSINE: it keeps its lean across the view and turns,
+// in the plane of the two, just far enough to face the viewer.
+vec3 bent_toward_viewer(vec3 mapped, vec3 wo) {
+    float c = dot(mapped, wo);
+    if (c < MIN_MAPPED_COSINE) {
+        mapped = unit_vector(mapped + (MIN_MAPPED_COSINE - c) * wo);
+    }
+    return mapped;
+}
 
 // The shading normal at a hit, normal-mapped where its material has a map and the
 // hit has texture coordinates; hit.normal otherwise. wo: unit, toward the viewer.
@@ -37,7 +52,20 @@ vec3 mapped_normal(Hit hit, vec3 wo) {
     if (ts.x == 0.0f && ts.y == 0.0f) {
         return hit.normal;
     }
-    Triangle tri = load_triangle(hit.prim & REF_INDEX_MASK);
+    uint index = hit.prim & REF_INDEX_MASK;
+    Triangle tri = load_triangle(index);
+    float sgn = hit.front_face ? 1.0f : -1.0f;
+    vec3 n = sgn * hit.normal;  // the shading normal on the front side
+    if (HAS_TANGENTS && (tri.meta.y & TRIANGLE_TANGENTS) != 0u) {
+        vec4 given = vertex_tangent(index, hit.bary);
+        vec3 t = vec3(given) - dot(vec3(given), n) * n;
+        float tt = dot(t, t);
+        if (!(tt > 0.0f)) {
+            return hit.normal;
+        }
+        t = t / sqrt(tt);
+        return bent_toward_viewer(sgn * unit_vector(ts.x * t + ts.y * (given.w * cross(n, t)) + ts.z * n), wo);
+    }
     vec2 t0 = material_uv(m, vec2(tri.p0.w, tri.p1.w));
     vec2 t1 = material_uv(m, vec2(tri.p2.w, tri.n0.w));
     vec2 t2 = material_uv(m, vec2(tri.n1.w, tri.n2.w));
@@ -54,8 +82,6 @@ vec3 mapped_normal(Hit hit, vec3 wo) {
     }
     // p = p0 + a e1 + b e2 where uv = t0 + a d1 + b d2: dp/du = (d2.y e1 - d1.y e2) / det.
     vec3 dpdu = (d2.y * e1 - d1.y * e2) / det;
-    float sgn = hit.front_face ? 1.0f : -1.0f;
-    vec3 n = sgn * hit.normal;  // the shading normal on the front side
     vec3 t = dpdu - dot(dpdu, n) * n;
     float tt = dot(t, t);
     if (!(tt > 0.0f)) {
@@ -66,14 +92,5 @@ vec3 mapped_normal(Hit hit, vec3 wo) {
     // normal: det > 0 means dp/dv runs along cross(n, t), down the image, so the
     // bitangent, up the image, is -cross(n, t).
     vec3 b = (det > 0.0f ? -1.0f : 1.0f) * cross(n, t);
-    vec3 mapped = sgn * unit_vector(ts.x * t + ts.y * b + ts.z * n);
-    // A bent normal may turn away from the viewer (a steep bump seen at a grazing
-    // angle); shading would then see its own surface from behind. Its component along
-    // wo is then replaced by MIN_MAPPED_COSINE: it keeps its lean across the view and
-    // turns, in the plane of the two, just far enough to face the viewer.
-    float c = dot(mapped, wo);
-    if (c < MIN_MAPPED_COSINE) {
-        mapped = unit_vector(mapped + (MIN_MAPPED_COSINE - c) * wo);
-    }
-    return mapped;
+    return bent_toward_viewer(sgn * unit_vector(ts.x * t + ts.y * b + ts.z * n), wo);
 }

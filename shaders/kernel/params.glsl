@@ -63,8 +63,10 @@ PARAM(float, environment_choice, 15, w)     // the chance next-event estimation 
 // The rough lobe's albedo tables (kernel/lobes/ggx_multiple.glsl, HAS_MICROFACET).
 PARAM(uint, ggx_table_first_word, 16, x)    // where they start in table_words
 
-// Vertex colours (kernel/vertex_color.glsl, HAS_VERTEX_COLORS): six words a triangle.
+// Vertex colours (kernel/vertex_data.glsl, HAS_VERTEX_COLORS): six words a triangle.
 PARAM(uint, vertex_color_first_word, 16, y)  // where they start in table_words
+// Vertex tangents (kernel/vertex_data.glsl, HAS_TANGENTS): six words a triangle.
+PARAM(uint, tangent_first_word, 16, z)       // where they start in table_words
 
 // Each kind of primitive's count (shapes/kinds.glsl), <name>_count(): four a texel
 // from PARAM_KIND_TEXEL on (layout.glsl), kind ID in lane ID % 4 (at most 7 kinds,

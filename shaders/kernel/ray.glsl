@@ -14,7 +14,7 @@ struct Hit {
     bool front_face;  // the ray arrived on the side the primitive calls its front
     uint prim;        // what was hit, as a grid reference (kind << REF_KIND_SHIFT | index); REF_NONE for nothing
     vec2 uv;          // texture coordinates (triangles and quads with HAS_TEXTURES; 0 elsewhere)
-    vec2 bary;        // a triangle's weights of p1 and p2 at the hit (vertex_color.glsl); 0 elsewhere
+    vec2 bary;        // a triangle's weights of p1 and p2 at the hit (vertex_data.glsl); 0 elsewhere
 };
 
 // v / |v|, by a correctly rounded sqrt and division. Not normalize(): lavapipe

@@ -102,7 +102,7 @@ vec3 textured_emission(Material m, vec2 uv) {
 // times its textures: base colour times the colour texture, metallic times the
 // metallic-roughness texture's blue channel, roughness times its green (glTF's
 // packing); the emission times the emission texture. Vertex colours multiply the
-// colour as the colour texture does (vertex_color.glsl). Only triangles and quads
+// colour as the colour texture does (vertex_data.glsl). Only triangles and quads
 // have texture coordinates and vertex colours; other shapes keep the untextured
 // material.
 Material surface_material(Hit hit) {

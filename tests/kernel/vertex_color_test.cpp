@@ -1,4 +1,4 @@
-// Vertex colours (kernel/vertex_color.glsl): a triangle's colours, interpolated by
+// Vertex colours (kernel/vertex_data.glsl): a triangle's colours, interpolated by
 // its barycentric weights, multiply its material's colour, and their alpha its
 // opacity (kernel/alpha.glsl). In a white furnace (a uniform sky of radiance 1) a
 // flat white Lambertian triangle returns its albedo exactly, so each pixel shows the

@@ -330,6 +330,34 @@ TEST(Gltf, VertexColoursAreRead) {
     }
 }
 
+// TANGENT: unit xyz along +u, w the bitangent's sign; a mirroring node turns the
+// tangent with the surface and flips the sign (glTF's bitangent is cross(n, t) w).
+TEST(Gltf, TangentsAreReadAndMirrored) {
+    std::string bytes = octahedron_bytes();
+    for (int v = 0; v < 6; ++v) {
+        const float t[4] = {0.0f, 0.0f, 2.0f, -1.0f};
+        bytes.append(reinterpret_cast<const char*>(t), 16);  // 96 bytes
+    }
+    for (const bool mirrored : {false, true}) {
+        std::string json = gltf_json("mesh.bin", mirrored ? R"([{"mesh": 0, "scale": [1, 1, -1]}])" : kOneNode);
+        json.replace(json.find(R"("byteLength": 192)"), 17, R"("byteLength": 288)");
+        json.replace(json.find(R"("NORMAL": 1})"), 12, R"("NORMAL": 1, "TANGENT": 3})");
+        const std::string views = R"({"buffer": 0, "byteOffset": 144, "byteLength": 48})";
+        json.replace(json.find(views), views.size(), std::string(views) + R"(, {"buffer": 0, "byteOffset": 192, "byteLength": 96})");
+        const std::string last = R"("count": 24, "type": "SCALAR"})";
+        json.replace(json.find(last), last.size(), last + R"(, {"bufferView": 3, "componentType": 5126, "count": 6, "type": "VEC4"})");
+        const Scene s = vkrt::load_scene(write_gltf("tangents", json, bytes));
+        ASSERT_EQ(s.triangles.size(), 8u);
+        const auto& t = s.triangles[0].tangents;
+        ASSERT_TRUE(t.has_value());
+        for (const glm::vec4& v : *t) {
+            EXPECT_EQ(glm::vec3(v), glm::vec3(0.0f, 0.0f, mirrored ? -1.0f : 1.0f)) << mirrored;
+            EXPECT_EQ(v.w, mirrored ? 1.0f : -1.0f) << mirrored;
+        }
+        EXPECT_FALSE(has_warning(s, "TANGENT"));
+    }
+}
+
 TEST(GltfErrors, AnUnknownAlphaModeIsNamed) {
     const std::string material = R"("metallicFactor": 0}})";
     std::string json = gltf_json("mesh.bin", kOneNode);

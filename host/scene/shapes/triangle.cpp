@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
@@ -29,7 +30,7 @@ std::array<glm::dvec2, 3> texture_corners(const Triangle& t) {
 }
 
 void read_shape(const json::Node& n, ShapeReader& reader, std::vector<Triangle>& out) {
-    n.allow_only({"vertices", "normals", "colors", "material", "type"});
+    n.allow_only({"vertices", "normals", "colors", "tangents", "material", "type"});
     Triangle t;
     const json::Node vertices = n.required("vertices");
     const auto v = vertices.elements(3, "an array of 3 points");
@@ -48,6 +49,18 @@ void read_shape(const json::Node& n, ShapeReader& reader, std::vector<Triangle>&
         const auto e = given->elements(3, "an array of 3 colours");
         t.colors.emplace();
         for (int i = 0; i < 3; ++i) (*t.colors)[i] = glm::vec4(glm::vec3(e[i].unit_color()), 1.0f);
+    }
+    if (auto given = n.find("tangents")) {
+        const auto e = given->elements(3, "an array of 3 tangents");
+        t.tangents.emplace();
+        for (int i = 0; i < 3; ++i) {
+            const auto x = e[i].elements(4, "a tangent [x, y, z, w]: a direction and the bitangent's sign, 1 or -1");
+            const glm::dvec3 d(x[0].number(), x[1].number(), x[2].number());
+            const double w = x[3].number();
+            if (!is_nonzero(d)) e[i].fail("expected a non-zero tangent");
+            if (w != 1.0 && w != -1.0) x[3].fail(fmt::format("expected 1 or -1 (the bitangent's sign), got {}", w));
+            (*t.tangents)[i] = glm::vec4(glm::vec3(robust_normalize(d)), float(w));
+        }
     }
     t.material = reader.material_of(n);
     if (parallel_or_zero(t.vertices[1] - t.vertices[0], t.vertices[2] - t.vertices[0], kParallelSine)) {
@@ -84,7 +97,8 @@ kernel::Triangle flatten(const Triangle& t, const glm::dvec3& origin) {
     out.n0.w = float(uv[1].y);
     out.n1.w = float(uv[2].x);
     out.n2.w = float(uv[2].y);
-    const std::uint32_t flags = (t.normals ? kernel::TRIANGLE_NORMALS : 0u) | (t.colors ? kernel::TRIANGLE_COLORS : 0u);
+    const std::uint32_t flags = (t.normals ? kernel::TRIANGLE_NORMALS : 0u) | (t.colors ? kernel::TRIANGLE_COLORS : 0u) |
+                                (t.tangents ? kernel::TRIANGLE_TANGENTS : 0u);
     out.meta = kernel::uvec4(t.material, flags, shape_of(t), 0u);
     return out;
 }

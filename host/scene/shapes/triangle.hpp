@@ -29,8 +29,11 @@ struct Triangle {
     // (1, 0), (0, 1) and a parallelogram (0, 0), (1, 0), (1, 1): its corners.
     std::optional<std::array<glm::dvec2, 3>> uvs{};
     // Linear RGBA colours of the three vertices (glTF's COLOR_0), each in [0, 1]:
-    // they multiply the material's colour and opacity (kernel/vertex_color.glsl).
+    // they multiply the material's colour and opacity (kernel/vertex_data.glsl).
     std::optional<std::array<glm::vec4, 3>> colors{};
+    // Unit tangents of the three vertices along +u, w = +-1 the sign of the bitangent
+    // cross(n, t) w (glTF's TANGENT): a normal map's frame (kernel/normal_map.glsl).
+    std::optional<std::array<glm::vec4, 3>> tangents{};
 };
 
 // The quad corner, corner + e1, corner + e1 + e2, corner + e2, facing cross(e1, e2):
