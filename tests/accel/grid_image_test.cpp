@@ -34,19 +34,29 @@ constexpr std::size_t kBruteForceOnVulkanMax = 20000;
 
 // Whether one sample, traced by brute force, stays within the kernel's loop budget:
 // each ray loops over every primitive (plus a loop entry per kind, and two for the
-// deferred spheres, deferred_spheres.glsl), and a sample traces its eye ray and, with
-// mirrors or glass, up to max_depth more along the ray tree, each sending a shadow
-// ray per point light and per area-light sample. One pass over the spheres per ray:
-// a ray that starts near more than four makes more (deferred_spheres.glsl). An estimate
-// that errs low shows up as truncated samples, which the test fails on.
+// deferred spheres, deferred_spheres.glsl). In local mode a sample traces its eye
+// ray and, with mirrors or glass, up to max_depth more along the ray tree, each
+// sending a shadow ray per point light and per area-light sample; in global mode a
+// path traces its eye ray and up to max_bounces more, each sending a shadow ray per
+// light and, with next-event estimation, one toward the emitters or the sky. One
+// pass over the spheres per ray: a ray that starts near more than four makes more
+// (deferred_spheres.glsl). An estimate that errs low shows up as truncated samples,
+// which the test fails on.
 bool brute_force_fits_loop_budget(const Scene& s, std::size_t primitives) {
     bool secondary = false, emits = false;
     for (const Material& m : s.materials) {
         secondary = secondary || m.reflect != dvec3(0.0) || m.transmit != dvec3(0.0);
         emits = emits || m.emission != dvec3(0.0);
     }
-    const std::uint64_t rays = secondary ? s.render.max_depth + 1u : 1u;
-    const std::uint64_t queries = rays * (1u + s.lights.size() + (emits ? s.render.light_samples : 0u));
+    std::uint64_t queries = 0;
+    if (s.render.mode == RenderMode::Global) {
+        const std::uint64_t rays = s.render.max_bounces + 1u;
+        const bool emitters = emits || s.environment.has_value();
+        queries = rays * (1u + s.lights.size() + (emitters && s.render.nee ? 1u : 0u));
+    } else {
+        const std::uint64_t rays = secondary ? s.render.max_depth + 1u : 1u;
+        queries = rays * (1u + s.lights.size() + (emits ? s.render.light_samples : 0u));
+    }
     return queries * (primitives + 6u) <= kernel::DEFAULT_LOOP_BUDGET;
 }
 
