@@ -10,6 +10,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <system_error>
 #include <vector>
 
@@ -394,6 +395,21 @@ private:
         }
     }
 
+    // The primitive's vertex attribute `name`, read by `read`, one value per position
+    // (`positions` of them); empty when the primitive has none. A count that differs
+    // refuses the file, naming the attribute and what it holds (`what`).
+    template <typename Read>
+    auto read_attribute(const tinygltf::Primitive& prim, const std::string& element, const std::string& name,
+                        std::string_view what, std::size_t positions, Read read) {
+        using Values = decltype(read(0, gltf::Origin{}));
+        const auto found = prim.attributes.find(name);
+        if (found == prim.attributes.end()) return Values{};
+        const std::string path = element + ".attributes." + name;
+        Values values = read(found->second, gltf::Origin{file_.string(), path});
+        if (values.size() != positions) fail_at(path, fmt::format("{} {} for {} positions", values.size(), what, positions));
+        return values;
+    }
+
     void add_primitive(const tinygltf::Primitive& prim, const Transform& t, const std::string& element) {
         const auto position = prim.attributes.find("POSITION");
         if (position == prim.attributes.end()) fail_at(element + ".attributes", "no POSITION attribute");
@@ -402,39 +418,18 @@ private:
         const gltf::Integers quantizable = quantized_ ? gltf::Integers::Quantized : gltf::Integers::Quantizable;
         mesh.positions =
             gltf::read_vec3(model_, position->second, {file_.string(), element + ".attributes.POSITION"}, quantizable);
-        const auto normal = prim.attributes.find("NORMAL");
-        if (normal != prim.attributes.end()) {
-            mesh.normals = gltf::read_vec3(model_, normal->second, {file_.string(), element + ".attributes.NORMAL"});
-            if (mesh.normals.size() != mesh.positions.size()) {
-                fail_at(element + ".attributes.NORMAL", fmt::format("{} normals for {} positions",
-                                                                    mesh.normals.size(), mesh.positions.size()));
-            }
-        }
-        const auto tangent = prim.attributes.find("TANGENT");
-        if (tangent != prim.attributes.end()) {
-            mesh.tangents = gltf::read_vec4(model_, tangent->second, {file_.string(), element + ".attributes.TANGENT"});
-            if (mesh.tangents.size() != mesh.positions.size()) {
-                fail_at(element + ".attributes.TANGENT",
-                        fmt::format("{} tangents for {} positions", mesh.tangents.size(), mesh.positions.size()));
-            }
-        }
-        const auto texcoord = prim.attributes.find("TEXCOORD_0");
-        if (texcoord != prim.attributes.end()) {
-            mesh.uvs = gltf::read_vec2(model_, texcoord->second, {file_.string(), element + ".attributes.TEXCOORD_0"},
-                                       quantizable);
-            if (mesh.uvs.size() != mesh.positions.size()) {
-                fail_at(element + ".attributes.TEXCOORD_0",
-                        fmt::format("{} texture coordinates for {} positions", mesh.uvs.size(), mesh.positions.size()));
-            }
-        }
-        const auto color = prim.attributes.find("COLOR_0");
-        if (color != prim.attributes.end()) {
-            mesh.colors = gltf::read_colors(model_, color->second, {file_.string(), element + ".attributes.COLOR_0"});
-            if (mesh.colors.size() != mesh.positions.size()) {
-                fail_at(element + ".attributes.COLOR_0",
-                        fmt::format("{} colours for {} positions", mesh.colors.size(), mesh.positions.size()));
-            }
-        }
+        const std::size_t n = mesh.positions.size();
+        mesh.normals = read_attribute(prim, element, "NORMAL", "normals", n, [&](int a, const gltf::Origin& o) {
+            return gltf::read_vec3(model_, a, o);
+        });
+        mesh.tangents = read_attribute(prim, element, "TANGENT", "tangents", n, [&](int a, const gltf::Origin& o) {
+            return gltf::read_vec4(model_, a, o);
+        });
+        mesh.uvs = read_attribute(prim, element, "TEXCOORD_0", "texture coordinates", n,
+                                  [&](int a, const gltf::Origin& o) { return gltf::read_vec2(model_, a, o, quantizable); });
+        mesh.colors = read_attribute(prim, element, "COLOR_0", "colours", n, [&](int a, const gltf::Origin& o) {
+            return gltf::read_colors(model_, a, o);
+        });
         if (mesh.positions.size() > std::numeric_limits<std::uint32_t>::max()) fail_at(element, "too many vertices");
         const auto vertices = static_cast<std::uint32_t>(mesh.positions.size());
         std::vector<std::uint32_t> indices;
