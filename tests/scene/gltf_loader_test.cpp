@@ -435,6 +435,16 @@ TEST(GltfErrors, AnIndexOutOfRangeNamesTheAccessor) {
     vkrt::test::expect_error_message(message, "", {"meshes[0].primitives[0].indices", "index 9", "out of range", "6 vertices"});
 }
 
+// Every vertex attribute holds one value per position; a count that differs names
+// the attribute and both counts.
+TEST(GltfErrors, AnAttributeWithTooFewValuesIsNamed) {
+    std::string json = gltf_json("mesh.bin", kOneNode);
+    const std::string normals = R"({"bufferView": 1, "componentType": 5126, "count": 6, "type": "VEC3"})";
+    json.replace(json.find(normals), normals.size(), R"({"bufferView": 1, "componentType": 5126, "count": 5, "type": "VEC3"})");
+    const std::string message = load_error(write_gltf("normal_count", json));
+    vkrt::test::expect_error_message(message, "", {"meshes[0].primitives[0].attributes.NORMAL", "5 normals for 6 positions"});
+}
+
 TEST(GltfErrors, AnAccessorBeyondItsBufferViewIsRefused) {
     const std::string accessor = R"({"bufferView": 2, "componentType": 5123, "count": 30, "type": "SCALAR"})";
     const std::string message = load_error(write_gltf("range", gltf_json("mesh.bin", kOneNode, "", accessor)));
