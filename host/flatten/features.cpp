@@ -89,7 +89,9 @@ FeatureSet analyze_features(const Scene& scene) {
         specular = specular || (m.ks > 0.0 && is_nonzero(m.specular));
         emission = emission || is_nonzero(m.emission);
         reflection = reflection || is_nonzero(m.reflect);
-        refraction = refraction || is_nonzero(m.transmit);
+        refraction = refraction || is_nonzero(m.transmit) ||
+                     (m.metallic_roughness && m.metallic_roughness->transmission > 0.0 &&
+                      scene.render.mode == RenderMode::Global);
         microfacet = microfacet || m.metallic_roughness.has_value();
         textures = textures || m.texture.has_value() || m.metallic_roughness_texture.has_value() ||
                    m.normal_map.has_value() || m.emission_texture.has_value();

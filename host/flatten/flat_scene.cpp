@@ -100,17 +100,27 @@ kernel::Material flatten(const Material& m) {
     out.ior = float(m.ior);
     out.emission = vec3(m.emission);
     if (const auto& pbr = m.metallic_roughness) {
-        // glTF 2.0 appendix B: dielectrics reflect 4% at normal incidence (ior 1.5),
-        // metals their base colour; metals have no diffuse lobe. Fresnel splits any
+        // glTF 2.0 appendix B: dielectrics reflect ((ior - 1) / (ior + 1))^2 at normal
+        // incidence (4% at ior 1.5), metals their base colour; metals have no diffuse
+        // lobe. Glass takes transmission (1 - metallic) of the material and the metal
+        // keeps its share of the whole, as kernel/texture.glsl's
+        // set_metallic_roughness rebuilds a textured material. Fresnel splits any
         // mirror or glass of such a material.
-        out.diffuse = vec3((1.0 - pbr->metallic) * pbr->base_color);
+        const double f0 = std::pow((m.ior - 1.0) / (m.ior + 1.0), 2.0);
+        const double glass = pbr->transmission * (1.0 - pbr->metallic);
+        const double metal = glass > 0.0 ? (glass < 1.0 ? pbr->metallic / (1.0 - glass) : 0.0) : pbr->metallic;
+        out.diffuse = vec3((1.0 - metal) * pbr->base_color);
         out.kd = 1.0f;
         out.fresnel = 1u;
-        out.ggx_f0 = vec3(glm::mix(dvec3(0.04), pbr->base_color, pbr->metallic));
+        out.ggx_f0 = vec3(glm::mix(dvec3(f0), pbr->base_color, metal));
         out.ggx_alpha = float(std::max(pbr->roughness * pbr->roughness, double(kernel::MIN_GGX_ALPHA)));
         out.base_color = vec3(pbr->base_color);
         out.metallic = float(pbr->metallic);
         out.roughness = float(pbr->roughness);
+        out.transmission = float(pbr->transmission);
+        out.transmit = vec3(glass * pbr->base_color);
+        out.dielectric_f0 = float(f0);
+        out.thin_walled = pbr->thin ? 1u : 0u;
     } else {
         out.diffuse = vec3(m.diffuse);
         out.kd = float(m.kd);

@@ -200,11 +200,12 @@ RenderSettings read_render(const Node& n) {
 
 
 // glTF's metallic-roughness model (scene.hpp): base_color, metallic and roughness,
-// which replace the Phong fields rather than add to them.
+// and glass by transmission and thin, which replace the Phong fields rather than add
+// to them (ior serves both).
 Material::MetallicRoughness read_metallic_roughness(const Node& n) {
-    for (const char* phong : {"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit", "ior", "fresnel"}) {
+    for (const char* phong : {"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit", "fresnel"}) {
         if (n.find(phong)) {
-            n.fail_field(phong, "a metallic-roughness material (base_color, metallic, roughness) has no Phong fields; "
+            n.fail_field(phong, "a metallic-roughness material (base_color, metallic, roughness, transmission) has no Phong fields; "
                                 "give one model or the other");
         }
     }
@@ -212,6 +213,11 @@ Material::MetallicRoughness read_metallic_roughness(const Node& n) {
     if (auto v = n.find("base_color")) pbr.base_color = v->unit_color();
     if (auto v = n.find("metallic")) pbr.metallic = v->number_between(0.0, 1.0);
     if (auto v = n.find("roughness")) pbr.roughness = v->number_between(0.0, 1.0);
+    if (auto v = n.find("transmission")) pbr.transmission = v->number_between(0.0, 1.0);
+    if (auto v = n.find("thin")) {
+        if (!n.find("transmission")) n.fail_field("thin", "a thin wall needs \"transmission\"");
+        pbr.thin = v->boolean();
+    }
     return pbr;
 }
 
@@ -292,14 +298,15 @@ void read_alpha(const Node& n, Material& m) {
 
 Material read_material(const std::string& name, const Node& n, Scene& scene) {
     n.allow_only({"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit", "ior", "fresnel", "emission",
-                  "base_color", "metallic", "roughness", "texture", "texture_transform", "normal_map", "normal_scale",
+                  "base_color", "metallic", "roughness", "transmission", "thin", "texture", "texture_transform", "normal_map", "normal_scale",
                   "emission_texture", "alpha_mode", "alpha", "alpha_cutoff"});
     Material m;
     m.name = name;
     read_texture(n, m, scene);
     read_alpha(n, m);
     if (auto v = n.find("emission")) m.emission = v->color();
-    if (n.find("base_color") || n.find("metallic") || n.find("roughness")) {
+    if (auto v = n.find("ior")) m.ior = v->number_above(0.0);
+    if (n.find("base_color") || n.find("metallic") || n.find("roughness") || n.find("transmission")) {
         m.metallic_roughness = read_metallic_roughness(n);
         return m;
     }
@@ -308,7 +315,6 @@ Material read_material(const std::string& name, const Node& n, Scene& scene) {
     if (auto v = n.find("specular")) m.specular = v->color();
     if (auto v = n.find("ks")) m.ks = v->number_at_least(0.0);
     if (auto v = n.find("shininess")) m.shininess = v->number_at_least(0.0);
-    if (auto v = n.find("ior")) m.ior = v->number_above(0.0);
     if (auto v = n.find("reflect")) m.reflect = v->color();
     if (auto v = n.find("transmit")) m.transmit = v->color();
     if (auto v = n.find("fresnel")) m.fresnel = v->boolean();

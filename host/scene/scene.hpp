@@ -111,13 +111,19 @@ struct Material {
     bool fresnel = true;  // glass splits transmit by the Fresnel reflectance (else constant weights)
     dvec3 emission{0.0};
     // glTF's metallic-roughness model instead of the Phong fields above (which it
-    // leaves at their defaults, emission aside): a GGX lobe with reflectance
-    // mix(0.04, base_color, metallic) at normal incidence, over a diffuse lobe of
-    // (1 - metallic) base_color. Global mode only; local mode shades the diffuse lobe.
+    // leaves at their defaults, emission and ior aside): a GGX lobe with reflectance
+    // mix(f0, base_color, metallic) at normal incidence, f0 = ((ior - 1) / (ior + 1))^2
+    // (0.04 at the default ior 1.5), over a diffuse lobe of (1 - metallic) base_color;
+    // with transmission, glass takes that share of the dielectric (kernel/texture.glsl).
+    // Global mode only; local mode shades the diffuse lobe.
     struct MetallicRoughness {
         dvec3 base_color{1.0};
-        double metallic = 0.0;   // 0 to 1
-        double roughness = 1.0;  // 0 to 1; the GGX alpha is its square
+        double metallic = 0.0;      // 0 to 1
+        double roughness = 1.0;     // 0 to 1; the GGX alpha is its square
+        double transmission = 0.0;  // 0 to 1 (glTF's KHR_materials_transmission)
+        // The glass is a thin wall, crossed without refraction (glTF's transmission
+        // without KHR_materials_volume), rather than the surface of a solid.
+        bool thin = false;
     };
     std::optional<MetallicRoughness> metallic_roughness;
     // A colour texture (an index into Scene::textures) multiplying `diffuse`, or the

@@ -9,7 +9,8 @@
 //
 // A metallic-roughness material (HAS_MICROFACET) has the diffuse and the ggx lobes
 // only, the diffuse one coupled to the ggx one so that their sum stays at most 1
-// (diffuse.glsl).
+// (diffuse.glsl), and with transmission glass: the glass lobe carries glass_share of
+// the material (texture.glsl), the smooth lobes the rest (Lobes.smooth_share).
 //
 // A scattering event picks one lobe group at random in proportion to its weight:
 // the smooth group (the lobes of lobes/smooth_lobes.glsl, sampled together as a
@@ -23,6 +24,7 @@ struct Lobes {
 #include "lobes/smooth_lobes.glsl"
     MirrorLobe mirror;
     GlassLobe glass;
+    float smooth_share;  // the share of the material the smooth lobes carry (1 but beside glTF's glass)
 };
 
 // The lobes of material m seen from a direction at cos(theta_o) = cos_o to the
@@ -33,17 +35,23 @@ Lobes material_lobes(Material m, float cos_o) {
 #include "lobes/smooth_lobes.glsl"
     l.mirror = mirror_lobe(m);
     l.glass = glass_lobe(m);
+    l.smooth_share = 1.0f - glass_share(m);
 #define SMOOTH_LOBE(id, name, Type, FEATURE) CHECK(is_finite_bits(l.name.weight) && l.name.weight >= 0.0f);
 #include "lobes/smooth_lobes.glsl"
     return l;
 }
 
-// The smooth group's weight: the sum of its lobes'.
-float smooth_weight(Lobes l) {
+// The sum of the smooth lobes' weights, which share out the group's draws.
+float smooth_sum(Lobes l) {
     float w = 0.0f;
 #define SMOOTH_LOBE(id, name, Type, FEATURE) if (FEATURE) w += l.name.weight;
 #include "lobes/smooth_lobes.glsl"
     return w;
+}
+
+// The smooth group's weight among the groups: that sum times the group's share.
+float smooth_weight(Lobes l) {
+    return l.smooth_share * smooth_sum(l);
 }
 
 float lobes_total(Lobes l) {
@@ -59,6 +67,7 @@ vec3 eval_smooth(Lobes l, vec3 n, vec3 wo, vec3 wi) {
         f += name##_eval(l.name, n, wo, wi); \
     }
 #include "lobes/smooth_lobes.glsl"
+    f *= l.smooth_share;
     CHECK(is_weight(f));
     return f;
 }
@@ -66,7 +75,7 @@ vec3 eval_smooth(Lobes l, vec3 n, vec3 wo, vec3 wi) {
 // The density over solid angle with which sample_smooth draws wi: the lobes'
 // densities mixed in proportion to their weights.
 float pdf_smooth(Lobes l, Basis frame, vec3 wo, vec3 wi, uint hemisphere) {
-    float w = smooth_weight(l);
+    float w = smooth_sum(l);
     if (!(w > 0.0f)) {
         return 0.0f;
     }
@@ -86,7 +95,7 @@ float pdf_smooth(Lobes l, Basis frame, vec3 wo, vec3 wi, uint hemisphere) {
 // (u1, u2) the direction. The result may point below the surface (the caller ends
 // the path there: the lobes are zero on that side).
 vec3 sample_smooth(Lobes l, Basis frame, vec3 wo, uint hemisphere, float u0, float u1, float u2) {
-    float pick = u0 * smooth_weight(l);
+    float pick = u0 * smooth_sum(l);
     uint chosen = 0u;
     float start = 0.0f;
 #define SMOOTH_LOBE(id, name, Type, FEATURE) \

@@ -127,10 +127,10 @@ vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smoo
 }
 
 // The ray leaving a mirror or glass hit, and the factor the path's throughput takes:
-// mirror: reflect / P(mirror); glass: transmit / P(glass), reflected with the Fresnel
-// reflectance's probability (which cancels it from the weight) and refracted
-// otherwise; with "fresnel": false always refracted (total internal reflection
-// reflects). `pick` (uniform in [0, total)) chose the group, u decides within glass.
+// mirror: reflect / P(mirror); glass: its colour / P(glass), reflected with the
+// Fresnel reflectance's probability (which cancels it from the weight) and refracted
+// otherwise, or through a thin wall sent on straight; with "fresnel": false always
+// refracted (total internal reflection reflects). `pick` (uniform in [0, total)) chose the group, u decides within glass.
 // A refraction updates the media the path is in (lobes/glass.glsl).
 Ray scatter_delta(Ray ray, Hit hit, vec3 p, Lobes lobes, float total, float pick, float u, INOUT(vec3) beta,
                   INOUT(vec4) media) {
@@ -143,13 +143,18 @@ Ray scatter_delta(Ray ray, Hit hit, vec3 p, Lobes lobes, float total, float pick
         beta *= lobes.mirror.color * (total / lobes.mirror.weight);
         return mirrored;
     }
-    beta *= lobes.glass.color * (total / lobes.glass.weight);
-    Refraction r = refract_fresnel(ray.dir, hit.normal, interface_eta(media, lobes.glass.ior, hit.front_face));
+    // A thin wall is an interface from air into the glass, whichever side is hit.
+    float eta = lobes.glass.thin ? 1.0f / lobes.glass.ior : interface_eta(media, lobes.glass.ior, hit.front_face);
+    Refraction r = refract_fresnel(ray.dir, hit.normal, eta);
     float p_reflect = r.total ? 1.0f : (lobes.glass.fresnel ? r.reflectance : 0.0f);
     bool reflects = u < p_reflect;
     note_decision(reflects ? DECISION_GLASS_REFLECTS : DECISION_GLASS_REFRACTS);
+    beta *= (reflects ? lobes.glass.reflected : lobes.glass.color) * (total / lobes.glass.weight);
     if (reflects) {
         return mirrored;
+    }
+    if (lobes.glass.thin) {
+        return Ray(offset_ray_origin(p, -hit.geo_normal), ray.dir);
     }
     media = media_after_refraction(media, lobes.glass.ior, hit.front_face);
     return Ray(offset_ray_origin(p, -hit.geo_normal), r.dir);

@@ -41,7 +41,7 @@ MATERIAL_FIELD(float, metallic, 7, w)  // the metallic-roughness factors (0 for 
 MATERIAL_FIELD3(vec3, uv_v, 8)
 MATERIAL_FIELD(float, roughness, 8, w)
 MATERIAL_FIELD3(vec3, base_color, 9)   // the metallic-roughness base colour
-MATERIAL_PAD(9, w)
+MATERIAL_FIELD(float, transmission, 9, w) // the share of its dielectric that is glass (glTF's transmission)
 
 // Coverage (alpha.glsl): glTF's alphaMode. The opacity at a point is `alpha` times
 // the colour texture's alpha there.
@@ -49,6 +49,15 @@ MATERIAL_FIELD(uint, alpha_mode, 10, x)    // ALPHA_OPAQUE, ALPHA_MASK or ALPHA_
 MATERIAL_FIELD(float, alpha, 10, y)        // the opacity factor (glTF's base colour alpha)
 MATERIAL_FIELD(float, alpha_cutoff, 10, z) // ALPHA_MASK: opaque where the opacity is at least this
 MATERIAL_PAD(10, w)
+
+// Glass of a metallic-roughness material (lobes/glass.glsl): the dielectric's
+// reflectance at normal incidence, from its index of refraction (glTF's
+// KHR_materials_ior), and whether the glass is a thin wall that light crosses
+// without turning (glTF's transmission without KHR_materials_volume).
+MATERIAL_FIELD(float, dielectric_f0, 11, x)
+MATERIAL_FIELD(uint, thin_walled, 11, y)  // 1: transmitted light goes on straight; 0: it refracts
+MATERIAL_PAD(11, z)
+MATERIAL_PAD(11, w)
 
 #undef MATERIAL_PAD
 #undef MATERIAL_FIELD3

@@ -57,7 +57,8 @@ void spawn_children(PendingRay cur, Hit hit, INOUT(RayQueue) q, INOUT(SampleResu
     Material m = load_material(hit.material);
     vec3 reflect_weight = m.mirror;
     vec3 transmit = m.transmit;
-    bool transmits = HAS_REFRACTION && any(greaterThan(transmit, vec3(0.0f)));
+    // A metallic-roughness material's glass is global mode's: here its diffuse lobe shades it.
+    bool transmits = HAS_REFRACTION && !(m.ggx_alpha > 0.0f) && any(greaterThan(transmit, vec3(0.0f)));
     bool reflects = (HAS_REFLECTION && any(greaterThan(reflect_weight, vec3(0.0f)))) || transmits;
     if (!reflects || cur.depth >= max_depth()) {
         return;

@@ -97,6 +97,30 @@ vec3 textured_emission(Material m, vec2 uv) {
     return m.emission * vec3(texture_bilinear(load_texture(m.emission_map - 1u), uv));
 }
 
+// The share of material m that is glass: for a metallic-roughness material its
+// dielectric's transmission, transmission (1 - metallic); 0 for the paper's
+// material, whose glass is its `transmit` colour, and wherever glass is compiled out.
+float glass_share(Material m) {
+    return HAS_REFRACTION && HAS_MICROFACET && m.ggx_alpha > 0.0f ? m.transmission * (1.0f - m.metallic) : 0.0f;
+}
+
+// A metallic-roughness material's lobes from its base colour, metallic and roughness
+// (flat_scene.cpp builds an untextured material's alike). Its glass (lobes/glass.glsl)
+// takes glass_share = transmission (1 - metallic) of it, the other lobes the rest:
+// the metal's share of those is metallic / (1 - glass_share), so that the metal keeps
+// its share of the whole, and the dielectric reflects dielectric_f0 at normal
+// incidence.
+void set_metallic_roughness(INOUT(Material) m, vec3 base, float metallic, float roughness) {
+    m.metallic = metallic;
+    float glass = glass_share(m);
+    float metal = glass > 0.0f ? (glass < 1.0f ? metallic / (1.0f - glass) : 0.0f) : metallic;
+    m.diffuse = (1.0f - metal) * base;
+    m.kd = 1.0f;
+    m.ggx_f0 = mix(vec3(m.dielectric_f0), base, metal);
+    m.ggx_alpha = max(roughness * roughness, MIN_GGX_ALPHA);
+    m.transmit = glass * base;
+}
+
 // The material at a hit, textured. A Phong material's diffuse colour times the
 // colour texture; a metallic-roughness material rebuilt from its factors (flat_scene.cpp)
 // times its textures: base colour times the colour texture, metallic times the
@@ -128,10 +152,7 @@ Material surface_material(Hit hit) {
                 metallic = clamp(metallic * mr.b, 0.0f, 1.0f);
                 roughness = clamp(roughness * mr.g, 0.0f, 1.0f);
             }
-            m.diffuse = (1.0f - metallic) * base;
-            m.kd = 1.0f;
-            m.ggx_f0 = mix(vec3(0.04f), base, metallic);
-            m.ggx_alpha = max(roughness * roughness, MIN_GGX_ALPHA);
+            set_metallic_roughness(m, base, metallic, roughness);
         } else {
             m.diffuse = m.diffuse * c;
         }

@@ -51,7 +51,10 @@ Scene furnace(const std::string& render, std::uint32_t width = 16, std::uint32_t
       "render": {},
       "materials": {{ "wall": {{ "diffuse": [{}, {}, {}], "emission": [{}, {}, {}] }},
                      "glass": {{ "diffuse": [0, 0, 0], "transmit": [1, 1, 1], "ior": 1.5 }},
-                     "mirror": {{ "diffuse": [0, 0, 0], "reflect": [1, 1, 1] }} }},
+                     "mirror": {{ "diffuse": [0, 0, 0], "reflect": [1, 1, 1] }},
+                     "clear": {{ "roughness": 0, "transmission": 1, "ior": 1.33 }},
+                     "pane": {{ "roughness": 0, "transmission": 1, "thin": true }},
+                     "half": {{ "metallic": 0.5, "roughness": 0, "transmission": 1 }} }},
       "objects": [{}{}]
     }})", width, height, render, kAlbedo, kAlbedo, kAlbedo, kEmission, kEmission, kEmission, walls, objects));
 }
@@ -144,7 +147,12 @@ INSTANTIATE_TEST_SUITE_P(
         // emit nothing: in a furnace they are invisible once paths run long enough.
         FurnaceCase{"glass_and_mirror_1000", furnace_render("", 1000), 1000, true,
                     R"(, { "type": "sphere", "center": [0.4, -0.1, -0.4], "radius": 0.35, "material": "glass" },
-                         { "type": "sphere", "center": [-0.3, 0.3, -0.5], "radius": 0.3, "material": "mirror" })"}),
+                         { "type": "sphere", "center": [-0.3, 0.3, -0.5], "radius": 0.3, "material": "mirror" })"},
+        // So is glTF's clear glass, a solid, a thin wall, or half of a white metal.
+        FurnaceCase{"gltf_glass_1000", furnace_render("", 1000), 1000, true,
+                    R"(, { "type": "sphere", "center": [0.4, -0.1, -0.4], "radius": 0.35, "material": "clear" },
+                         { "type": "quad", "corner": [-0.6, -0.6, -0.6], "edge1": [0.5, 0, 0], "edge2": [0.2, 0.5, 0], "material": "pane" },
+                         { "type": "sphere", "center": [-0.3, 0.3, -0.5], "radius": 0.3, "material": "half" })"}),
     [](const ::testing::TestParamInfo<FurnaceCase>& param) { return param.param.name; });
 
 // One pixel, many samples, through the reference kernel: its own mean and standard

@@ -647,7 +647,7 @@ TEST_F(SceneLoaderTest, MetallicRoughnessMaterials) {
     EXPECT_FALSE(load(Parts{}.text()).materials[0].metallic_roughness.has_value()) << "Phong by default";
 
     expect_error(Parts{.materials = R"({"m": {"metallic": 1, "diffuse": [1, 1, 1]}})"},
-                 {": materials.m.diffuse: a metallic-roughness material (base_color, metallic, roughness) has no Phong fields"});
+                 {": materials.m.diffuse: a metallic-roughness material (base_color, metallic, roughness, transmission) has no Phong fields"});
     expect_error(Parts{.materials = R"({"m": {"roughness": 1.5}})"},
                  {": materials.m.roughness: expected a number between 0 and 1, got 1.5"});
     expect_error(Parts{.materials = R"({"m": {"metallic": -0.1}})"},

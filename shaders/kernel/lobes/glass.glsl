@@ -4,18 +4,32 @@
 // from (Hit.normal), `d` the unit direction of the arriving ray.
 
 struct GlassLobe {
-    vec3 color;    // transmit (0 without HAS_REFRACTION)
+    vec3 color;      // what the refracted light takes: transmit (0 without HAS_REFRACTION)
     float ior;
-    bool fresnel;  // split by Fresnel; otherwise refracted unless totally reflected
-    float weight;  // the mean of its colour
+    vec3 reflected;  // what the reflected light takes: the same colour for the paper's glass
+    bool fresnel;    // split by Fresnel; otherwise refracted unless totally reflected
+    bool thin;       // a thin wall: the refracted light goes on straight, in the same medium
+    float weight;    // the lobe's selection weight: the mean of its colour, or its share
 };
 
+// The paper's glass tints what it reflects and refracts alike by `transmit`. A
+// metallic-roughness material's glass is glTF's (KHR_materials_transmission): it
+// reflects glass_share untinted and refracts glass_share times the base colour
+// (texture.glsl, set_metallic_roughness).
 GlassLobe glass_lobe(Material m) {
     GlassLobe l;
     l.color = HAS_REFRACTION ? m.transmit : vec3(0.0f);
     l.ior = m.ior;
+    l.reflected = l.color;
     l.fresnel = m.fresnel != 0u;
+    l.thin = false;
     l.weight = mean3(l.color);
+    float share = glass_share(m);
+    if (share > 0.0f) {
+        l.reflected = vec3(share);
+        l.thin = m.thin_walled != 0u;
+        l.weight = share;
+    }
     return l;
 }
 

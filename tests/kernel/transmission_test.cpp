@@ -1,0 +1,150 @@
+// Glass of a metallic-roughness material (glTF's KHR_materials_transmission, _ior and
+// _volume; kernel/lobes/glass.glsl, texture.glsl): the host and the kernel build the
+// same material; a thin wall seen head-on under a white sky shows its closed form,
+// F + (1 - F) base, and a slab of the same glass F + (1 - F) base^2 (its light is
+// tinted going in and coming out, and reflected inside as often as it likes); both
+// backends.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdint>
+#include <string>
+
+#include <fmt/format.h>
+#include <glm/glm.hpp>
+
+#include "flatten/flat_scene.hpp"
+#include "cpu/cpu_backend.hpp"
+#include "kernel/kernel.hpp"
+#include "test_support.hpp"
+
+namespace vkrt {
+namespace {
+
+using glm::vec3;
+
+// The exact Fresnel reflectance of unpolarized light at normal incidence.
+double fresnel_normal(double ior) {
+    return std::pow((ior - 1.0) / (ior + 1.0), 2.0);
+}
+
+// A sheet of material `material` (quads of 4 x 4 around the view's axis, the first at
+// z = 0 facing the camera, `back` more objects) seen head-on from (0, 0, 3) through a
+// 6-degree view, under a white sky.
+Scene sheet(const std::string& name, const std::string& material, const std::string& back = "") {
+    return test::scene_from_text(name, fmt::format(R"({{
+      "camera": {{ "eye": [0, 0, 3], "look_at": [0, 0, 0], "fov": 6, "width": 16, "height": 12 }},
+      "render": {{ "mode": "global", "spp": 128, "max_bounces": 64, "background": [1, 1, 1] }},
+      "materials": {{ "glass": {} }},
+      "objects": [
+        {{ "type": "quad", "corner": [-2, -2, 0], "edge1": [4, 0, 0], "edge2": [0, 4, 0], "material": "glass" }}{}
+      ]}})", material, back));
+}
+
+// The image mean and its standard error from the spread of the pixels (every pixel
+// has the same expectation, within 1e-5 over this narrow view).
+std::pair<double, double> mean_and_error(const Image& image) {
+    const std::size_t n = std::size_t(image.width) * image.height;
+    double sum = 0.0, sum2 = 0.0;
+    for (std::size_t p = 0; p < n; ++p) {
+        sum += image.rgb[3 * p];
+        sum2 += double(image.rgb[3 * p]) * image.rgb[3 * p];
+    }
+    const double mean = sum / double(n);
+    return {mean, std::sqrt(std::max(0.0, (sum2 / double(n) - mean * mean) / double(n - 1)))};
+}
+
+void expect_image_mean(const Scene& scene, double expected) {
+    for (const bool vulkan : {false, true}) {
+        SCOPED_TRACE(vulkan ? "vulkan" : "cpu");
+        const RenderOutcome out = vulkan ? test::render_vulkan(scene) : test::render_cpu(scene);
+        EXPECT_EQ(out.stats.nonfinite_samples, 0u);
+        EXPECT_EQ(out.stats.truncated_samples, 0u);
+        const auto [mean, error] = mean_and_error(out.image);
+        std::printf("%s %s: mean %.5f, standard error %.5f, expected %.5f\n", scene.source.stem().c_str(),
+                    vulkan ? "vulkan" : "cpu", mean, error, expected);
+        EXPECT_GT(error, 0.0) << "the glass both reflects and transmits";
+        EXPECT_NEAR(mean, expected, 4.0 * error + 1e-4) << "standard error " << error;
+    }
+}
+
+TEST(Transmission, AThinWallPassesItsBaseColourAndReflectsWhite) {
+    const double f = fresnel_normal(1.5);
+    expect_image_mean(sheet("thin_wall", R"({ "base_color": [0.5, 0.5, 0.5], "roughness": 0, "transmission": 1, "thin": true })"),
+                      f + (1.0 - f) * 0.5);
+}
+
+TEST(Transmission, ASlabTintsGoingInAndComingOut) {
+    const double ior = 1.8, f = fresnel_normal(ior);
+    const std::string back = R"(,
+        { "type": "quad", "corner": [-2, -2, -0.2], "edge1": [0, 4, 0], "edge2": [4, 0, 0], "material": "glass" })";
+    expect_image_mean(
+        sheet("slab", R"({ "base_color": [0.5, 0.5, 0.5], "roughness": 0, "transmission": 1, "ior": 1.8 })", back),
+        f + (1.0 - f) * 0.25);
+}
+
+// The host's material (flat_scene.cpp) is the one the kernel rebuilds at a textured
+// hit (texture.glsl, set_metallic_roughness): glass takes transmission (1 - metallic),
+// the metal keeps its share of the whole, the dielectric reflects ((ior - 1) /
+// (ior + 1))^2.
+TEST(Transmission, HostAndKernelBuildTheSameMaterial) {
+    const Scene scene = test::scene_from_text("glass_material", R"({
+      "camera": { "eye": [0, 0, 3], "look_at": [0, 0, 0] },
+      "render": { "mode": "global" },
+      "materials": { "m": { "base_color": [0.8, 0.6, 0.4], "metallic": 0.5, "roughness": 0.3, "transmission": 0.5, "ior": 2 } },
+      "objects": [{ "type": "quad", "corner": [-1, -1, 0], "edge1": [2, 0, 0], "edge2": [0, 2, 0], "material": "m" }]
+    })");
+    const FlatScene flat = flatten_scene(scene);
+    ASSERT_TRUE(flat.features.has(Feature::HAS_REFRACTION));
+    const kernel::Material host = flat.materials.at(0);
+    EXPECT_FLOAT_EQ(host.transmission, 0.5f);
+    EXPECT_FLOAT_EQ(host.dielectric_f0, float(1.0 / 9.0));
+    EXPECT_EQ(host.thin_walled, 0u);
+    const vec3 base(0.8f, 0.6f, 0.4f);
+    // Glass 0.25 of the whole, the metal 0.5 of the whole: 2/3 of the other 0.75.
+    const vec3 diffuse = base / 3.0f, transmit = 0.25f * base;
+    const vec3 f0 = glm::mix(vec3(1.0f / 9.0f), base, 2.0f / 3.0f);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(host.diffuse[c], diffuse[c], 1e-6f);
+        EXPECT_NEAR(host.transmit[c], transmit[c], 1e-6f);
+        EXPECT_NEAR(host.ggx_f0[c], f0[c], 1e-6f);
+    }
+
+    kernel::Kernel k = make_kernel(flat);
+    kernel::Material rebuilt = host;
+    k.set_metallic_roughness(rebuilt, base, 0.5f, 0.3f);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(rebuilt.diffuse[c], host.diffuse[c], 1e-6f);
+        EXPECT_NEAR(rebuilt.transmit[c], host.transmit[c], 1e-6f);
+        EXPECT_NEAR(rebuilt.ggx_f0[c], host.ggx_f0[c], 1e-6f);
+    }
+    EXPECT_FLOAT_EQ(rebuilt.ggx_alpha, host.ggx_alpha);
+    // The lobes split the material: glass 0.25, the smooth lobes the rest.
+    const kernel::Kernel::Lobes lobes = k.material_lobes(rebuilt, 1.0f);
+    EXPECT_FLOAT_EQ(lobes.glass.weight, 0.25f);
+    EXPECT_FLOAT_EQ(lobes.smooth_share, 0.75f);
+    EXPECT_EQ(lobes.glass.reflected, vec3(0.25f));
+    EXPECT_EQ(lobes.glass.color, host.transmit);
+}
+
+// Without global mode the glass is compiled out (local mode shades the material's
+// diffuse lobe, as for every metallic-roughness material), and a "thin" without
+// "transmission" is refused.
+TEST(Transmission, LocalModeLeavesItOutAndThinNeedsTransmission) {
+    const Scene local = test::scene_from_text("glass_local", R"({
+      "camera": { "eye": [0, 0, 3], "look_at": [0, 0, 0] },
+      "materials": { "m": { "base_color": [1, 1, 1], "transmission": 1 } },
+      "objects": [{ "type": "quad", "corner": [-1, -1, 0], "edge1": [2, 0, 0], "edge2": [0, 2, 0], "material": "m" }]
+    })");
+    EXPECT_FALSE(flatten_scene(local).features.has(Feature::HAS_REFRACTION));
+    const std::string message = test::scene_error_of("glass_thin", R"({
+      "camera": { "eye": [0, 0, 3], "look_at": [0, 0, 0] },
+      "materials": { "m": { "base_color": [1, 1, 1], "thin": true } },
+      "objects": [{ "type": "quad", "corner": [-1, -1, 0], "edge1": [2, 0, 0], "edge2": [0, 2, 0], "material": "m" }]
+    })");
+    test::expect_error_message(message, "", {"materials.m.thin", "a thin wall needs \"transmission\""});
+}
+
+}  // namespace
+}  // namespace vkrt
