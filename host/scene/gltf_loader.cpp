@@ -219,6 +219,7 @@ private:
             m.normal_map = textures_.normal_texture(g.normalTexture, element + ".normalTexture", m);
             if (g.occlusionTexture.index >= 0) note_unsupported("occlusion maps (not needed by a path tracer)");
             read_alpha_mode(g, element, m);
+            read_glass(g, element, m);
             materials_.push_back(static_cast<std::uint32_t>(scene_.materials.size()));
             scene_.materials.push_back(m);
         }
@@ -249,6 +250,58 @@ private:
             fail_at(element + ".alphaMode",
                     fmt::format("unknown alpha mode \"{}\" (expected OPAQUE, MASK or BLEND)", g.alphaMode));
         }
+    }
+
+    // Glass (docs/gltf.md): KHR_materials_ior's index, which also sets the
+    // dielectric's reflectance; KHR_materials_transmission's factor; and
+    // KHR_materials_volume, whose thickness makes the glass the surface of a solid
+    // that refracts, where without it the glass is a thin wall, as the extensions
+    // specify. What is not rendered (transmission textures, rough transmission,
+    // attenuation in the volume) is named.
+    void read_glass(const tinygltf::Material& g, const std::string& element, Material& m) {
+        if (auto e = g.extensions.find("KHR_materials_ior"); e != g.extensions.end()) {
+            const tinygltf::Value& v = e->second.Get("ior");
+            const double ior = v.IsNumber() ? v.GetNumberAsDouble() : 1.5;
+            if (ior == 0.0) {
+                note_unsupported("KHR_materials_ior's ior 0 (the default 1.5 is used)");
+            } else if (!(ior >= 1.0 && ior <= 1e3)) {
+                fail_at(element + ".extensions.KHR_materials_ior.ior",
+                        fmt::format("expected a number from 1 to 1000, got {}", ior));
+            } else {
+                m.ior = ior;
+            }
+        }
+        const auto e = g.extensions.find("KHR_materials_transmission");
+        if (e == g.extensions.end() || !m.metallic_roughness) return;
+        Material::MetallicRoughness& mr = *m.metallic_roughness;
+        const tinygltf::Value& factor = e->second.Get("transmissionFactor");
+        if (factor.IsNumber()) {
+            mr.transmission = unit(factor.GetNumberAsDouble(),
+                                   element + ".extensions.KHR_materials_transmission.transmissionFactor");
+        }
+        if (e->second.Has("transmissionTexture")) note_unsupported("transmission textures (the factor is used)");
+        if (mr.transmission > 0.0 && mr.roughness > 0.0) {
+            note_unsupported("rough transmission (the glass is smooth; its reflection keeps the roughness)");
+        }
+        mr.thin = true;
+        const auto volume = g.extensions.find("KHR_materials_volume");
+        if (volume == g.extensions.end()) return;
+        const tinygltf::Value& thickness = volume->second.Get("thicknessFactor");
+        const double d = thickness.IsNumber() ? thickness.GetNumberAsDouble() : 0.0;
+        if (!(d >= 0.0 && std::isfinite(d))) {
+            fail_at(element + ".extensions.KHR_materials_volume.thicknessFactor",
+                    fmt::format("expected a number of at least 0, got {}", d));
+        }
+        mr.thin = d == 0.0;
+        const tinygltf::Value& distance = volume->second.Get("attenuationDistance");
+        const tinygltf::Value& tint = volume->second.Get("attenuationColor");
+        // Light is attenuated only at a finite distance and by a colour other than white.
+        const bool far = !distance.IsNumber() || !std::isfinite(distance.GetNumberAsDouble());
+        bool white = true;
+        for (int i = 0; tint.IsArray() && i < int(tint.ArrayLen()); ++i) {
+            white = white && (!tint.Get(i).IsNumber() || tint.Get(i).GetNumberAsDouble() == 1.0);
+        }
+        if (!far && !white) note_unsupported("KHR_materials_volume's attenuation (the glass is clear)");
     }
 
     // KHR_materials_pbrSpecularGlossiness, which takes the place of

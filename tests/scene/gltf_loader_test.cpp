@@ -426,6 +426,40 @@ TEST(GltfErrors, AnIncludedFilesErrorFollowsTheScenesPath) {
     }
 }
 
+// Glass: KHR_materials_transmission's factor, KHR_materials_ior's index, and
+// KHR_materials_volume's thickness, which makes the glass refract; without a volume
+// it is a thin wall. What is not rendered is named.
+TEST(Gltf, GlassExtensionsAreRead) {
+    const std::string plain = R"({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0}})";
+    const auto with_material = [&](const std::string& name, const std::string& material) {
+        std::string json = gltf_json("mesh.bin", kOneNode);
+        json.replace(json.find(plain), plain.size(), material);
+        return vkrt::load_scene(write_gltf(name, json));
+    };
+    const Scene solid = with_material("glass_solid", R"({"pbrMetallicRoughness": {"roughnessFactor": 0},
+        "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.75}, "KHR_materials_ior": {"ior": 1.33},
+                       "KHR_materials_volume": {"thicknessFactor": 0.1}}})");
+    ASSERT_TRUE(solid.materials[0].metallic_roughness.has_value());
+    EXPECT_DOUBLE_EQ(solid.materials[0].metallic_roughness->transmission, 0.75);
+    EXPECT_FALSE(solid.materials[0].metallic_roughness->thin);
+    EXPECT_DOUBLE_EQ(solid.materials[0].ior, 1.33);
+    EXPECT_TRUE(solid.warnings.empty()) << solid.warnings.front();
+
+    const Scene thin = with_material("glass_thin", R"({"pbrMetallicRoughness": {"roughnessFactor": 0.4},
+        "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1, "transmissionTexture": {"index": 0}},
+                       "KHR_materials_volume": {"thicknessFactor": 0, "attenuationDistance": 2, "attenuationColor": [1, 0.5, 0.5]}}})");
+    EXPECT_TRUE(thin.materials[0].metallic_roughness->thin);
+    EXPECT_DOUBLE_EQ(thin.materials[0].ior, 1.5);
+    EXPECT_TRUE(has_warning(thin, "transmission textures"));
+    EXPECT_TRUE(has_warning(thin, "rough transmission"));
+    EXPECT_TRUE(has_warning(thin, "attenuation"));
+
+    std::string json = gltf_json("mesh.bin", kOneNode);
+    json.replace(json.find(plain), plain.size(), R"({"extensions": {"KHR_materials_ior": {"ior": 0.5}}})");
+    vkrt::test::expect_error_message(load_error(write_gltf("glass_ior", json)), "",
+                                     {"materials[0].extensions.KHR_materials_ior.ior", "from 1 to 1000, got 0.5"});
+}
+
 // ------------------------------------------------------------------ bad files
 
 TEST(GltfErrors, AnIndexOutOfRangeNamesTheAccessor) {
