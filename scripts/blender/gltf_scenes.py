@@ -30,7 +30,7 @@ from cycles_still import render_still  # noqa: E402
 def arguments():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     p = argparse.ArgumentParser()
-    p.add_argument("--scene", default="still_life", choices=["still_life", "metals", "leaves"])
+    p.add_argument("--scene", default="still_life", choices=["still_life", "metals", "leaves", "glass"])
     p.add_argument("--out", required=True)
     p.add_argument("--render", help="also render with Cycles to this .exr")
     p.add_argument("--spp", type=int, default=256)
@@ -218,6 +218,40 @@ def leaves():
     aim_camera((0, -5.5, 3.2), (0, 5.5, -2.4), 40)
 
 
+def glass(name, rgb, ior, thickness):
+    # Smooth glass (Principled transmission 1, roughness 0). The exporter writes
+    # KHR_materials_transmission and KHR_materials_ior, and KHR_materials_volume, which
+    # makes the glass a solid that refracts as Cycles' does, from the Thickness of a
+    # "glTF Material Output" node group (the exporter's own convention).
+    m = principled(name, rgb, roughness=0.0)
+    bsdf = m.node_tree.nodes["Principled BSDF"]
+    bsdf.inputs["Transmission"].default_value = 1.0
+    bsdf.inputs["IOR"].default_value = ior
+    group = bpy.data.node_groups.get("glTF Material Output")
+    if group is None:
+        group = bpy.data.node_groups.new("glTF Material Output", "ShaderNodeTree")
+        group.inputs.new("NodeSocketFloat", "Thickness")
+    node = m.node_tree.nodes.new("ShaderNodeGroup")
+    node.node_tree = group
+    node.inputs["Thickness"].default_value = thickness
+    return m
+
+
+def glasses():
+    # A clear glass sphere and a green glass block on the checkerboard floor, under
+    # the lamp: refraction, Fresnel reflection and the light they focus.
+    png = os.path.join(tempfile.mkdtemp(), "checker.png")
+    checker_png(png)
+    bpy.ops.mesh.primitive_plane_add(size=8, location=(0, 0, 0))
+    give(bpy.context.object, textured("floor", png, roughness=0.8))
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=48, ring_count=24, radius=0.6, location=(-0.6, 0.2, 0.6))
+    bpy.ops.object.shade_smooth()
+    give(bpy.context.object, glass("clear", (1.0, 1.0, 1.0), 1.5, 1.2))
+    bpy.ops.mesh.primitive_cube_add(size=0.8, location=(0.8, -0.2, 0.4), rotation=(0, 0, math.radians(25)))
+    give(bpy.context.object, glass("green", (0.6, 0.9, 0.6), 1.45, 0.8))
+    lamp_and_camera()
+
+
 def main():
     args = arguments()
     bpy.ops.wm.read_factory_settings(use_empty=True)
@@ -229,7 +263,7 @@ def main():
     world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.05, 0.05, 0.05, 1)
     world.node_tree.nodes["Background"].inputs["Strength"].default_value = 1.0
     scene.world = world
-    {"still_life": still_life, "metals": metals, "leaves": leaves}[args.scene]()
+    {"still_life": still_life, "metals": metals, "leaves": leaves, "glass": glasses}[args.scene]()
     bpy.ops.export_scene.gltf(filepath=args.out, export_format="GLB", export_cameras=True, export_lights=True,
                               export_apply=True, export_yup=True)
     if args.render:
