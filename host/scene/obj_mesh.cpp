@@ -28,6 +28,7 @@
 
 #include "scene/read_text.hpp"
 #include "scene/scene_error.hpp"
+#include "scene/texture_image.hpp"
 #include "scene/vec_math.hpp"
 
 namespace vkrt {
@@ -238,6 +239,10 @@ struct Polygon {
 // What one pass over an OBJ file takes from it.
 struct ParsedObj {
     std::vector<dvec3> positions;
+    // Per position, its colour ("v x y z r g b", sRGB-decoded), white where the line
+    // has none; used when any line has one.
+    std::vector<glm::vec4> colors;
+    bool any_color = false;
     std::vector<dvec3> normals;
     std::vector<glm::dvec2> uvs;  // v turned to run down the image, as vkrt's textures do
     std::vector<Corner> corners;  // every face's, in file order
@@ -269,6 +274,7 @@ private:
         const std::string_view keyword = words[0];
         if (keyword == "v") {
             out_.positions.push_back(triple(words, "v"));
+            out_.colors.push_back(vertex_color(words));
         } else if (keyword == "vn") {
             out_.normals.push_back(triple(words, "vn"));
         } else if (keyword == "vt") {
@@ -284,7 +290,7 @@ private:
     }
 
     // The first three numbers of a "v" or "vn" line; the rest (w, vertex colours)
-    // must be numbers too, but are not used.
+    // must be numbers too.
     dvec3 triple(const std::vector<std::string_view>& words, std::string_view keyword) const {
         if (words.size() < 4) {
             fail(fmt::format("expected 3 numbers after '{}', got {}", keyword, words.size() - 1));
@@ -295,6 +301,19 @@ private:
             if (i <= 3) v[static_cast<int>(i - 1)] = x;
         }
         return v;
+    }
+
+    // The colour of a "v" line of six numbers, "v x y z r g b" (the vertex colours
+    // MeshLab, ZBrush and photogrammetry tools write): display colours, sRGB-decoded,
+    // each clamped into [0, 1]; white for a line of another length.
+    glm::vec4 vertex_color(const std::vector<std::string_view>& words) {
+        if (words.size() != 7) return glm::vec4(1.0f);
+        out_.any_color = true;
+        glm::vec4 c(1.0f);
+        for (int i = 0; i < 3; ++i) {
+            c[i] = float(srgb_to_linear(std::clamp(file_number(words[4 + i], name_, line_), 0.0, 1.0)));
+        }
+        return c;
     }
 
     // A "vt" line's u and v (0 where not given; a w must be a number, but is not
@@ -390,6 +409,7 @@ IndexedMesh::Face triangle(const std::array<Corner, 3>& c, std::uint32_t materia
             f.normal[i] = checked_index(c[i].normal, mesh.normals.size(), "normal", " normals", name, line);
         }
     }
+    if (!mesh.colors.empty()) f.color = f.position;
     if (c[0].uv != Corner::kNone && c[1].uv != Corner::kNone && c[2].uv != Corner::kNone) {
         for (int i = 0; i < 3; ++i) {
             f.uv[i] = checked_index(c[i].uv, mesh.uvs.size(), "texture coordinate", "", name, line);
@@ -456,6 +476,7 @@ IndexedMesh read_obj(const std::filesystem::path& file, std::vector<std::string>
     mesh.positions = std::move(obj.positions);
     mesh.normals = std::move(obj.normals);
     mesh.uvs = std::move(obj.uvs);
+    if (obj.any_color) mesh.colors = std::move(obj.colors);
     if (libraries) add_materials(*libraries, name, *material_warnings, mesh);
     for (const Polygon& polygon : obj.polygons) {
         const std::uint32_t material =

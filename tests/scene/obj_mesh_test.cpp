@@ -176,6 +176,22 @@ TEST_F(ObjMeshTest, ReadsEveryIndexFormCommentsColoursAndCrLf) {
     expect_vec(s.triangles[3].vertices[2], {0.5, 0.5, 1});
 }
 
+TEST_F(ObjMeshTest, VertexColoursAreDecodedFromSrgb) {
+    // "v x y z r g b": sRGB display colours, clamped; a vertex without one is white.
+    const Scene s = load_mesh("v 0 0 0 1 0.5 0\nv 1 0 0 2 -1 0.04045\nv 0 1 0\nf 1 2 3\n");
+    ASSERT_EQ(s.triangles.size(), 1u);
+    ASSERT_TRUE(s.triangles[0].colors.has_value());
+    const auto& c = *s.triangles[0].colors;
+    EXPECT_FLOAT_EQ(c[0].r, 1.0f);
+    EXPECT_FLOAT_EQ(c[0].g, float(std::pow((0.5 + 0.055) / 1.055, 2.4)));
+    EXPECT_FLOAT_EQ(c[0].b, 0.0f);
+    EXPECT_FLOAT_EQ(c[1].r, 1.0f);
+    EXPECT_FLOAT_EQ(c[1].g, 0.0f);
+    EXPECT_FLOAT_EQ(c[1].b, float(0.04045 / 12.92));
+    EXPECT_EQ(c[2], glm::vec4(1.0f));
+    EXPECT_FALSE(load_mesh("v 0 0 0 1\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").triangles[0].colors.has_value());
+}
+
 TEST_F(ObjMeshTest, TransformScalesThenRotatesThenTranslates) {
     // (1, 1, 1) scaled by (2, 3, 4) is (2, 3, 4); turned 90 degrees about +z,
     // x -> y and y -> -x: (-3, 2, 4); moved by (10, 20, 30). Field order in the
