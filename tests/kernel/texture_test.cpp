@@ -112,6 +112,7 @@ TEST(Texture, MetallicRoughnessTexturesScaleTheFactors) {
     pbr.kd = 1.0f;
     pbr.ior = 1.5f;
     pbr.ggx_f0 = glm::vec3(0.42f, 0.32f, 0.22f);
+    pbr.dielectric_f0 = 0.04f;
     pbr.ggx_alpha = 0.36f;
     pbr.color_map = 1u;
     pbr.metal_rough_map = 2u;
