@@ -327,7 +327,8 @@ void paper_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
                 return;
             }
             vec3 local = phong_term(m, lobes.diffuse.albedo, hit.normal, d, cos_theta, -ray.dir);
-            s.radiance += beta * (total / w_smooth) * local * g;
+            // The smooth lobes carry smooth_share of a material that is partly glass.
+            s.radiance += beta * (total / w_smooth) * lobes.smooth_share * local * g;
             return;
         }
         ray = scatter_delta(ray, hit, p, lobes, total, pick, u.x, beta, media);
