@@ -1,5 +1,6 @@
-# The Cycles settings vkrt's comparisons render with: CPU, no denoising, clamping
-# or adaptive sampling, a box filter of one pixel, the Standard view (linear values
+# The Cycles settings vkrt's comparisons render with: CPU, no denoising, clamping,
+# adaptive sampling or glossy filter (Filter Glossy roughens what follows a diffuse
+# bounce, trading caustics for less noise), a box filter of one pixel, the Standard view (linear values
 # out), a 32-bit OpenEXR still. Imported by the scripts beside it.
 import bpy
 
@@ -13,6 +14,7 @@ def render_still(scene, path, spp, bounces, seed=0):
     scene.cycles.use_denoising = False
     scene.cycles.sample_clamp_direct = 0
     scene.cycles.sample_clamp_indirect = 0
+    scene.cycles.blur_glossy = 0.0
     scene.cycles.filter_width = 1.0
     scene.cycles.max_bounces = bounces
     scene.cycles.diffuse_bounces = bounces
