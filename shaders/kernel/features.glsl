@@ -16,7 +16,7 @@ FEATURE(6, HAS_JITTER)
 FEATURE(7, HAS_GRID)
 FEATURE(8, HAS_AREA_LIGHTS)  // the emitter list (emitters.glsl), sampled by local mode's light samples or HAS_NEXT_EVENT
 FEATURE(9, HAS_REFLECTION)   // mirror rays (material reflect)
-FEATURE(10, HAS_REFRACTION)   // refraction rays, and the reflection rays of glass (material transmit)
+FEATURE(10, HAS_REFRACTION)   // refraction rays, and the reflection rays of glass (material transmit, or transmission)
 FEATURE(11, HAS_GLOBAL)       // global illumination (global.glsl) instead of the local ray tree
 // Without the grid, whether the sphere loop tests the spheres a ray starts near
 // after it (deferred_spheres.glsl) rather than in place: on from
