@@ -648,6 +648,10 @@ TEST_F(SceneLoaderTest, MetallicRoughnessMaterials) {
 
     expect_error(Parts{.materials = R"({"m": {"metallic": 1, "diffuse": [1, 1, 1]}})"},
                  {": materials.m.diffuse: a metallic-roughness material (base_color, metallic, roughness, transmission) has no Phong fields"});
+    expect_error(Parts{.materials = R"({"m": {"transmission": 1.5}})"},
+                 {": materials.m.transmission: expected a number between 0 and 1, got 1.5"});
+    expect_error(Parts{.materials = R"({"m": {"transmission": 1, "ior": 0}})"},
+                 {": materials.m.ior: expected a number > 0, got 0"});
     expect_error(Parts{.materials = R"({"m": {"roughness": 1.5}})"},
                  {": materials.m.roughness: expected a number between 0 and 1, got 1.5"});
     expect_error(Parts{.materials = R"({"m": {"metallic": -0.1}})"},
