@@ -78,6 +78,7 @@ FeatureSet analyze_features(const Scene& scene) {
     bool emission = false;
     bool reflection = false;
     bool refraction = false;
+    bool absorption = false;
     bool microfacet = false;
     bool textures = false;
     // Only triangles and quads have the texture coordinates a normal map needs.
@@ -93,6 +94,8 @@ FeatureSet analyze_features(const Scene& scene) {
                      (m.metallic_roughness && m.metallic_roughness->transmission > 0.0 &&
                       scene.render.mode == RenderMode::Global);
         microfacet = microfacet || m.metallic_roughness.has_value();
+        absorption = absorption || (m.metallic_roughness && m.metallic_roughness->absorbs() &&
+                                    scene.render.mode == RenderMode::Global);
         textures = textures || m.texture.has_value() || m.metallic_roughness_texture.has_value() ||
                    m.normal_map.has_value() || m.emission_texture.has_value();
     }
@@ -143,6 +146,8 @@ FeatureSet analyze_features(const Scene& scene) {
     const bool secondary = (global ? scene.render.max_bounces : scene.render.max_depth) > 0 && has_geometry;
     f.set(Feature::HAS_REFLECTION, secondary && reflection);
     f.set(Feature::HAS_REFRACTION, secondary && refraction);
+    // Absorption happens inside glass, which only global mode's paths enter (refraction with it).
+    f.set(Feature::HAS_ABSORPTION, secondary && refraction && absorption);
     f.set(Feature::HAS_AREA_LIGHTS, area_lights);
     // Local mode shades a metallic-roughness material by its diffuse lobe (scene.hpp).
     f.set(Feature::HAS_MICROFACET, microfacet && global);

@@ -121,6 +121,14 @@ kernel::Material flatten(const Material& m) {
         out.transmit = vec3(glass * pbr->base_color);
         out.dielectric_f0 = float(f0);
         out.thin_walled = pbr->thin ? 1u : 0u;
+        if (pbr->absorbs()) {
+            // sigma = -ln(colour) / distance, at most the largest float: a black channel
+            // absorbs all of any positive distance and none of zero.
+            for (int c = 0; c < 3; ++c) {
+                const double sigma = -std::log(pbr->attenuation_color[c]) / pbr->attenuation_distance;
+                out.attenuation[c] = float(std::min(sigma, double(std::numeric_limits<float>::max())));
+            }
+        }
     } else {
         out.diffuse = vec3(m.diffuse);
         out.kd = float(m.kd);

@@ -256,8 +256,8 @@ private:
     // dielectric's reflectance; KHR_materials_transmission's factor; and
     // KHR_materials_volume, whose thickness makes the glass the surface of a solid
     // that refracts, where without it the glass is a thin wall, as the extensions
-    // specify. What is not rendered (transmission textures, rough transmission,
-    // attenuation in the volume) is named.
+    // specify, and its attenuation absorbs inside the solid. What is not rendered
+    // (transmission textures, rough transmission) is named.
     void read_glass(const tinygltf::Material& g, const std::string& element, Material& m) {
         if (auto e = g.extensions.find("KHR_materials_ior"); e != g.extensions.end()) {
             const tinygltf::Value& v = e->second.Get("ior");
@@ -293,15 +293,27 @@ private:
                     fmt::format("expected a number of at least 0, got {}", d));
         }
         mr.thin = d == 0.0;
-        const tinygltf::Value& distance = volume->second.Get("attenuationDistance");
-        const tinygltf::Value& tint = volume->second.Get("attenuationColor");
-        // Light is attenuated only at a finite distance and by a colour other than white.
-        const bool far = !distance.IsNumber() || !std::isfinite(distance.GetNumberAsDouble());
-        bool white = true;
-        for (int i = 0; tint.IsArray() && i < int(tint.ArrayLen()); ++i) {
-            white = white && (!tint.Get(i).IsNumber() || tint.Get(i).GetNumberAsDouble() == 1.0);
+        const std::string at = element + ".extensions.KHR_materials_volume";
+        if (const tinygltf::Value& distance = volume->second.Get("attenuationDistance"); distance.Type() != tinygltf::NULL_TYPE) {
+            const double x = distance.IsNumber() ? distance.GetNumberAsDouble() : 0.0;
+            if (!(x > 0.0 && std::isfinite(x))) {
+                fail_at(at + ".attenuationDistance", "expected a number above 0");
+            }
+            mr.attenuation_distance = x;
         }
-        if (!far && !white) note_unsupported("KHR_materials_volume's attenuation (the glass is clear)");
+        if (const tinygltf::Value& tint = volume->second.Get("attenuationColor"); tint.Type() != tinygltf::NULL_TYPE) {
+            if (!tint.IsArray() || tint.ArrayLen() != 3) fail_at(at + ".attenuationColor", "expected 3 numbers from 0 to 1");
+            for (int i = 0; i < 3; ++i) {
+                const tinygltf::Value& c = tint.Get(i);
+                mr.attenuation_color[i] = unit(c.IsNumber() ? c.GetNumberAsDouble() : -1.0,
+                                               fmt::format("{}.attenuationColor[{}]", at, i));
+            }
+        }
+        // A thin wall has no inside to absorb in (the extension ignores the volume then).
+        if (mr.thin) {
+            mr.attenuation_color = dvec3(1.0);
+            mr.attenuation_distance = std::numeric_limits<double>::infinity();
+        }
     }
 
     // KHR_materials_pbrSpecularGlossiness, which takes the place of

@@ -218,6 +218,13 @@ Material::MetallicRoughness read_metallic_roughness(const Node& n) {
         if (!n.find("transmission")) n.fail_field("thin", "a thin wall needs \"transmission\"");
         pbr.thin = v->boolean();
     }
+    for (const char* volume : {"attenuation_color", "attenuation_distance"}) {
+        if (n.find(volume) && (!n.find("transmission") || pbr.thin)) {
+            n.fail_field(volume, "attenuation is inside a solid: it needs \"transmission\" and no \"thin\"");
+        }
+    }
+    if (auto v = n.find("attenuation_color")) pbr.attenuation_color = v->unit_color();
+    if (auto v = n.find("attenuation_distance")) pbr.attenuation_distance = v->number_above(0.0);
     return pbr;
 }
 
@@ -298,7 +305,7 @@ void read_alpha(const Node& n, Material& m) {
 
 Material read_material(const std::string& name, const Node& n, Scene& scene) {
     n.allow_only({"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit", "ior", "fresnel", "emission",
-                  "base_color", "metallic", "roughness", "transmission", "thin", "texture", "texture_transform", "normal_map", "normal_scale",
+                  "base_color", "metallic", "roughness", "transmission", "thin", "attenuation_color", "attenuation_distance", "texture", "texture_transform", "normal_map", "normal_scale",
                   "emission_texture", "alpha_mode", "alpha", "alpha_cutoff"});
     Material m;
     m.name = name;

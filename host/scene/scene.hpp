@@ -3,9 +3,11 @@
 // reads (docs/architecture.md, principle 2). Values stay in double here; they become float only
 // when host/flatten/flat_scene.cpp flattens them for a backend.
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -124,6 +126,16 @@ struct Material {
         // The glass is a thin wall, crossed without refraction (glTF's transmission
         // without KHR_materials_volume), rather than the surface of a solid.
         bool thin = false;
+        // What the solid glass absorbs (glTF's KHR_materials_volume): light keeps
+        // attenuation_color after attenuation_distance (world units) inside it, Beer
+        // and Lambert's law between; white or an infinite distance is clear glass.
+        dvec3 attenuation_color{1.0};
+        double attenuation_distance = std::numeric_limits<double>::infinity();
+        // Whether light crossing it is absorbed: solid glass with some attenuation.
+        bool absorbs() const {
+            return transmission > 0.0 && metallic < 1.0 && !thin && std::isfinite(attenuation_distance) &&
+                   attenuation_color != dvec3(1.0);
+        }
     };
     std::optional<MetallicRoughness> metallic_roughness;
     // A colour texture (an index into Scene::textures) multiplying `diffuse`, or the

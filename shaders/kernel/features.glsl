@@ -62,6 +62,9 @@ FEATURE(24, HAS_VERTEX_COLORS)
 // Normal-mapped triangles with the file's own tangents (glTF's TANGENT) instead of
 // those derived from the texture coordinates (normal_map.glsl).
 FEATURE(25, HAS_TANGENTS)
+// Glass that absorbs what crosses it (glTF's KHR_materials_volume attenuation): global
+// mode weighs each path segment inside it by Beer and Lambert's law (lobes/glass.glsl).
+FEATURE(26, HAS_ABSORPTION)
 // Three per kind of primitive (shapes/kinds.glsl), after the others: HAS_<NAMES>, the
 // scene has some; with HAS_GRID, GRID_<NAMES>, the grid's cells list some, and
 // LOOSE_<NAMES>, its loose primitives, which are tested once per ray instead, hold
@@ -69,5 +72,5 @@ FEATURE(25, HAS_TANGENTS)
 // whose boxes would stretch the grid's (host/flatten/flat_scene.cpp,
 // host/accel/grid.cpp, docs/grid.md).
 #define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
-    FEATURE((26 + 3 * ID), HAS_##NAMES) FEATURE((26 + 3 * ID + 1), GRID_##NAMES) FEATURE((26 + 3 * ID + 2), LOOSE_##NAMES)
+    FEATURE((27 + 3 * ID), HAS_##NAMES) FEATURE((27 + 3 * ID + 1), GRID_##NAMES) FEATURE((27 + 3 * ID + 2), LOOSE_##NAMES)
 #include "shapes/kinds.glsl"

@@ -34,14 +34,19 @@ float power_heuristic(float pdf_this, float pdf_other) {
     return 1.0f / (1.0f + r * r);
 }
 
-// Traces a path's next ray into `hit`, its shading normal normal-mapped. When it
-// leaves the scene, adds what the sky sends along it weighed by the path's
-// throughput and returns false; counts the eye ray's hit. pdf_prev is the density
+// Traces a path's next ray into `hit`, its shading normal normal-mapped, and weighs
+// the path's throughput by what the medium it crossed let through (`media`, the
+// medium the ray travels in). When it leaves the scene, adds what the sky sends along
+// it weighed by that throughput and returns false; counts the eye ray's hit. pdf_prev is the density
 // with which the ray was drawn by sampling the smooth lobes, 0 otherwise: such a
 // ray that finds the environment is weighed against next-event estimation's
 // drawing it (the power heuristic, as for emitters).
-bool path_hit(Ray ray, uint bounce, vec3 beta, float pdf_prev, INOUT(SampleResult) s, INOUT(Hit) hit) {
+bool path_hit(Ray ray, uint bounce, uvec4 media, float pdf_prev, INOUT(vec3) beta, INOUT(SampleResult) s,
+              INOUT(Hit) hit) {
     hit = closest_hit(ray, INFINITY_T);
+    if (HAS_ABSORPTION) {
+        beta *= medium_transmittance(media, hit.t);
+    }
     if (!(hit.t < INFINITY_T)) {
         float w = 1.0f;
         if (HAS_ENVIRONMENT_MAP && pdf_prev > 0.0f && environment_choice() > 0.0f) {
@@ -68,8 +73,9 @@ const uint ROULETTE_START = 3u;
 // power heuristic against the BSDF sampling that could have found it too (whose
 // hits are weighted to match in path_hit and path_sample). p_smooth is the probability of
 // picking the smooth group, part of the BSDF sampling's density; `slot` is the
-// bounce's first slot (constants.glsl).
-vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smooth, uint slot,
+// bounce's first slot (constants.glsl). The shadow rays cross the medium the path
+// arrived in (`media`), whose transmittance weighs what they bring.
+vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smooth, uint slot, uvec4 media,
                 INOUT(Rng) rng, INOUT(SampleResult) s) {
     vec3 sum = vec3(0.0f);
     vec3 shadow_origin = shadow_ray_origin(p, hit);
@@ -87,7 +93,12 @@ vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smoo
             vec3 l = to_light / sqrt(r2);
             float cone = HAS_DIRECTED_LIGHTS ? cone_factor(light, l) : 1.0f;
             if (cone > 0.0f && light_reaches(hit, shadow_origin, l, light.position, true, s.shadow_rays)) {
-                sum += eval_smooth(lobes, hit.normal, wo, l) * vec3(light.radiance) * (dot(hit.normal, l) * cone / r2);
+                vec3 radiance = vec3(light.radiance);
+                if (HAS_ABSORPTION) {
+                    bool directional = HAS_DIRECTED_LIGHTS && light.position.w == 0.0f;
+                    radiance *= medium_transmittance(media, directional ? INFINITY_T : sqrt(r2));
+                }
+                sum += eval_smooth(lobes, hit.normal, wo, l) * radiance * (dot(hit.normal, l) * cone / r2);
             }
         }
     }
@@ -103,7 +114,8 @@ vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smoo
             float pdf = p_env * e.pdf;
             if (pdf > 0.0f && light_reaches(hit, shadow_origin, e.dir, vec4(e.dir, 0.0f), true, s.shadow_rays)) {
                 float pdf_bsdf = p_smooth * pdf_smooth(lobes, frame, wo, e.dir, hemisphere_rule());
-                sum += eval_smooth(lobes, hit.normal, wo, e.dir) * e.radiance *
+                vec3 radiance = HAS_ABSORPTION ? e.radiance * medium_transmittance(media, INFINITY_T) : e.radiance;
+                sum += eval_smooth(lobes, hit.normal, wo, e.dir) * radiance *
                        (dot(hit.normal, e.dir) * power_heuristic(pdf, pdf_bsdf) / pdf);
             }
         } else if (HAS_AREA_LIGHTS) {
@@ -114,11 +126,13 @@ vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smoo
             LightSample y = sample_light_from(shadow_origin, u);
             y.pdf *= 1.0f - p_env;
             vec3 to_light = y.position - shadow_origin;
-            vec3 l = to_light / sqrt(dot(to_light, to_light));
+            float distance = sqrt(dot(to_light, to_light));
+            vec3 l = to_light / distance;
             bool facing = y.pdf > 0.0f && -dot(y.normal, l) > 0.0f;
             if (light_reaches(hit, shadow_origin, l, vec4(y.position, 1.0f), facing, s.shadow_rays)) {
                 float pdf_bsdf = p_smooth * pdf_smooth(lobes, frame, wo, l, hemisphere_rule());
-                sum += eval_smooth(lobes, hit.normal, wo, l) * y.emission *
+                vec3 radiance = HAS_ABSORPTION ? y.emission * medium_transmittance(media, distance) : y.emission;
+                sum += eval_smooth(lobes, hit.normal, wo, l) * radiance *
                        (dot(hit.normal, l) * power_heuristic(y.pdf, pdf_bsdf) / y.pdf);
             }
         }
@@ -133,7 +147,7 @@ vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smoo
 // refracted (total internal reflection reflects). `pick` (uniform in [0, total)) chose the group, u decides within glass.
 // A refraction updates the media the path is in (lobes/glass.glsl).
 Ray scatter_delta(Ray ray, Hit hit, vec3 p, Lobes lobes, float total, float pick, float u, INOUT(vec3) beta,
-                  INOUT(vec4) media) {
+                  INOUT(uvec4) media) {
     Ray mirrored = Ray(offset_ray_origin(p, hit.geo_normal), mirror_direction(ray.dir, hit.normal));
     // Guarded so that a pick rounded up to `total` never lands on a group of weight 0.
     bool mirror = lobes.glass.weight == 0.0f ||
@@ -156,7 +170,7 @@ Ray scatter_delta(Ray ray, Hit hit, vec3 p, Lobes lobes, float total, float pick
     if (lobes.glass.thin) {
         return Ray(offset_ray_origin(p, -hit.geo_normal), ray.dir);
     }
-    media = media_after_refraction(media, lobes.glass.ior, hit.front_face);
+    media = media_after_refraction(media, hit.material, hit.front_face);
     return Ray(offset_ray_origin(p, -hit.geo_normal), r.dir);
 }
 
@@ -172,11 +186,11 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
     // 0 after the eye or a delta lobe, whose hits on an emitter count in full.
     float pdf_prev = 0.0f;
     uint hemisphere = hemisphere_rule();
-    vec4 media = vec4(0.0f);  // in air
+    uvec4 media = uvec4(0u);  // in air
     loop_enter();
     for (uint bounce = 0u; loop_tick(); bounce += 1u) {
         Hit hit;
-        if (!path_hit(ray, bounce, beta, pdf_prev, s, hit)) {
+        if (!path_hit(ray, bounce, media, pdf_prev, beta, s, hit)) {
             return;
         }
         Material m = surface_material(hit);
@@ -204,7 +218,7 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
         float p_smooth = w_smooth / total;
         uint slot = SLOT_PATH + bounce * BOUNCE_SLOTS;
         if ((HAS_POINT_LIGHTS || HAS_NEXT_EVENT) && w_smooth > 0.0f) {
-            s.radiance += beta * next_event(hit, p, wo, lobes, frame, p_smooth, slot, rng, s);
+            s.radiance += beta * next_event(hit, p, wo, lobes, frame, p_smooth, slot, media, rng, s);
         }
         rng_seek(rng, slot + SLOT_LOBE);
         float pick = rng_1d(rng) * total;
@@ -287,11 +301,11 @@ vec3 paper_gl(Ray start, uint bounces, INOUT(Rng) rng, INOUT(SampleResult) s) {
 void paper_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
     Ray ray = eye;
     vec3 beta = vec3(1.0f);
-    vec4 media = vec4(0.0f);  // in air
+    uvec4 media = uvec4(0u);  // in air
     loop_enter();
     for (uint bounce = 0u; loop_tick(); bounce += 1u) {
         Hit hit;
-        if (!path_hit(ray, bounce, beta, 0.0f, s, hit)) {
+        if (!path_hit(ray, bounce, media, 0.0f, beta, s, hit)) {
             return;
         }
         Material m = surface_material(hit);

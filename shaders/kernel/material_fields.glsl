@@ -59,6 +59,12 @@ MATERIAL_FIELD(uint, thin_walled, 11, y)  // 1: transmitted light goes on straig
 MATERIAL_PAD(11, z)
 MATERIAL_PAD(11, w)
 
+// What the glass absorbs inside (glTF's KHR_materials_volume): the attenuation
+// coefficient per unit length of world space, per channel, -ln(attenuationColor) /
+// attenuationDistance; 0 for a clear medium (lobes/glass.glsl, medium_transmittance).
+MATERIAL_FIELD3(vec3, attenuation, 12)
+MATERIAL_PAD(12, w)
+
 #undef MATERIAL_PAD
 #undef MATERIAL_FIELD3
 #undef MATERIAL_FIELD

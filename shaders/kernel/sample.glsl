@@ -8,7 +8,7 @@ struct PendingRay {
     Ray ray;
     vec3 weight;
     uint depth;
-    vec4 media;
+    uvec4 media;
 };
 
 // The rays of the reflection/refraction tree still to trace. GLSL has no recursion,
@@ -77,7 +77,7 @@ void spawn_children(PendingRay cur, Hit hit, INOUT(RayQueue) q, INOUT(SampleResu
         if (!r.total) {
             Ray refracted = Ray(offset_ray_origin(p, -hit.geo_normal), r.dir);
             vec3 w = cur.weight * transmit * (fresnel ? 1.0f - r.reflectance : 1.0f);
-            vec4 media = media_after_refraction(cur.media, ior, hit.front_face);
+            uvec4 media = media_after_refraction(cur.media, hit.material, hit.front_face);
             if (queue_ray(PendingRay(refracted, w, depth, media), q, s)) {
                 s.refraction_rays += 1u;
             }
@@ -139,7 +139,7 @@ SampleResult render_sample(uint px, uint py, uint sample_index) {
     vec2 sub = subpixel_position(sample_index, rng);
     vec2 lens = lens_position(rng);
     rng_seek(rng, SLOT_PATH);
-    PendingRay eye = PendingRay(camera_ray(float(px) + sub.x, float(py) + sub.y, lens), vec3(1.0f), 0u, vec4(0.0f));
+    PendingRay eye = PendingRay(camera_ray(float(px) + sub.x, float(py) + sub.y, lens), vec3(1.0f), 0u, uvec4(0u));
     // A scene without mirrors or glass skips the tree's loop and its stack.
     if (HAS_GLOBAL) {
         global_sample(eye.ray, rng, s);

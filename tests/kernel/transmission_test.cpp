@@ -2,8 +2,9 @@
 // _volume; kernel/lobes/glass.glsl, texture.glsl): the host and the kernel build the
 // same material; a thin wall seen head-on under a white sky shows its closed form,
 // F + (1 - F) base, and a slab of the same glass F + (1 - F) base^2 (its light is
-// tinted going in and coming out, and reflected inside as often as it likes); both
-// backends.
+// tinted going in and coming out, and reflected inside as often as it likes); a
+// clear slab that absorbs (KHR_materials_volume) lets through what Beer and Lambert's
+// law says, channel by channel; both backends.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -42,46 +43,87 @@ Scene sheet(const std::string& name, const std::string& material, const std::str
       ]}})", material, back));
 }
 
-// The image mean and its standard error from the spread of the pixels (every pixel
-// has the same expectation, within 1e-5 over this narrow view).
-std::pair<double, double> mean_and_error(const Image& image) {
+// The mean of a channel of the image and its standard error from the spread of the
+// pixels (every pixel has the same expectation, within 1e-5 over this narrow view).
+std::pair<double, double> mean_and_error(const Image& image, int channel) {
     const std::size_t n = std::size_t(image.width) * image.height;
     double sum = 0.0, sum2 = 0.0;
     for (std::size_t p = 0; p < n; ++p) {
-        sum += image.rgb[3 * p];
-        sum2 += double(image.rgb[3 * p]) * image.rgb[3 * p];
+        const double x = image.rgb[3 * p + channel];
+        sum += x;
+        sum2 += x * x;
     }
     const double mean = sum / double(n);
     return {mean, std::sqrt(std::max(0.0, (sum2 / double(n) - mean * mean) / double(n - 1)))};
 }
 
-void expect_image_mean(const Scene& scene, double expected) {
+// Each channel's image mean within 4 standard errors of `expected`, on both backends.
+void expect_image_mean(const Scene& scene, glm::dvec3 expected) {
     for (const bool vulkan : {false, true}) {
         SCOPED_TRACE(vulkan ? "vulkan" : "cpu");
         const RenderOutcome out = vulkan ? test::render_vulkan(scene) : test::render_cpu(scene);
         EXPECT_EQ(out.stats.nonfinite_samples, 0u);
         EXPECT_EQ(out.stats.truncated_samples, 0u);
-        const auto [mean, error] = mean_and_error(out.image);
-        std::printf("%s %s: mean %.5f, standard error %.5f, expected %.5f\n", scene.source.stem().c_str(),
-                    vulkan ? "vulkan" : "cpu", mean, error, expected);
-        EXPECT_GT(error, 0.0) << "the glass both reflects and transmits";
-        EXPECT_NEAR(mean, expected, 4.0 * error + 1e-4) << "standard error " << error;
+        for (int c = 0; c < 3; ++c) {
+            const auto [mean, error] = mean_and_error(out.image, c);
+            std::printf("%s %s channel %d: mean %.5f, standard error %.5f, expected %.5f\n",
+                        scene.source.stem().c_str(), vulkan ? "vulkan" : "cpu", c, mean, error, expected[c]);
+            EXPECT_GT(error, 0.0) << "the glass both reflects and transmits";
+            EXPECT_NEAR(mean, expected[c], 4.0 * error + 1e-4) << "channel " << c << ", standard error " << error;
+        }
     }
 }
+
+// The back face of a slab 0.2 thick behind sheet()'s front face.
+const std::string kSlabBack = R"(,
+        { "type": "quad", "corner": [-2, -2, -0.2], "edge1": [0, 4, 0], "edge2": [4, 0, 0], "material": "glass" })";
 
 TEST(Transmission, AThinWallPassesItsBaseColourAndReflectsWhite) {
     const double f = fresnel_normal(1.5);
     expect_image_mean(sheet("thin_wall", R"({ "base_color": [0.5, 0.5, 0.5], "roughness": 0, "transmission": 1, "thin": true })"),
-                      f + (1.0 - f) * 0.5);
+                      glm::dvec3(f + (1.0 - f) * 0.5));
 }
 
 TEST(Transmission, ASlabTintsGoingInAndComingOut) {
     const double ior = 1.8, f = fresnel_normal(ior);
-    const std::string back = R"(,
-        { "type": "quad", "corner": [-2, -2, -0.2], "edge1": [0, 4, 0], "edge2": [4, 0, 0], "material": "glass" })";
     expect_image_mean(
-        sheet("slab", R"({ "base_color": [0.5, 0.5, 0.5], "roughness": 0, "transmission": 1, "ior": 1.8 })", back),
-        f + (1.0 - f) * 0.25);
+        sheet("slab", R"({ "base_color": [0.5, 0.5, 0.5], "roughness": 0, "transmission": 1, "ior": 1.8 })", kSlabBack),
+        glm::dvec3(f + (1.0 - f) * 0.25));
+}
+
+// A clear slab whose glass keeps T = attenuation_color^(0.2 / attenuation_distance)
+// of the light crossing it once. Under the white sky it shows what it reflects and
+// what it lets through: F + (1 - F)^2 T (1 + F T) / (1 - F^2 T^2), the sum over the
+// light's passes inside, which is F + (1 - F)^2 T / (1 - F T). Red crosses half, green
+// a quarter, blue all (a white channel: the slab without absorption, 1).
+TEST(Transmission, AnAbsorbingSlabFollowsBeerAndLambert) {
+    const double f = fresnel_normal(1.5);
+    const auto seen = [f](double t) { return f + (1.0 - f) * (1.0 - f) * t / (1.0 - f * t); };
+    const Scene scene = sheet("absorbing_slab", R"({ "base_color": [1, 1, 1], "roughness": 0, "transmission": 1,
+        "attenuation_color": [0.5, 0.0625, 1], "attenuation_distance": 0.1 })", kSlabBack);
+    const FlatScene flat = flatten_scene(scene);
+    ASSERT_TRUE(flat.features.has(Feature::HAS_ABSORPTION));
+    EXPECT_EQ(flat.materials.at(0).attenuation, vec3(float(std::log(2.0) / 0.1), float(std::log(16.0) / 0.1), 0.0f));
+    expect_image_mean(scene, glm::dvec3(seen(0.25), seen(1.0 / 256.0), 1.0));
+}
+
+// Attenuation is inside a solid: a thin wall refuses it, and glass that absorbs
+// nothing (white, or no distance) leaves absorption compiled out.
+TEST(Transmission, AbsorptionNeedsASolidThatAbsorbs) {
+    const std::string message = test::scene_error_of("glass_thin_absorbs", R"({
+      "camera": { "eye": [0, 0, 3], "look_at": [0, 0, 0] },
+      "materials": { "m": { "transmission": 1, "thin": true, "attenuation_distance": 1 } },
+      "objects": [{ "type": "quad", "corner": [-1, -1, 0], "edge1": [2, 0, 0], "edge2": [0, 2, 0], "material": "m" }]
+    })");
+    test::expect_error_message(message, "", {"materials.m.attenuation_distance", "needs \"transmission\" and no \"thin\""});
+    for (const char* clear : {R"("attenuation_color": [1, 1, 1], "attenuation_distance": 1)", R"("attenuation_color": [0.5, 1, 1])"}) {
+        SCOPED_TRACE(clear);
+        const Scene scene = sheet("clear_slab", fmt::format(R"({{ "transmission": 1, {} }})", clear), kSlabBack);
+        const FlatScene flat = flatten_scene(scene);
+        EXPECT_TRUE(flat.features.has(Feature::HAS_REFRACTION));
+        EXPECT_FALSE(flat.features.has(Feature::HAS_ABSORPTION));
+        EXPECT_EQ(flat.materials.at(0).attenuation, vec3(0.0f));
+    }
 }
 
 // The host's material (flat_scene.cpp) is the one the kernel rebuilds at a textured

@@ -427,8 +427,9 @@ TEST(GltfErrors, AnIncludedFilesErrorFollowsTheScenesPath) {
 }
 
 // Glass: KHR_materials_transmission's factor, KHR_materials_ior's index, and
-// KHR_materials_volume's thickness, which makes the glass refract; without a volume
-// it is a thin wall. What is not rendered is named.
+// KHR_materials_volume's thickness, which makes the glass refract, and its
+// attenuation; without a volume it is a thin wall, which absorbs nothing. What is
+// not rendered is named.
 TEST(Gltf, GlassExtensionsAreRead) {
     const std::string plain = R"({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0}})";
     const auto with_material = [&](const std::string& name, const std::string& material) {
@@ -436,12 +437,15 @@ TEST(Gltf, GlassExtensionsAreRead) {
         json.replace(json.find(plain), plain.size(), material);
         return vkrt::load_scene(write_gltf(name, json));
     };
-    const Scene solid = with_material("glass_solid", R"({"pbrMetallicRoughness": {"roughnessFactor": 0},
+    const Scene solid = with_material("glass_solid", R"({"pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0},
         "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.75}, "KHR_materials_ior": {"ior": 1.33},
-                       "KHR_materials_volume": {"thicknessFactor": 0.1}}})");
+                       "KHR_materials_volume": {"thicknessFactor": 0.1, "attenuationDistance": 2, "attenuationColor": [1, 0.5, 0.25]}}})");
     ASSERT_TRUE(solid.materials[0].metallic_roughness.has_value());
     EXPECT_DOUBLE_EQ(solid.materials[0].metallic_roughness->transmission, 0.75);
     EXPECT_FALSE(solid.materials[0].metallic_roughness->thin);
+    EXPECT_DOUBLE_EQ(solid.materials[0].metallic_roughness->attenuation_distance, 2.0);
+    EXPECT_EQ(solid.materials[0].metallic_roughness->attenuation_color, glm::dvec3(1.0, 0.5, 0.25));
+    EXPECT_TRUE(solid.materials[0].metallic_roughness->absorbs());
     EXPECT_DOUBLE_EQ(solid.materials[0].ior, 1.33);
     EXPECT_TRUE(solid.warnings.empty()) << solid.warnings.front();
 
@@ -449,15 +453,25 @@ TEST(Gltf, GlassExtensionsAreRead) {
         "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1, "transmissionTexture": {"index": 0}},
                        "KHR_materials_volume": {"thicknessFactor": 0, "attenuationDistance": 2, "attenuationColor": [1, 0.5, 0.5]}}})");
     EXPECT_TRUE(thin.materials[0].metallic_roughness->thin);
+    EXPECT_FALSE(thin.materials[0].metallic_roughness->absorbs());
     EXPECT_DOUBLE_EQ(thin.materials[0].ior, 1.5);
     EXPECT_TRUE(has_warning(thin, "transmission textures"));
     EXPECT_TRUE(has_warning(thin, "rough transmission"));
-    EXPECT_TRUE(has_warning(thin, "attenuation"));
 
     std::string json = gltf_json("mesh.bin", kOneNode);
     json.replace(json.find(plain), plain.size(), R"({"extensions": {"KHR_materials_ior": {"ior": 0.5}}})");
     vkrt::test::expect_error_message(load_error(write_gltf("glass_ior", json)), "",
                                      {"materials[0].extensions.KHR_materials_ior.ior", "from 1 to 1000, got 0.5"});
+    for (const auto& [volume, piece] :
+         {std::pair{R"("attenuationDistance": 0)", "KHR_materials_volume.attenuationDistance: expected a number above 0"},
+          std::pair{R"("attenuationColor": [1, 2, 1])", "KHR_materials_volume.attenuationColor[1]"},
+          std::pair{R"("attenuationColor": [1, 1])", "KHR_materials_volume.attenuationColor: expected 3 numbers from 0 to 1"}}) {
+        json = gltf_json("mesh.bin", kOneNode);
+        json.replace(json.find(plain), plain.size(),
+                     fmt::format(R"({{"extensions": {{"KHR_materials_transmission": {{"transmissionFactor": 1}},
+                                     "KHR_materials_volume": {{"thicknessFactor": 1, {}}}}}}})", volume));
+        vkrt::test::expect_error_message(load_error(write_gltf("glass_volume", json)), "", {piece});
+    }
 }
 
 // ------------------------------------------------------------------ bad files

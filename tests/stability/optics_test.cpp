@@ -97,7 +97,7 @@ TEST(Refraction, ReflectedAndTransmittedPowerSumToOneAcrossTheCriticalAngle) {
     int totals = 0, samples = 0;
     for (float ior : {1.0f, 1.0001f, 1.33f, 1.5f, 2.4f, 4.0f}) {
         for (bool entering : {true, false}) {
-            const float eta = k.interface_eta(glm::vec4(0.0f), ior, entering);
+            const float eta = k.interface_eta(glm::uvec4(0u), ior, entering);
             EXPECT_EQ(eta, entering ? 1.0f / ior : ior);
             for (double theta : incidence_angles(eta)) {
                 SCOPED_TRACE(fmt::format("ior {} {}, theta {:.10f}", ior, entering ? "in" : "out", theta));
@@ -170,14 +170,18 @@ TEST(Refraction, AnInterfaceOfEqualIndicesIsInvisible) {
         ASSERT_EQ(r.reflectance, 0.0f);
         ASSERT_EQ(r.dir, d);
     }
-    // Equal indices on both sides of a nested interface make eta exactly 1.
-    const glm::vec4 in_glass = k.media_enter(glm::vec4(0.0f), 1.5f);
+    // Equal indices on both sides of a nested interface make eta exactly 1: two
+    // materials of one ior, one body inside the other.
+    std::vector<kernel::Material> materials(2);
+    materials[0].ior = materials[1].ior = 1.5f;
+    k.materials = materials;
+    const glm::uvec4 in_glass = k.media_enter(glm::uvec4(0u), 0u);
     EXPECT_EQ(k.interface_eta(in_glass, 1.5f, true), 1.0f);
-    const glm::vec4 in_inner = k.media_enter(in_glass, 1.5f);
+    const glm::uvec4 in_inner = k.media_enter(in_glass, 1u);
     EXPECT_EQ(k.interface_eta(in_inner, 1.5f, false), 1.0f);
     EXPECT_EQ(k.media_leave(in_inner), in_glass);
     EXPECT_EQ(k.interface_eta(in_glass, 1.5f, false), 1.5f);
-    EXPECT_EQ(k.media_leave(in_glass), glm::vec4(0.0f));
+    EXPECT_EQ(k.media_leave(in_glass), glm::uvec4(0u));
 }
 
 // ------------------------------------------------------ case 7: nested glass

@@ -74,34 +74,49 @@ Refraction refract_fresnel(vec3 d, vec3 n, float eta) {
     return Refraction(unit_vector(t), reflectance, false);
 }
 
-// The media a ray travels in, innermost first: the indices of refraction of the glass
-// bodies it has entered through a front face and not yet left, four deep; 0 is an
-// empty level, air (index 1), so that a zero vec4 is a ray in air. Refraction through
-// a front face pushes the body's index, through a back face pops it, and the interface
-// then separates the index the ray is in from the one it goes to: nested glass of
-// equal ior is an interface of eta 1, invisible, as it is in nature. A fifth nested
-// body is remembered as air once the ray has left the four inside it.
-float medium_ior(float level) {
-    return level > 0.0f ? level : 1.0f;
+// The media a ray travels in, innermost first: the glass bodies it has entered
+// through a front face and not yet left, four deep, each as 1 + the index of its
+// material; 0 is an empty level, air (index of refraction 1, nothing absorbed), so
+// that a zero uvec4 is a ray in air. Refraction through a front face pushes the
+// body's material, through a back face pops it, and the interface then separates the
+// index of refraction the ray is in from the one it goes to: nested glass of equal
+// ior is an interface of eta 1, invisible, as it is in nature. A fifth nested body is
+// remembered as air once the ray has left the four inside it.
+float medium_ior(uint level) {
+    return level > 0u ? load_material(level - 1u).ior : 1.0f;
 }
 
-vec4 media_enter(vec4 media, float ior) {
-    return vec4(ior, media.x, media.y, media.z);
+uvec4 media_enter(uvec4 media, uint material) {
+    return uvec4(material + 1u, media.x, media.y, media.z);
 }
 
-vec4 media_leave(vec4 media) {
-    return vec4(media.y, media.z, media.w, 0.0f);
+uvec4 media_leave(uvec4 media) {
+    return uvec4(media.y, media.z, media.w, 0u);
 }
 
 // n_incident / n_transmitted at a hit on glass of index `ior`: through the front face
 // from the ray's medium into the glass, through the back face from the glass into the
 // medium outside it. A ray that never entered the body it leaves (an eye inside the
 // glass) has air outside: 1 / ior and ior, as for a lone body in air.
-float interface_eta(vec4 media, float ior, bool front_face) {
+float interface_eta(uvec4 media, float ior, bool front_face) {
     return front_face ? medium_ior(media.x) / ior : ior / medium_ior(media.y);
 }
 
-// The media of the ray refracted at that hit.
-vec4 media_after_refraction(vec4 media, float ior, bool front_face) {
-    return front_face ? media_enter(media, ior) : media_leave(media);
+// The media of the ray refracted at a hit on `material`.
+uvec4 media_after_refraction(uvec4 media, uint material, bool front_face) {
+    return front_face ? media_enter(media, material) : media_leave(media);
+}
+
+// The fraction of light that crosses a distance t of the ray's medium: Beer and
+// Lambert's exp(-sigma t) with the medium's attenuation coefficient sigma (per unit
+// length, per channel; glTF's KHR_materials_volume, material_fields.glsl), 1 in air
+// and without HAS_ABSORPTION. t is INFINITY_T for a ray that leaves the scene: an
+// absorbing medium then lets nothing through, and a clear one (sigma 0) everything.
+vec3 medium_transmittance(uvec4 media, float t) {
+    if (!HAS_ABSORPTION || media.x == 0u) {
+        return vec3(1.0f);
+    }
+    vec3 sigma = load_material(media.x - 1u).attenuation;
+    return vec3(sigma.x > 0.0f ? exp(-sigma.x * t) : 1.0f, sigma.y > 0.0f ? exp(-sigma.y * t) : 1.0f,
+                sigma.z > 0.0f ? exp(-sigma.z * t) : 1.0f);
 }
