@@ -220,6 +220,8 @@ private:
             if (g.occlusionTexture.index >= 0) note_unsupported("occlusion maps (not needed by a path tracer)");
             read_alpha_mode(g, element, m);
             read_glass(g, element, m);
+            const bool textured = m.texture || m.metallic_roughness_texture || m.normal_map || m.emission_texture;
+            uv_sets_.push_back(textured ? textures_.uv_set() : 0);
             materials_.push_back(static_cast<std::uint32_t>(scene_.materials.size()));
             scene_.materials.push_back(m);
         }
@@ -490,7 +492,10 @@ private:
         mesh.tangents = read_attribute(prim, element, "TANGENT", "tangents", n, [&](int a, const gltf::Origin& o) {
             return gltf::read_vec4(model_, a, o);
         });
-        mesh.uvs = read_attribute(prim, element, "TEXCOORD_0", "texture coordinates", n,
+        // The texture coordinates its material's textures read (TEXCOORD_0 unless they say otherwise).
+        const bool known = prim.material >= 0 && static_cast<std::size_t>(prim.material) < uv_sets_.size();
+        const std::string uv_set = fmt::format("TEXCOORD_{}", known ? uv_sets_[static_cast<std::size_t>(prim.material)] : 0);
+        mesh.uvs = read_attribute(prim, element, uv_set, "texture coordinates", n,
                                   [&](int a, const gltf::Origin& o) { return gltf::read_vec2(model_, a, o, quantizable); });
         mesh.colors = read_attribute(prim, element, "COLOR_0", "colours", n, [&](int a, const gltf::Origin& o) {
             return gltf::read_colors(model_, a, o);
@@ -632,6 +637,7 @@ private:
     tinygltf::Model model_;
     Scene& scene_;
     std::vector<std::uint32_t> materials_;  // glTF material -> scene material
+    std::vector<int> uv_sets_;              // glTF material -> the TEXCOORD_<n> its textures read
     std::optional<std::uint32_t> default_material_;
     std::map<std::string, std::size_t> unsupported_;  // what the image will not show -> how many, said once
     std::size_t visits_ = 0;

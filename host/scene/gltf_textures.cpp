@@ -94,8 +94,10 @@ std::optional<TextureReader::Source> TextureReader::source(const tinygltf::Textu
         transform = texture_transform(ou, ov, rotation, su, sv);
         if (v.Get("texCoord").IsInt()) tex_coord = v.Get("texCoord").GetNumberAsInt();
     }
-    if (tex_coord != 0) {
-        note_("textures on texture coordinates other than TEXCOORD_0, rendered without the texture");
+    if (tex_coord < 0) fail_at(element + ".texCoord", fmt::format("expected an integer from 0, got {}", tex_coord));
+    if (has_transform && tex_coord != uv_set_) {
+        note_("a material's textures on different texture coordinate sets (TEXCOORD_n), rendered without the later "
+              "texture");
         return std::nullopt;
     }
     if (has_transform && transform != m.uv_transform) {
@@ -103,6 +105,7 @@ std::optional<TextureReader::Source> TextureReader::source(const tinygltf::Textu
         return std::nullopt;
     }
     m.uv_transform = transform;
+    uv_set_ = tex_coord;
     if (texture.source < 0 || static_cast<std::size_t>(texture.source) >= model_.images.size()) {
         if (texture.source < 0) {
             note_("textures without a source image (or with one of an extension's), rendered without the texture");

@@ -74,14 +74,19 @@ public:
     // Decodes the images the tickets need, converts what conversions ask for, and
     // returns, for each ticket, its texture's index in Scene::textures.
     std::vector<std::uint32_t> resolve();
+    // The texture coordinate set (TEXCOORD_<n>) of the textures the last material
+    // read uses, when it has any: like the transform, all of a material's textures
+    // share one, and a later texture on another set is left out, and said so.
+    int uv_set() const { return uv_set_; }
 
 private:
     [[noreturn]] void fail_at(const std::string& element, const std::string& what) const;
     std::optional<std::uint32_t> request(const tinygltf::TextureInfo& info, const std::string& element,
                                          Encoding encoding, double normal_scale, bool normal, Material& m);
 
-    // A textureInfo checked, its transform made the material's (or, when the material
-    // has one already and this differs, the texture left out, and said so): its image,
+    // A textureInfo checked, its transform and coordinate set made the material's (or,
+    // when the material has them already and these differ, the texture left out, and
+    // said so): its image,
     // sampler and wrap modes, or none when vkrt cannot use it.
     struct Source {
         int image = -1;
@@ -91,6 +96,7 @@ private:
     };
     std::optional<Source> source(const tinygltf::TextureInfo& info, const std::string& element, bool has_transform,
                                  Material& m);
+    int uv_set_ = 0;
     std::size_t encoded_image(int image, Encoding encoding);  // its place in images_, added once
 
     struct Ticket {

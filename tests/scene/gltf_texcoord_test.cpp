@@ -1,0 +1,96 @@
+// glTF's texture coordinate sets (glTF 2.0, 3.9.2 textureInfo.texCoord): a material's
+// textures read TEXCOORD_<texCoord> of the primitives that use it; all of them one
+// set, as they share one transform (a later texture on another set is left out and
+// named); a negative set is refused.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <glm/vec2.hpp>
+
+#include "scene/load_scene.hpp"
+#include "test_support.hpp"
+
+namespace vkrt {
+namespace {
+
+using glm::dvec2;
+
+// A quad (test_support's buffer) whose TEXCOORD_1 is the quad's own coordinates,
+// (0, 0) at the top left, and whose TEXCOORD_0 is another set: the first eight floats
+// of its positions read as four pairs. `material` is the JSON of its one material;
+// texture 0 is a PNG beside the file.
+std::filesystem::path two_set_quad(const std::string& name, const std::string& material) {
+    const std::filesystem::path dir = test::temp_dir("gltf_texcoord_" + name);
+    test::write_quad_buffer(dir / "quad.bin");
+    std::filesystem::copy_file(test::source_dir() / "tests" / "scenes" / "stability" / "alpha_rows.png",
+                               dir / "image.png", std::filesystem::copy_options::overwrite_existing);
+    std::string buffer = test::quad_buffer_json("quad.bin");
+    buffer.replace(buffer.rfind("}]"), 2, R"(}, {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC2"}])");
+    const std::filesystem::path file = dir / (name + ".gltf");
+    std::ofstream(file) << R"({
+      "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 3, "TEXCOORD_1": 1}, "indices": 2,
+                                  "material": 0}]}],
+      "materials": [)" + material + R"(],
+      "textures": [{"source": 0}], "images": [{"uri": "image.png"}],
+      )" + buffer + "}";
+    return file;
+}
+
+// The first triangle's corners are vertices 0, 2 and 1 (test_support's indices).
+const std::array<dvec2, 3> kSetOne{dvec2(0, 0), dvec2(1, 1), dvec2(1, 0)};
+const std::array<dvec2, 3> kSetZero{dvec2(-1, 1), dvec2(1, 0), dvec2(0, 1)};
+
+bool warned(const Scene& s, const std::string& text) {
+    return std::any_of(s.warnings.begin(), s.warnings.end(),
+                       [&](const std::string& w) { return w.find(text) != std::string::npos; });
+}
+
+TEST(GltfTexCoord, TexturesReadTheSetTheyName) {
+    const Scene one = load_scene(two_set_quad("one", R"({"pbrMetallicRoughness": {"metallicFactor": 0,
+        "baseColorTexture": {"index": 0, "texCoord": 1}}, "normalTexture": {"index": 0, "texCoord": 1}})"));
+    ASSERT_EQ(one.triangles.size(), 2u);
+    ASSERT_TRUE(one.triangles[0].uvs.has_value());
+    EXPECT_EQ(*one.triangles[0].uvs, kSetOne);
+    EXPECT_TRUE(one.materials[0].texture.has_value());
+    EXPECT_TRUE(one.materials[0].normal_map.has_value());
+    EXPECT_TRUE(one.warnings.empty()) << one.warnings.front();
+
+    const Scene zero = load_scene(two_set_quad("zero", R"({"pbrMetallicRoughness": {"metallicFactor": 0,
+        "baseColorTexture": {"index": 0}}})"));
+    ASSERT_TRUE(zero.triangles[0].uvs.has_value());
+    EXPECT_EQ(*zero.triangles[0].uvs, kSetZero);
+}
+
+// KHR_texture_transform's texCoord overrides the textureInfo's (the extension says so).
+TEST(GltfTexCoord, TheTransformsSetOverrides) {
+    const Scene s = load_scene(two_set_quad("transform", R"({"pbrMetallicRoughness": {"metallicFactor": 0,
+        "baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform": {"texCoord": 1}}}}})"));
+    ASSERT_TRUE(s.triangles[0].uvs.has_value());
+    EXPECT_EQ(*s.triangles[0].uvs, kSetOne);
+}
+
+TEST(GltfTexCoord, ALaterTextureOnAnotherSetIsLeftOutAndNamed) {
+    const Scene s = load_scene(two_set_quad("mixed", R"({"pbrMetallicRoughness": {"metallicFactor": 0,
+        "baseColorTexture": {"index": 0, "texCoord": 1}}, "emissiveFactor": [1, 1, 1],
+        "emissiveTexture": {"index": 0}})"));
+    EXPECT_TRUE(s.materials[0].texture.has_value());
+    EXPECT_FALSE(s.materials[0].emission_texture.has_value());
+    EXPECT_TRUE(warned(s, "different texture coordinate sets (TEXCOORD_n), rendered without the later texture"));
+    EXPECT_EQ(*s.triangles[0].uvs, kSetOne);
+}
+
+TEST(GltfTexCoord, ANegativeSetIsRefused) {
+    const std::filesystem::path file = two_set_quad("negative", R"({"pbrMetallicRoughness": {"metallicFactor": 0,
+        "baseColorTexture": {"index": 0, "texCoord": -1}}})");
+    test::expect_error_message(test::load_error_of(file), "",
+                               {"materials[0].pbrMetallicRoughness.baseColorTexture.texCoord", "expected an integer from 0, got -1"});
+}
+
+}  // namespace
+}  // namespace vkrt
