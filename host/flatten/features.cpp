@@ -79,6 +79,7 @@ FeatureSet analyze_features(const Scene& scene) {
     bool reflection = false;
     bool refraction = false;
     bool absorption = false;
+    bool coat = false;
     bool microfacet = false;
     bool textures = false;
     // Only triangles and quads have the texture coordinates a normal map needs.
@@ -94,6 +95,7 @@ FeatureSet analyze_features(const Scene& scene) {
                      (m.metallic_roughness && m.metallic_roughness->transmission > 0.0 &&
                       scene.render.mode == RenderMode::Global);
         microfacet = microfacet || m.metallic_roughness.has_value();
+        coat = coat || (m.metallic_roughness && m.metallic_roughness->clearcoat > 0.0);
         absorption = absorption || (m.metallic_roughness && m.metallic_roughness->absorbs() &&
                                     scene.render.mode == RenderMode::Global);
         textures = textures || m.texture.has_value() || m.metallic_roughness_texture.has_value() ||
@@ -151,6 +153,7 @@ FeatureSet analyze_features(const Scene& scene) {
     f.set(Feature::HAS_AREA_LIGHTS, area_lights);
     // Local mode shades a metallic-roughness material by its diffuse lobe (scene.hpp).
     f.set(Feature::HAS_MICROFACET, microfacet && global);
+    f.set(Feature::HAS_COAT, coat && global);
     // Only triangles and quads carry texture coordinates.
     f.set(Feature::HAS_TEXTURES, textures && !scene.triangles.empty());
     f.set(Feature::HAS_ENVIRONMENT_MAP, scene.environment.has_value());

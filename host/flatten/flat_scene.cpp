@@ -121,6 +121,11 @@ kernel::Material flatten(const Material& m) {
         out.transmit = vec3(glass * pbr->base_color);
         out.dielectric_f0 = float(f0);
         out.thin_walled = pbr->thin ? 1u : 0u;
+        if (pbr->clearcoat > 0.0) {
+            out.coat = float(pbr->clearcoat);
+            out.coat_alpha = float(std::max(pbr->clearcoat_roughness * pbr->clearcoat_roughness,
+                                            double(kernel::MIN_GGX_ALPHA)));
+        }
         if (pbr->absorbs()) {
             // sigma = -ln(colour) / distance, at most the largest float: a black channel
             // absorbs all of any positive distance and none of zero.

@@ -220,6 +220,7 @@ private:
             if (g.occlusionTexture.index >= 0) note_unsupported("occlusion maps (not needed by a path tracer)");
             read_alpha_mode(g, element, m);
             read_glass(g, element, m);
+            read_clearcoat(g, element, m);
             const bool textured = m.texture || m.metallic_roughness_texture || m.normal_map || m.emission_texture;
             uv_sets_.push_back(textured ? textures_.uv_set() : 0);
             materials_.push_back(static_cast<std::uint32_t>(scene_.materials.size()));
@@ -315,6 +316,28 @@ private:
         if (mr.thin) {
             mr.attenuation_color = dvec3(1.0);
             mr.attenuation_distance = std::numeric_limits<double>::infinity();
+        }
+    }
+
+    // KHR_materials_clearcoat's factors: a clear coat over the material
+    // (kernel/lobes/coat.glsl). Its textures and its own normal map are named as not
+    // read: the factors are used, and the coat shares the material's shading normal.
+    void read_clearcoat(const tinygltf::Material& g, const std::string& element, Material& m) {
+        const auto e = g.extensions.find("KHR_materials_clearcoat");
+        if (e == g.extensions.end() || !m.metallic_roughness) return;
+        const std::string at = element + ".extensions.KHR_materials_clearcoat";
+        Material::MetallicRoughness& mr = *m.metallic_roughness;
+        if (const tinygltf::Value& v = e->second.Get("clearcoatFactor"); v.IsNumber()) {
+            mr.clearcoat = unit(v.GetNumberAsDouble(), at + ".clearcoatFactor");
+        }
+        if (const tinygltf::Value& v = e->second.Get("clearcoatRoughnessFactor"); v.IsNumber()) {
+            mr.clearcoat_roughness = unit(v.GetNumberAsDouble(), at + ".clearcoatRoughnessFactor");
+        }
+        if (e->second.Has("clearcoatTexture") || e->second.Has("clearcoatRoughnessTexture")) {
+            note_unsupported("clear coat textures (the factors are used)");
+        }
+        if (e->second.Has("clearcoatNormalTexture")) {
+            note_unsupported("clear coat normal maps (the coat has the material's shading normal)");
         }
     }
 

@@ -200,8 +200,9 @@ RenderSettings read_render(const Node& n) {
 
 
 // glTF's metallic-roughness model (scene.hpp): base_color, metallic and roughness,
-// and glass by transmission and thin, which replace the Phong fields rather than add
-// to them (ior serves both).
+// glass by transmission and thin (absorbing by attenuation_color and _distance), and
+// a clear coat, which replace the Phong fields rather than add to them (ior serves
+// both).
 Material::MetallicRoughness read_metallic_roughness(const Node& n) {
     for (const char* phong : {"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit", "fresnel"}) {
         if (n.find(phong)) {
@@ -222,6 +223,11 @@ Material::MetallicRoughness read_metallic_roughness(const Node& n) {
         if (n.find(volume) && (!n.find("transmission") || pbr.thin)) {
             n.fail_field(volume, "attenuation is inside a solid: it needs \"transmission\" and no \"thin\"");
         }
+    }
+    if (auto v = n.find("clearcoat")) pbr.clearcoat = v->number_between(0.0, 1.0);
+    if (auto v = n.find("clearcoat_roughness")) {
+        if (!n.find("clearcoat")) n.fail_field("clearcoat_roughness", "a clear coat's roughness needs \"clearcoat\"");
+        pbr.clearcoat_roughness = v->number_between(0.0, 1.0);
     }
     if (auto v = n.find("attenuation_color")) pbr.attenuation_color = v->unit_color();
     if (auto v = n.find("attenuation_distance")) pbr.attenuation_distance = v->number_above(0.0);
@@ -305,7 +311,8 @@ void read_alpha(const Node& n, Material& m) {
 
 Material read_material(const std::string& name, const Node& n, Scene& scene) {
     n.allow_only({"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit", "ior", "fresnel", "emission",
-                  "base_color", "metallic", "roughness", "transmission", "thin", "attenuation_color", "attenuation_distance", "texture", "texture_transform", "normal_map", "normal_scale",
+                  "base_color", "metallic", "roughness", "transmission", "thin", "attenuation_color", "attenuation_distance",
+                  "clearcoat", "clearcoat_roughness", "texture", "texture_transform", "normal_map", "normal_scale",
                   "emission_texture", "alpha_mode", "alpha", "alpha_cutoff"});
     Material m;
     m.name = name;
@@ -313,9 +320,13 @@ Material read_material(const std::string& name, const Node& n, Scene& scene) {
     read_alpha(n, m);
     if (auto v = n.find("emission")) m.emission = v->color();
     if (auto v = n.find("ior")) m.ior = v->number_above(0.0);
-    if (n.find("base_color") || n.find("metallic") || n.find("roughness") || n.find("transmission")) {
-        m.metallic_roughness = read_metallic_roughness(n);
-        return m;
+    // Any field of the metallic-roughness model makes the material one (and is then checked).
+    for (const char* field : {"base_color", "metallic", "roughness", "transmission", "thin", "attenuation_color",
+                              "attenuation_distance", "clearcoat", "clearcoat_roughness"}) {
+        if (n.find(field)) {
+            m.metallic_roughness = read_metallic_roughness(n);
+            return m;
+        }
     }
     if (auto v = n.find("diffuse")) m.diffuse = v->color();
     if (auto v = n.find("kd")) m.kd = v->number_at_least(0.0);

@@ -131,6 +131,10 @@ struct Material {
         // and Lambert's law between; white or an infinite distance is clear glass.
         dvec3 attenuation_color{1.0};
         double attenuation_distance = std::numeric_limits<double>::infinity();
+        // A clear coat over it all (glTF's KHR_materials_clearcoat): a dielectric layer
+        // of ior 1.5 and this roughness, weighted by `clearcoat` (kernel/lobes/coat.glsl).
+        double clearcoat = 0.0;            // 0 to 1
+        double clearcoat_roughness = 0.0;  // 0 to 1
         // Whether light crossing it is absorbed: solid glass with some attenuation.
         bool absorbs() const {
             return transmission > 0.0 && metallic < 1.0 && !thin && std::isfinite(attenuation_distance) &&

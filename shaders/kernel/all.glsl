@@ -39,6 +39,7 @@
 #include "lobes/glossy.glsl"
 #include "lobes/ggx.glsl"
 #include "lobes/ggx_multiple.glsl"
+#include "lobes/coat.glsl"
 #include "bsdf.glsl"
 #include "global.glsl"
 #include "sample.glsl"

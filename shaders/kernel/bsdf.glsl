@@ -4,13 +4,15 @@
 //   diffuse  kd * diffuse / pi                     Lambertian (diffuse.glsl)
 //   glossy   ks * specular, normalized Phong       (glossy.glsl)
 //   ggx      GGX microfacet reflection             metallic-roughness (ggx.glsl)
+//   coat     a clear coat over the others          metallic-roughness (coat.glsl)
 //   mirror   reflect                               a delta lobe (mirror.glsl)
 //   glass    transmit, split by Fresnel            delta lobes (glass.glsl)
 //
 // A metallic-roughness material (HAS_MICROFACET) has the diffuse and the ggx lobes
 // only, the diffuse one coupled to the ggx one so that their sum stays at most 1
 // (diffuse.glsl), and with transmission glass: the glass lobe carries glass_share of
-// the material (texture.glsl), the smooth lobes the rest (Lobes.smooth_share).
+// the material (texture.glsl), the smooth lobes the rest (Lobes.smooth_share). A clear
+// coat lies over all of them: they keep Lobes.under_coat of what they send toward wo.
 //
 // A scattering event picks one lobe group at random in proportion to its weight:
 // the smooth group (the lobes of lobes/smooth_lobes.glsl, sampled together as a
@@ -25,6 +27,7 @@ struct Lobes {
     MirrorLobe mirror;
     GlassLobe glass;
     float smooth_share;  // the share of the material the smooth lobes carry (1 but beside glTF's glass)
+    float under_coat;    // what the coat lets through toward wo of the other lobes' light (coat.glsl; 1: no coat)
 };
 
 // The lobes of material m seen from a direction at cos(theta_o) = cos_o to the
@@ -36,6 +39,17 @@ Lobes material_lobes(Material m, float cos_o) {
     l.mirror = mirror_lobe(m);
     l.glass = glass_lobe(m);
     l.smooth_share = 1.0f - glass_share(m);
+    l.under_coat = under_coat(l.coat, cos_o);
+    if (HAS_COAT && l.under_coat < 1.0f) {
+        // Value and selection weight alike: the glass's colours, the others' records.
+#define SMOOTH_LOBE(id, name, Type, FEATURE) if (id != COAT_LOBE) l.name.weight *= l.under_coat;
+#include "lobes/smooth_lobes.glsl"
+        l.mirror.color *= l.under_coat;
+        l.mirror.weight *= l.under_coat;
+        l.glass.color *= l.under_coat;
+        l.glass.reflected *= l.under_coat;
+        l.glass.weight *= l.under_coat;
+    }
 #define SMOOTH_LOBE(id, name, Type, FEATURE) CHECK(is_finite_bits(l.name.weight) && l.name.weight >= 0.0f);
 #include "lobes/smooth_lobes.glsl"
     return l;
@@ -49,9 +63,11 @@ float smooth_sum(Lobes l) {
     return w;
 }
 
-// The smooth group's weight among the groups: that sum times the group's share.
+// The smooth group's weight among the groups: that sum times the group's share, the
+// coat's whole (it lies over the glass too).
 float smooth_weight(Lobes l) {
-    return l.smooth_share * smooth_sum(l);
+    float w = l.smooth_share * smooth_sum(l);
+    return HAS_COAT ? w + (1.0f - l.smooth_share) * l.coat.weight : w;
 }
 
 float lobes_total(Lobes l) {
@@ -62,12 +78,20 @@ float lobes_total(Lobes l) {
 // pointing away from the surface; n the shading normal on their side).
 vec3 eval_smooth(Lobes l, vec3 n, vec3 wo, vec3 wi) {
     vec3 f = vec3(0.0f);
-#define SMOOTH_LOBE(id, name, Type, FEATURE) \
-    if (FEATURE && name##_present(l.name)) {   \
-        f += name##_eval(l.name, n, wo, wi); \
+    vec3 coat = vec3(0.0f);
+#define SMOOTH_LOBE(id, name, Type, FEATURE)                \
+    if (FEATURE && name##_present(l.name)) {                \
+        if (id == COAT_LOBE) {                              \
+            coat = name##_eval(l.name, n, wo, wi);          \
+        } else {                                            \
+            f += name##_eval(l.name, n, wo, wi);            \
+        }                                                   \
     }
 #include "lobes/smooth_lobes.glsl"
     f *= l.smooth_share;
+    if (HAS_COAT) {
+        f = f * l.under_coat + coat;
+    }
     CHECK(is_weight(f));
     return f;
 }

@@ -65,6 +65,8 @@ FEATURE(25, HAS_TANGENTS)
 // Glass that absorbs what crosses it (glTF's KHR_materials_volume attenuation): global
 // mode weighs each path segment inside it by Beer and Lambert's law (lobes/glass.glsl).
 FEATURE(26, HAS_ABSORPTION)
+// A clear coat over a metallic-roughness material (lobes/coat.glsl).
+FEATURE(27, HAS_COAT)
 // Three per kind of primitive (shapes/kinds.glsl), after the others: HAS_<NAMES>, the
 // scene has some; with HAS_GRID, GRID_<NAMES>, the grid's cells list some, and
 // LOOSE_<NAMES>, its loose primitives, which are tested once per ray instead, hold
@@ -72,5 +74,5 @@ FEATURE(26, HAS_ABSORPTION)
 // whose boxes would stretch the grid's (host/flatten/flat_scene.cpp,
 // host/accel/grid.cpp, docs/grid.md).
 #define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
-    FEATURE((27 + 3 * ID), HAS_##NAMES) FEATURE((27 + 3 * ID + 1), GRID_##NAMES) FEATURE((27 + 3 * ID + 2), LOOSE_##NAMES)
+    FEATURE((28 + 3 * ID), HAS_##NAMES) FEATURE((28 + 3 * ID + 1), GRID_##NAMES) FEATURE((28 + 3 * ID + 2), LOOSE_##NAMES)
 #include "shapes/kinds.glsl"

@@ -56,8 +56,11 @@ MATERIAL_PAD(10, w)
 // without turning (glTF's transmission without KHR_materials_volume).
 MATERIAL_FIELD(float, dielectric_f0, 11, x)
 MATERIAL_FIELD(uint, thin_walled, 11, y)  // 1: transmitted light goes on straight; 0: it refracts
-MATERIAL_PAD(11, z)
-MATERIAL_PAD(11, w)
+
+// A clear coat over the metallic-roughness material (lobes/coat.glsl; glTF's
+// KHR_materials_clearcoat): its factor (0: none) and its GGX width.
+MATERIAL_FIELD(float, coat, 11, z)
+MATERIAL_FIELD(float, coat_alpha, 11, w)
 
 // What the glass absorbs inside (glTF's KHR_materials_volume): the attenuation
 // coefficient per unit length of world space, per channel, -ln(attenuationColor) /

@@ -407,4 +407,98 @@ TEST(GgxMultiple, IsReciprocalAndFollowsItsDensity) {
     }
 }
 
+// ------------------------------------------------------------ the clear coat
+
+// The metallic-roughness material of lobes_of under a clear coat of factor `coat` and
+// roughness `coat_roughness` (lobes/coat.glsl).
+Kernel::Lobes coated_lobes_of(Kernel& k, vec3 base_color, float metallic, float roughness, float coat,
+                              float coat_roughness, float cos_o) {
+    const vec3 f0 = glm::mix(vec3(0.04f), base_color, metallic);
+    vkrt::kernel::Material m{};
+    m.diffuse = (1.0f - metallic) * base_color;
+    m.kd = 1.0f;
+    m.ior = 1.5f;
+    m.ggx_f0 = f0;
+    m.ggx_alpha = roughness * roughness;
+    m.coat = coat;
+    m.coat_alpha = coat_roughness * coat_roughness;
+    return k.material_lobes(m, cos_o);
+}
+
+// Under a coat, a white base keeps reflecting all it did: by quadrature of the
+// kernel's own evaluation, at most all the light and at least what the base alone
+// reflects less 0.5% (the coat's own multiple scattering is not followed). Over a
+// black dielectric the sum is the layering's closed form, c R_coat + (1 - c R_coat)
+// R_base, with each albedo from the tables (which GgxTables checks against
+// quadrature).
+TEST(Coat, KeepsAWhiteBasesLightAndLayersByItsAlbedo) {
+    Kernel k = kernel_with_tables();
+    for (float metallic : {0.0f, 1.0f}) {
+        for (float coat_roughness : {0.1f, 0.5f, 1.0f}) {
+            for (double co : {1.0, 0.5, 0.1}) {
+                SCOPED_TRACE(testing::Message() << "metallic " << metallic << " coat roughness " << coat_roughness
+                                                << " cos_o " << co);
+                const vec3 wo = from_cos(co);
+                const auto reflected = [&](const Kernel::Lobes& l) {
+                    return reflected_integral(wo, [&](vec3 wi) { return double(k.eval_smooth(l, kUp, wo, wi).x) * wi.z; });
+                };
+                const double bare = reflected(lobes_of(k, vec3(1.0f), metallic, 0.5f, float(co)));
+                const double coated = reflected(coated_lobes_of(k, vec3(1.0f), metallic, 0.5f, 1.0f, coat_roughness, float(co)));
+                std::printf("white, metallic %.0f, coat roughness %.1f, cos_o %.1f: %.4f bare, %.4f coated\n", metallic,
+                            coat_roughness, co, bare, coated);
+                EXPECT_LE(coated, 1.0 + 2e-3);
+                EXPECT_GE(coated, bare - 5e-3);
+
+                const float alpha = coat_roughness * coat_roughness;
+                const double r_coat = 0.04 * k.ggx_albedo(float(co), alpha) +
+                                      0.96 * k.ggx_table_lookup(k.GGX_SCHLICK_TABLE, float(co), alpha);
+                const double r_base = k.ggx_reflectance(vec3(0.04f), float(co), 0.25f).x;
+                const double black = reflected(coated_lobes_of(k, vec3(0.0f), 0.0f, 0.5f, 0.5f, coat_roughness, float(co)));
+                EXPECT_NEAR(black, 0.5 * r_coat + (1.0 - 0.5 * r_coat) * r_base, 2e-3);
+            }
+        }
+    }
+}
+
+// The coat joins the smooth group's mixture: sampling follows the stated density,
+// and the coat's weight over glass brings the group back when the rest is all glass.
+TEST(Coat, MixtureSamplingMatchesItsDensity) {
+    Kernel k = kernel_with_tables();
+    const Kernel::Basis frame = k.basis_around(kUp);
+    for (double co : {0.9, 0.3}) {
+        SCOPED_TRACE(testing::Message() << "cos_o " << co);
+        const vec3 wo = from_cos(co);
+        const Kernel::Lobes l = coated_lobes_of(k, vec3(0.9f, 0.6f, 0.3f), 0.0f, 0.7f, 0.8f, 0.2f, float(co));
+        EXPECT_GT(l.coat.weight, 0.0f);
+        EXPECT_LT(l.under_coat, 1.0f);
+        const double expected =
+            reflected_integral(wo, [&](vec3 wi) { return double(k.eval_smooth(l, kUp, wo, wi).y) * wi.z; });
+        std::mt19937 rng(5);
+        std::uniform_real_distribution<float> u(0.0f, 1.0f);
+        constexpr int n = 200000;
+        double sum = 0.0, sum2 = 0.0;
+        for (int i = 0; i < n; ++i) {
+            const vec3 wi = k.sample_smooth(l, frame, wo, vkrt::kernel::HEMISPHERE_COSINE, u(rng), u(rng), u(rng));
+            const float pdf = k.pdf_smooth(l, frame, wo, wi, vkrt::kernel::HEMISPHERE_COSINE);
+            const double w = wi.z > 0.0f && pdf > 0.0f ? k.eval_smooth(l, kUp, wo, wi).y * wi.z / pdf : 0.0;
+            sum += w;
+            sum2 += w * w;
+        }
+        const double mean = sum / n;
+        const double error = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+        EXPECT_NEAR(mean, expected, 4.0 * error + 2e-4);
+    }
+    vkrt::kernel::Material glass{};
+    glass.ggx_f0 = vec3(0.04f);
+    glass.ggx_alpha = 0.25f;
+    glass.transmission = 1.0f;
+    glass.transmit = vec3(1.0f);
+    glass.coat = 1.0f;
+    glass.coat_alpha = 0.01f;
+    const Kernel::Lobes l = k.material_lobes(glass, 0.8f);
+    EXPECT_EQ(l.smooth_share, 0.0f);
+    EXPECT_FLOAT_EQ(k.smooth_weight(l), l.coat.weight);
+    EXPECT_FLOAT_EQ(l.glass.weight, l.under_coat);
+}
+
 }  // namespace

@@ -371,10 +371,10 @@ TEST(GltfErrors, AnUnknownAlphaModeIsNamed) {
 }
 
 TEST(Gltf, WhatIsNotRenderedIsNamedOnce) {
-    std::string json = gltf_json("mesh.bin", kOneNode, R"(, "extensionsUsed": ["KHR_materials_clearcoat"])");
+    std::string json = gltf_json("mesh.bin", kOneNode, R"(, "extensionsUsed": ["KHR_materials_sheen"])");
     json.replace(json.find(R"("metallicFactor": 0)"), 19, R"("metallicFactor": 1)");
     const Scene s = vkrt::load_scene(write_gltf("unsupported", json));
-    EXPECT_TRUE(has_warning(s, "the extension KHR_materials_clearcoat is not supported"));
+    EXPECT_TRUE(has_warning(s, "the extension KHR_materials_sheen is not supported"));
     EXPECT_EQ(s.triangles.size(), 8u);
 }
 
@@ -472,6 +472,27 @@ TEST(Gltf, GlassExtensionsAreRead) {
                                      "KHR_materials_volume": {{"thicknessFactor": 1, {}}}}}}})", volume));
         vkrt::test::expect_error_message(load_error(write_gltf("glass_volume", json)), "", {piece});
     }
+}
+
+// KHR_materials_clearcoat's factors make the material's clear coat; its textures and
+// its normal map are named as not read; a factor out of range is refused.
+TEST(Gltf, ClearcoatIsRead) {
+    const std::string plain = R"({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0}})";
+    std::string json = gltf_json("mesh.bin", kOneNode);
+    json.replace(json.find(plain), plain.size(), R"({"pbrMetallicRoughness": {"metallicFactor": 0},
+        "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 0.75, "clearcoatRoughnessFactor": 0.25,
+                       "clearcoatTexture": {"index": 0}, "clearcoatNormalTexture": {"index": 0}}}})");
+    const Scene s = vkrt::load_scene(write_gltf("clearcoat", json));
+    ASSERT_TRUE(s.materials[0].metallic_roughness.has_value());
+    EXPECT_DOUBLE_EQ(s.materials[0].metallic_roughness->clearcoat, 0.75);
+    EXPECT_DOUBLE_EQ(s.materials[0].metallic_roughness->clearcoat_roughness, 0.25);
+    EXPECT_TRUE(has_warning(s, "clear coat textures"));
+    EXPECT_TRUE(has_warning(s, "clear coat normal maps"));
+
+    json = gltf_json("mesh.bin", kOneNode);
+    json.replace(json.find(plain), plain.size(), R"({"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 2}}})");
+    vkrt::test::expect_error_message(load_error(write_gltf("clearcoat_range", json)), "",
+                                     {"materials[0].extensions.KHR_materials_clearcoat.clearcoatFactor", "from 0 to 1, got 2"});
 }
 
 // ------------------------------------------------------------------ bad files

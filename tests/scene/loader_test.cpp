@@ -652,6 +652,12 @@ TEST_F(SceneLoaderTest, MetallicRoughnessMaterials) {
                  {": materials.m.transmission: expected a number between 0 and 1, got 1.5"});
     expect_error(Parts{.materials = R"({"m": {"transmission": 1, "ior": 0}})"},
                  {": materials.m.ior: expected a number > 0, got 0"});
+    expect_error(Parts{.materials = R"({"m": {"clearcoat": 1.5}})"},
+                 {": materials.m.clearcoat: expected a number between 0 and 1, got 1.5"});
+    expect_error(Parts{.materials = R"({"m": {"clearcoat_roughness": 0.5}})"},
+                 {": materials.m.clearcoat_roughness: a clear coat's roughness needs \"clearcoat\""});
+    expect_error(Parts{.materials = R"({"m": {"attenuation_distance": 1}})"},
+                 {": materials.m.attenuation_distance: attenuation is inside a solid"});
     expect_error(Parts{.materials = R"({"m": {"roughness": 1.5}})"},
                  {": materials.m.roughness: expected a number between 0 and 1, got 1.5"});
     expect_error(Parts{.materials = R"({"m": {"metallic": -0.1}})"},

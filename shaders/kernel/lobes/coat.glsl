@@ -1,0 +1,60 @@
+// The clear coat of a metallic-roughness material (glTF's KHR_materials_clearcoat): a
+// colourless dielectric layer of index 1.5 (reflecting 0.04 at normal incidence) over
+// the rest of the material, a GGX lobe of its own width (ggx.glsl) weighted by the
+// coat factor c. What the coat reflects does not reach the layers under it: they are
+// weighed by what it lets through toward the viewer,
+//
+//   f = c f_coat + (1 - c R_coat(mu_o)) f_base,
+//
+// with R_coat(mu) = f0 E(mu) + (1 - f0) E_s(mu) the coat's single-scattering albedo
+// from the tables (ggx_albedo.glsl), so that a base that reflects all the light keeps
+// reflecting all of it under any coat (the coat's own multiple scattering, at f0 =
+// 0.04 under 0.2% of the light, is not followed; tests/kernel/microfacet_test.cpp). Weighing by mu_o alone (albedo scaling)
+// keeps the sum's energy but not its reciprocity; bsdf.glsl applies the factor to the
+// smooth lobes below and to the glass and mirror lobes (Lobes.under_coat).
+// decisions/0043-clear-coat.md.
+
+const float COAT_F0 = 0.04f;
+const uint COAT_LOBE = 4u;  // its id in smooth_lobes.glsl
+
+// Members in an order no other lobe record has (smooth_lobes.glsl says why).
+struct CoatLobe {
+    float weight;   // c times its Fresnel reflectance toward wo (0 from below)
+    float alpha;    // its GGX width; 0: no coat
+    float factor;   // c
+};
+
+CoatLobe coat_lobe(Material m, float cos_o) {
+    CoatLobe l;
+    l.factor = HAS_COAT && m.ggx_alpha > 0.0f ? m.coat : 0.0f;
+    l.alpha = l.factor > 0.0f ? m.coat_alpha : 0.0f;
+    l.weight = l.factor > 0.0f && cos_o > 0.0f ? l.factor * fresnel_schlick(vec3(COAT_F0), cos_o).x : 0.0f;
+    return l;
+}
+
+bool coat_present(CoatLobe l) {
+    return HAS_COAT && l.factor > 0.0f;
+}
+
+// What the layers under the coat keep of the light they send toward cos(theta_o) =
+// cos_o: 1 - c R_coat(cos_o); 1 without a coat.
+float under_coat(CoatLobe l, float cos_o) {
+    if (!coat_present(l) || !(cos_o > 0.0f)) {
+        return 1.0f;
+    }
+    float r = COAT_F0 * ggx_albedo(cos_o, l.alpha) + (1.0f - COAT_F0) * ggx_table_lookup(GGX_SCHLICK_TABLE, cos_o, l.alpha);
+    return 1.0f - l.factor * r;
+}
+
+vec3 coat_eval(CoatLobe l, vec3 n, vec3 wo, vec3 wi) {
+    return l.factor * ggx_eval(vec3(COAT_F0), l.alpha, n, wo, wi);
+}
+
+float coat_pdf(CoatLobe l, Basis frame, vec3 wo, vec3 wi, uint /* hemisphere */) {
+    return ggx_pdf(l.alpha, frame.n, wo, wi);
+}
+
+vec3 coat_sample(CoatLobe l, Basis frame, vec3 wo, uint /* hemisphere */, float u1, float u2) {
+    vec3 local = vec3(dot(wo, frame.t), dot(wo, frame.b), dot(wo, frame.n));
+    return from_basis(frame, ggx_sample(l.alpha, local, u1, u2));
+}
