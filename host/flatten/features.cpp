@@ -98,8 +98,7 @@ FeatureSet analyze_features(const Scene& scene) {
         coat = coat || (m.metallic_roughness && m.metallic_roughness->clearcoat > 0.0);
         absorption = absorption || (m.metallic_roughness && m.metallic_roughness->absorbs() &&
                                     scene.render.mode == RenderMode::Global);
-        textures = textures || m.texture.has_value() || m.metallic_roughness_texture.has_value() ||
-                   m.normal_map.has_value() || m.emission_texture.has_value();
+        textures = textures || m.textured();
     }
 
     f.set(Feature::HAS_VERTEX_COLORS, std::any_of(scene.triangles.begin(), scene.triangles.end(),

@@ -221,8 +221,7 @@ private:
             read_alpha_mode(g, element, m);
             read_glass(g, element, m);
             read_clearcoat(g, element, m);
-            const bool textured = m.texture || m.metallic_roughness_texture || m.normal_map || m.emission_texture;
-            uv_sets_.push_back(textured ? textures_.uv_set() : 0);
+            uv_sets_.push_back(m.textured() ? textures_.uv_set() : 0);
             materials_.push_back(static_cast<std::uint32_t>(scene_.materials.size()));
             scene_.materials.push_back(m);
         }
@@ -230,8 +229,7 @@ private:
         const std::vector<std::uint32_t> textures = textures_.resolve();
         for (std::uint32_t index : materials_) {
             Material& m = scene_.materials[index];
-            for (std::optional<std::uint32_t>* t : {&m.texture, &m.metallic_roughness_texture, &m.normal_map,
-                                                    &m.emission_texture}) {
+            for (std::optional<std::uint32_t>* t : m.texture_slots()) {
                 if (*t) *t = textures[**t];
             }
         }
@@ -256,11 +254,11 @@ private:
     }
 
     // Glass (docs/gltf.md): KHR_materials_ior's index, which also sets the
-    // dielectric's reflectance; KHR_materials_transmission's factor; and
+    // dielectric's reflectance; KHR_materials_transmission's factor and texture; and
     // KHR_materials_volume, whose thickness makes the glass the surface of a solid
     // that refracts, where without it the glass is a thin wall, as the extensions
-    // specify, and its attenuation absorbs inside the solid. What is not rendered
-    // (transmission textures, rough transmission) is named.
+    // specify, and its attenuation absorbs inside the solid. Rough transmission,
+    // which is not rendered, is named.
     void read_glass(const tinygltf::Material& g, const std::string& element, Material& m) {
         if (auto e = g.extensions.find("KHR_materials_ior"); e != g.extensions.end()) {
             const tinygltf::Value& v = e->second.Get("ior");
@@ -282,7 +280,18 @@ private:
             mr.transmission = unit(factor.GetNumberAsDouble(),
                                    element + ".extensions.KHR_materials_transmission.transmissionFactor");
         }
-        if (e->second.Has("transmissionTexture")) note_unsupported("transmission textures (the factor is used)");
+        if (e->second.Has("transmissionTexture")) {
+            tinygltf::TextureInfo info;
+            const tinygltf::Value& t = e->second.Get("transmissionTexture");
+            const std::string at = element + ".extensions.KHR_materials_transmission.transmissionTexture";
+            if (!t.IsObject() || !t.Get("index").IsInt()) fail_at(at, "expected a textureInfo with an \"index\"");
+            info.index = t.Get("index").GetNumberAsInt();
+            if (t.Get("texCoord").IsInt()) info.texCoord = t.Get("texCoord").GetNumberAsInt();
+            if (t.Has("extensions") && t.Get("extensions").Has("KHR_texture_transform")) {
+                info.extensions["KHR_texture_transform"] = t.Get("extensions").Get("KHR_texture_transform");
+            }
+            m.transmission_texture = textures_.texture(info, at, Encoding::Linear, m);
+        }
         if (mr.transmission > 0.0 && mr.roughness > 0.0) {
             note_unsupported("rough transmission (the glass is smooth; its reflection keeps the roughness)");
         }

@@ -142,8 +142,7 @@ std::size_t TextureReader::encoded_image(int index, Encoding encoding) {
 
 std::optional<std::uint32_t> TextureReader::request(const tinygltf::TextureInfo& info, const std::string& element,
                                                     Encoding encoding, double normal_scale, bool normal, Material& m) {
-    const bool has_transform = m.texture || m.metallic_roughness_texture || m.normal_map || m.emission_texture;
-    const std::optional<Source> s = source(info, element, has_transform, m);
+    const std::optional<Source> s = source(info, element, m.textured(), m);
     if (!s) return std::nullopt;
     const auto key = std::tuple{s->image, s->sampler, encoding, normal, normal ? normal_scale : 1.0};
     if (auto it = ticket_of_.find(key); it != ticket_of_.end()) return it->second;
@@ -164,7 +163,7 @@ std::optional<TextureReader::Converted> TextureReader::specular_glossiness(const
                                                                           const std::string& element,
                                                                           const SpecularGlossiness& factors,
                                                                           double alpha, Material& m) {
-    const bool has_transform = m.texture || m.metallic_roughness_texture || m.normal_map || m.emission_texture;
+    const bool has_transform = m.textured();
     std::optional<Source> d, s;
     if (diffuse) d = source(*diffuse, element + ".diffuseTexture", has_transform, m);
     if (specular_glossiness) {

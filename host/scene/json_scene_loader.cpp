@@ -258,9 +258,9 @@ void read_normal_map(const Node& n, Material& m, Scene& scene) {
 // in degrees here, like every angle of the format).
 void read_texture(const Node& n, Material& m, Scene& scene) {
     if (auto t = n.find("texture_transform")) {
-        if (!n.find("texture") && !n.find("normal_map") && !n.find("emission_texture")) {
-            n.fail_field("texture_transform",
-                         "a texture transform needs a \"texture\", a \"normal_map\" or an \"emission_texture\"");
+        if (!n.find("texture") && !n.find("normal_map") && !n.find("emission_texture") && !n.find("transmission_texture")) {
+            n.fail_field("texture_transform", "a texture transform needs a \"texture\", a \"normal_map\", an "
+                                              "\"emission_texture\" or a \"transmission_texture\"");
         }
         t->allow_only({"offset", "rotation", "scale"});
         double offset[2] = {0.0, 0.0}, scale[2] = {1.0, 1.0}, rotation = 0.0;
@@ -283,6 +283,11 @@ void read_texture(const Node& n, Material& m, Scene& scene) {
     if (auto file = n.find("emission_texture")) {
         const std::string element = fmt::format("{}: {}", n.file(), file->path());
         m.emission_texture = load_texture(scene, file->file_path(), Encoding::SrgbUnlessFloat, element);
+    }
+    if (auto file = n.find("transmission_texture")) {
+        if (!n.find("transmission")) n.fail_field("transmission_texture", "a transmission texture needs \"transmission\"");
+        const std::string element = fmt::format("{}: {}", n.file(), file->path());
+        m.transmission_texture = load_texture(scene, file->file_path(), Encoding::Linear, element);
     }
 }
 
@@ -312,7 +317,7 @@ void read_alpha(const Node& n, Material& m) {
 Material read_material(const std::string& name, const Node& n, Scene& scene) {
     n.allow_only({"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit", "ior", "fresnel", "emission",
                   "base_color", "metallic", "roughness", "transmission", "thin", "attenuation_color", "attenuation_distance",
-                  "clearcoat", "clearcoat_roughness", "texture", "texture_transform", "normal_map", "normal_scale",
+                  "clearcoat", "clearcoat_roughness", "transmission_texture", "texture", "texture_transform", "normal_map", "normal_scale",
                   "emission_texture", "alpha_mode", "alpha", "alpha_cutoff"});
     Material m;
     m.name = name;

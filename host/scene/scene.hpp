@@ -155,6 +155,16 @@ struct Material {
     // An emission texture, at the same coordinates: multiplies `emission` (which
     // must be nonzero for the material to emit at all).
     std::optional<std::uint32_t> emission_texture;
+    // With metallic_roughness transmission: a linear texture whose red channel
+    // multiplies the transmission (glTF's transmissionTexture), at the same coordinates.
+    std::optional<std::uint32_t> transmission_texture;
+    // Every texture slot above, for what treats them alike.
+    std::array<std::optional<std::uint32_t>*, 5> texture_slots() {
+        return {&texture, &metallic_roughness_texture, &normal_map, &emission_texture, &transmission_texture};
+    }
+    bool textured() const {
+        return texture || metallic_roughness_texture || normal_map || emission_texture || transmission_texture;
+    }
     std::array<double, 6> uv_transform{1.0, 0.0, 0.0, 0.0, 1.0, 0.0};
     // Coverage (glTF's alphaMode; kernel/alpha.glsl): the opacity at a point is
     // `alpha` times the colour texture's alpha there. Mask: the surface is there

@@ -66,7 +66,9 @@ MATERIAL_FIELD(float, coat_alpha, 11, w)
 // coefficient per unit length of world space, per channel, -ln(attenuationColor) /
 // attenuationDistance; 0 for a clear medium (lobes/glass.glsl, medium_transmittance).
 MATERIAL_FIELD3(vec3, attenuation, 12)
-MATERIAL_PAD(12, w)
+// A texture whose red channel multiplies the transmission (glTF's
+// transmissionTexture): 1 + its index, 0 for none (texture.glsl).
+MATERIAL_FIELD(uint, transmission_map, 12, w)
 
 #undef MATERIAL_PAD
 #undef MATERIAL_FIELD3

@@ -125,7 +125,8 @@ void set_metallic_roughness(INOUT(Material) m, vec3 base, float metallic, float 
 // colour texture; a metallic-roughness material rebuilt from its factors (flat_scene.cpp)
 // times its textures: base colour times the colour texture, metallic times the
 // metallic-roughness texture's blue channel, roughness times its green (glTF's
-// packing); the emission times the emission texture. Vertex colours multiply the
+// packing), transmission times the transmission texture's red; the emission times
+// the emission texture. Vertex colours multiply the
 // colour as the colour texture does (vertex_data.glsl). Only triangles and quads
 // have texture coordinates and vertex colours; other shapes keep the untextured
 // material.
@@ -135,7 +136,7 @@ Material surface_material(Hit hit) {
     if (HAS_TEXTURES && m.emission_map != 0u && triangle) {
         m.emission = textured_emission(m, material_uv(m, hit.uv));
     }
-    bool textured = HAS_TEXTURES && (m.color_map != 0u || m.metal_rough_map != 0u) && triangle;
+    bool textured = HAS_TEXTURES && (m.color_map != 0u || m.metal_rough_map != 0u || m.transmission_map != 0u) && triangle;
     bool tinted = HAS_VERTEX_COLORS && triangle && triangle_has_colors(hit.prim & REF_INDEX_MASK);
     if (textured || tinted) {
         vec2 uv = material_uv(m, hit.uv);
@@ -151,6 +152,9 @@ Material surface_material(Hit hit) {
                 vec4 mr = texture_bilinear(load_texture(m.metal_rough_map - 1u), uv);
                 metallic = clamp(metallic * mr.b, 0.0f, 1.0f);
                 roughness = clamp(roughness * mr.g, 0.0f, 1.0f);
+            }
+            if (HAS_TEXTURES && m.transmission_map != 0u) {
+                m.transmission = clamp(m.transmission * texture_bilinear(load_texture(m.transmission_map - 1u), uv).r, 0.0f, 1.0f);
             }
             set_metallic_roughness(m, base, metallic, roughness);
         } else {

@@ -7,7 +7,9 @@
 // law says, channel by channel; both backends.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <cstdio>
 #include <cstdint>
 #include <string>
@@ -17,6 +19,7 @@
 
 #include "flatten/flat_scene.hpp"
 #include "cpu/cpu_backend.hpp"
+#include "image/image.hpp"
 #include "kernel/kernel.hpp"
 #include "test_support.hpp"
 
@@ -105,6 +108,49 @@ TEST(Transmission, AnAbsorbingSlabFollowsBeerAndLambert) {
     ASSERT_TRUE(flat.features.has(Feature::HAS_ABSORPTION));
     EXPECT_EQ(flat.materials.at(0).attenuation, vec3(float(std::log(2.0) / 0.1), float(std::log(16.0) / 0.1), 0.0f));
     expect_image_mean(scene, glm::dvec3(seen(0.25), seen(1.0 / 256.0), 1.0));
+}
+
+// A transmission texture multiplies the transmission by its red channel (glTF's
+// transmissionTexture; the kernel rebuilds the material per hit): a white thin wall
+// of transmission 1 with a texture of red 0.5 (exact in the EXR's half floats), in
+// front of an emitter of radiance 1 and nothing else, shows 0.5 (1 - F) of it, the
+// glass's share; with red 0 nothing. Nothing lights the wall's front, so its other
+// lobes add nothing.
+TEST(Transmission, ATransmissionTextureScalesTheGlass) {
+    const std::filesystem::path dir = test::temp_dir("transmission_texture");
+    for (const float red : {0.5f, 0.0f}) {
+        SCOPED_TRACE(testing::Message() << "red " << red);
+        Image texture(2, 2);
+        for (std::size_t p = 0; p < 4; ++p) texture.rgb[3 * p] = red;
+        const std::filesystem::path file = dir / fmt::format("red_{}.exr", red);
+        write_image(texture, file);
+        const Scene scene = test::scene_from_text("transmission_texture", fmt::format(R"({{
+          "camera": {{ "eye": [0, 0, 3], "look_at": [0, 0, 0], "fov": 6, "width": 16, "height": 12 }},
+          "render": {{ "mode": "global", "spp": 64, "max_bounces": 8 }},
+          "materials": {{ "wall": {{ "base_color": [1, 1, 1], "roughness": 0, "transmission": 1, "thin": true,
+                                     "transmission_texture": "{}" }},
+                          "lamp": {{ "emission": [1, 1, 1] }} }},
+          "objects": [
+            {{ "type": "quad", "corner": [-2, -2, 0], "edge1": [4, 0, 0], "edge2": [0, 4, 0], "material": "wall" }},
+            {{ "type": "quad", "corner": [-2, -2, -1], "edge1": [4, 0, 0], "edge2": [0, 4, 0], "material": "lamp" }}
+          ]}})", file.string()));
+        ASSERT_TRUE(flatten_scene(scene).features.has(Feature::HAS_TEXTURES));
+        const double f = fresnel_normal(1.5);
+        if (red > 0.0f) {
+            expect_image_mean(scene, glm::dvec3(0.5 * (1.0 - f)));
+        } else {
+            for (const bool vulkan : {false, true}) {
+                const RenderOutcome out = vulkan ? test::render_vulkan(scene) : test::render_cpu(scene);
+                EXPECT_EQ(*std::max_element(out.image.rgb.begin(), out.image.rgb.end()), 0.0f) << (vulkan ? "vulkan" : "cpu");
+            }
+        }
+    }
+    const std::string message = test::scene_error_of("transmission_texture_alone", R"({
+      "camera": { "eye": [0, 0, 3], "look_at": [0, 0, 0] },
+      "materials": { "m": { "base_color": [1, 1, 1], "transmission_texture": "t.png" } },
+      "objects": [{ "type": "quad", "corner": [-1, -1, 0], "edge1": [2, 0, 0], "edge2": [0, 2, 0], "material": "m" }]
+    })");
+    test::expect_error_message(message, "", {"materials.m.transmission_texture", "needs \"transmission\""});
 }
 
 // Attenuation is inside a solid: a thin wall refuses it, and glass that absorbs

@@ -450,15 +450,19 @@ TEST(Gltf, GlassExtensionsAreRead) {
     EXPECT_TRUE(solid.warnings.empty()) << solid.warnings.front();
 
     const Scene thin = with_material("glass_thin", R"({"pbrMetallicRoughness": {"roughnessFactor": 0.4},
-        "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1, "transmissionTexture": {"index": 0}},
+        "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
                        "KHR_materials_volume": {"thicknessFactor": 0, "attenuationDistance": 2, "attenuationColor": [1, 0.5, 0.5]}}})");
     EXPECT_TRUE(thin.materials[0].metallic_roughness->thin);
     EXPECT_FALSE(thin.materials[0].metallic_roughness->absorbs());
     EXPECT_DOUBLE_EQ(thin.materials[0].ior, 1.5);
-    EXPECT_TRUE(has_warning(thin, "transmission textures"));
     EXPECT_TRUE(has_warning(thin, "rough transmission"));
 
     std::string json = gltf_json("mesh.bin", kOneNode);
+    json.replace(json.find(plain), plain.size(),
+                 R"({"extensions": {"KHR_materials_transmission": {"transmissionTexture": {"index": 0}}}})");
+    vkrt::test::expect_error_message(load_error(write_gltf("glass_texture", json)), "",
+                                     {"KHR_materials_transmission.transmissionTexture.index", "texture 0 does not exist"});
+    json = gltf_json("mesh.bin", kOneNode);
     json.replace(json.find(plain), plain.size(), R"({"extensions": {"KHR_materials_ior": {"ior": 0.5}}})");
     vkrt::test::expect_error_message(load_error(write_gltf("glass_ior", json)), "",
                                      {"materials[0].extensions.KHR_materials_ior.ior", "from 1 to 1000, got 0.5"});

@@ -67,6 +67,16 @@ TEST(GltfTexCoord, TexturesReadTheSetTheyName) {
     EXPECT_EQ(*zero.triangles[0].uvs, kSetZero);
 }
 
+// KHR_materials_transmission's texture is one of the material's, on its set too.
+TEST(GltfTexCoord, TheTransmissionTextureReadsItsSet) {
+    const Scene s = load_scene(two_set_quad("transmission", R"({"pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0},
+        "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1,
+                                                      "transmissionTexture": {"index": 0, "texCoord": 1}}}})"));
+    EXPECT_TRUE(s.materials[0].transmission_texture.has_value());
+    EXPECT_EQ(*s.triangles[0].uvs, kSetOne);
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+}
+
 // KHR_texture_transform's texCoord overrides the textureInfo's (the extension says so).
 TEST(GltfTexCoord, TheTransformsSetOverrides) {
     const Scene s = load_scene(two_set_quad("transform", R"({"pbrMetallicRoughness": {"metallicFactor": 0,
