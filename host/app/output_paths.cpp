@@ -23,7 +23,7 @@ void check_writable_image(const std::filesystem::path& file) {
     check_writable_file(file, "image");
     if (!can_write_image_format(file)) {
         throw std::runtime_error(fmt::format(
-            "{}: unknown image format '{}' (use .png or .ppm for 8-bit sRGB, .exr or .hdr for linear float)",
+            "{}: unknown image format '{}' (use .png or .ppm for 8-bit sRGB, .exr, .hdr or .pfm for linear float)",
             file.string(), file.extension().string()));
     }
 }

@@ -18,7 +18,7 @@ Command add_render_command(CLI::App& program) {
     CLI::App* r = program.add_subcommand("render", "Render a scene file to an image");
     r->add_option("scene", args->scene, "Scene file (.json, .nff, either optionally gzipped as .gz; .gltf, .glb)")->required();
     r->add_option("-o,--output", args->output,
-                  "Output image; the extension picks the format (.png .ppm: 8-bit sRGB; .exr .hdr: linear float). "
+                  "Output image; the extension picks the format (.png .ppm: 8-bit sRGB; .exr .hdr .pfm: linear float). "
                   "Default: <scene name>.png");
     r->add_option("--backend", args->backend, "Renderer: vulkan (compute shader) or cpu (C++ reference)")
         ->check(CLI::IsMember({"vulkan", "cpu"}))

@@ -9,6 +9,7 @@
 #include <fmt/std.h>
 
 #include "image/image_files.hpp"
+#include "image/pfm.hpp"
 #include "image/png_encode.hpp"
 
 namespace vkrt {
@@ -25,11 +26,12 @@ std::string lower_extension(const std::filesystem::path& file) {
 
 bool is_float_format(const std::filesystem::path& file) {
     const std::string ext = lower_extension(file);
-    return ext == ".exr" || ext == ".hdr";
+    return ext == ".exr" || ext == ".hdr" || ext == ".pfm";
 }
 
 bool can_write_image_format(const std::filesystem::path& file) {
-    if (lower_extension(file) == ".png") return true;  // written here, without the plug-in
+    // Written here, without the plug-in.
+    if (lower_extension(file) == ".png" || lower_extension(file) == ".pfm") return true;
     return !file.extension().empty() && image_files().can_write(file.string());
 }
 
@@ -57,6 +59,10 @@ void write_image(const Image& image, const std::filesystem::path& file, const Di
         std::ofstream out(file, std::ios::binary);
         out.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
         if (!out) throw ImageError(fmt::format("{}: writing failed", name));
+        return;
+    }
+    if (lower_extension(file) == ".pfm") {
+        write_pfm(image, file);
         return;
     }
     const bool linear = is_float_format(file);
@@ -89,6 +95,7 @@ Image read_image(const std::filesystem::path& file) {
     if (!std::filesystem::exists(file)) {
         throw ImageError(fmt::format("{}: no such file", name));
     }
+    if (lower_extension(file) == ".pfm") return read_pfm(file);
     std::string error;
     const std::unique_ptr<ImageFileReader> in = image_files().open(name, error);
     if (!in) {
