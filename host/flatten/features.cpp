@@ -80,6 +80,7 @@ FeatureSet analyze_features(const Scene& scene) {
     bool refraction = false;
     bool absorption = false;
     bool coat = false;
+    bool sheen = false;
     bool microfacet = false;
     bool textures = false;
     // Only triangles and quads have the texture coordinates a normal map needs.
@@ -96,6 +97,7 @@ FeatureSet analyze_features(const Scene& scene) {
                       scene.render.mode == RenderMode::Global);
         microfacet = microfacet || m.metallic_roughness.has_value();
         coat = coat || (m.metallic_roughness && m.metallic_roughness->clearcoat > 0.0);
+        sheen = sheen || (m.metallic_roughness && m.metallic_roughness->sheen_color != dvec3(0.0));
         absorption = absorption || (m.metallic_roughness && m.metallic_roughness->absorbs() &&
                                     scene.render.mode == RenderMode::Global);
         textures = textures || m.textured();
@@ -153,6 +155,7 @@ FeatureSet analyze_features(const Scene& scene) {
     // Local mode shades a metallic-roughness material by its diffuse lobe (scene.hpp).
     f.set(Feature::HAS_MICROFACET, microfacet && global);
     f.set(Feature::HAS_COAT, coat && global);
+    f.set(Feature::HAS_SHEEN, sheen && global);
     // Only triangles and quads carry texture coordinates.
     f.set(Feature::HAS_TEXTURES, textures && !scene.triangles.empty());
     f.set(Feature::HAS_ENVIRONMENT_MAP, scene.environment.has_value());

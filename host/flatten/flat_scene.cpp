@@ -4,6 +4,7 @@
 #include "flatten/emission_footprint.hpp"
 #include "flatten/environment_table.hpp"
 #include "flatten/ggx_albedo.hpp"
+#include "flatten/sheen_albedo.hpp"
 #include "scene/shapes/support.hpp"
 #include "scene/texture_image.hpp"
 #include "scene/vec_math.hpp"
@@ -122,6 +123,11 @@ kernel::Material flatten(const Material& m) {
         out.transmit = vec3(glass * pbr->base_color);
         out.dielectric_f0 = float(f0);
         out.thin_walled = pbr->thin ? 1u : 0u;
+        if (pbr->sheen_color != dvec3(0.0)) {
+            out.sheen_color = vec3(pbr->sheen_color);
+            out.sheen_alpha = float(std::max(pbr->sheen_roughness * pbr->sheen_roughness,
+                                             double(kernel::MIN_SHEEN_ALPHA)));
+        }
         if (pbr->clearcoat > 0.0) {
             out.coat = float(pbr->clearcoat);
             out.coat_alpha = float(std::max(pbr->clearcoat_roughness * pbr->clearcoat_roughness,
@@ -195,11 +201,16 @@ void add_environment(const Scene& scene, FlatScene& g) {
 }
 
 // The rough lobe's albedo tables, which its multiple-scattering lobe reads
-// (kernel/lobes/ggx_multiple.glsl), after what table_words holds already.
+// (kernel/lobes/ggx_multiple.glsl), after what table_words holds already, and with
+// HAS_SHEEN the sheen's right after them (kernel/lobes/sheen.glsl).
 void add_ggx_tables(FlatScene& g) {
     const std::vector<std::uint32_t>& table = ggx_albedo_table();
     kernel::set_ggx_table_first_word(g.params, static_cast<std::uint32_t>(g.table_words.size()));
     g.table_words.insert(g.table_words.end(), table.begin(), table.end());
+    if (g.features.has(Feature::HAS_SHEEN)) {
+        const std::vector<std::uint32_t>& sheen = sheen_albedo_table();
+        g.table_words.insert(g.table_words.end(), sheen.begin(), sheen.end());
+    }
 }
 
 // Per triangle, six words of table_words (kernel/vertex_data.glsl): the half floats

@@ -53,7 +53,9 @@ Albedos albedos(kernel::Kernel& k, float mu, float alpha) {
 // The multiple-scattering lobe then gives back exactly 1 - E(mu_o) of the
 // interpolated E with a Fresnel of 1, and the diffuse lobe under the rough one
 // shares out exactly what that leaves.
-float row_mean(const std::uint32_t* row, int n) {
+}  // namespace
+
+float table_row_mean(const std::uint32_t* row, int n) {
     double avg = 0.0;
     for (int i = 0; i + 1 < n; ++i) {
         const double a = double(i) / (n - 1), b = double(i + 1) / (n - 1);
@@ -63,6 +65,8 @@ float row_mean(const std::uint32_t* row, int n) {
     }
     return float(avg);
 }
+
+namespace {
 
 // Each table: GGX_TABLE_SIZE^2 knots, mu fastest, then GGX_TABLE_SIZE means; E's, then E_s's.
 std::vector<std::uint32_t> build() {
@@ -90,7 +94,7 @@ std::vector<std::uint32_t> build() {
     for (std::thread& t : threads) t.join();
     for (std::size_t at : {std::size_t(0), table}) {
         for (int j = 0; j < n; ++j) {
-            words[at + knots + j] = std::bit_cast<std::uint32_t>(row_mean(&words[at + std::size_t(j) * n], n));
+            words[at + knots + j] = std::bit_cast<std::uint32_t>(table_row_mean(&words[at + std::size_t(j) * n], n));
         }
     }
     return words;

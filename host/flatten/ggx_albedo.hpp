@@ -12,4 +12,8 @@ namespace vkrt {
 // Built once per process on first use, on every core (about 30 ms on two).
 const std::vector<std::uint32_t>& ggx_albedo_table();
 
+// The mean 2 int_0^1 E(mu) mu dmu of one row of n knots (mu = (i / (n - 1))^2), as the
+// kernel interpolates it: what a table's means hold.
+float table_row_mean(const std::uint32_t* row, int n);
+
 }  // namespace vkrt

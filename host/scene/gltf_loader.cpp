@@ -221,6 +221,7 @@ private:
             read_alpha_mode(g, element, m);
             read_glass(g, element, m);
             read_clearcoat(g, element, m);
+            read_sheen(g, element, m);
             uv_sets_.push_back(m.textured() ? textures_.uv_set() : 0);
             materials_.push_back(static_cast<std::uint32_t>(scene_.materials.size()));
             scene_.materials.push_back(m);
@@ -347,6 +348,28 @@ private:
         }
         if (e->second.Has("clearcoatNormalTexture")) {
             note_unsupported("clear coat normal maps (the coat has the material's shading normal)");
+        }
+    }
+
+    // KHR_materials_sheen's factors: sheen over the material, under its coat
+    // (kernel/lobes/sheen.glsl). Its textures are named as not read: the factors are used.
+    void read_sheen(const tinygltf::Material& g, const std::string& element, Material& m) {
+        const auto e = g.extensions.find("KHR_materials_sheen");
+        if (e == g.extensions.end() || !m.metallic_roughness) return;
+        const std::string at = element + ".extensions.KHR_materials_sheen";
+        Material::MetallicRoughness& mr = *m.metallic_roughness;
+        if (const tinygltf::Value& v = e->second.Get("sheenColorFactor"); v.Type() != tinygltf::NULL_TYPE) {
+            if (!v.IsArray() || v.ArrayLen() != 3) fail_at(at + ".sheenColorFactor", "expected 3 numbers from 0 to 1");
+            for (int i = 0; i < 3; ++i) {
+                const tinygltf::Value& c = v.Get(i);
+                mr.sheen_color[i] = unit(c.IsNumber() ? c.GetNumberAsDouble() : -1.0, fmt::format("{}.sheenColorFactor[{}]", at, i));
+            }
+        }
+        if (const tinygltf::Value& v = e->second.Get("sheenRoughnessFactor"); v.IsNumber()) {
+            mr.sheen_roughness = unit(v.GetNumberAsDouble(), at + ".sheenRoughnessFactor");
+        }
+        if (e->second.Has("sheenColorTexture") || e->second.Has("sheenRoughnessTexture")) {
+            note_unsupported("sheen textures (the factors are used)");
         }
     }
 

@@ -229,6 +229,11 @@ Material::MetallicRoughness read_metallic_roughness(const Node& n) {
         if (!n.find("clearcoat")) n.fail_field("clearcoat_roughness", "a clear coat's roughness needs \"clearcoat\"");
         pbr.clearcoat_roughness = v->number_between(0.0, 1.0);
     }
+    if (auto v = n.find("sheen_color")) pbr.sheen_color = v->unit_color();
+    if (auto v = n.find("sheen_roughness")) {
+        if (!n.find("sheen_color")) n.fail_field("sheen_roughness", "a sheen's roughness needs \"sheen_color\"");
+        pbr.sheen_roughness = v->number_between(0.0, 1.0);
+    }
     if (auto v = n.find("attenuation_color")) pbr.attenuation_color = v->unit_color();
     if (auto v = n.find("attenuation_distance")) pbr.attenuation_distance = v->number_above(0.0);
     return pbr;
@@ -317,7 +322,7 @@ void read_alpha(const Node& n, Material& m) {
 Material read_material(const std::string& name, const Node& n, Scene& scene) {
     n.allow_only({"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit", "ior", "fresnel", "emission",
                   "base_color", "metallic", "roughness", "transmission", "thin", "attenuation_color", "attenuation_distance",
-                  "clearcoat", "clearcoat_roughness", "transmission_texture", "texture", "texture_transform", "normal_map", "normal_scale",
+                  "clearcoat", "clearcoat_roughness", "sheen_color", "sheen_roughness", "transmission_texture", "texture", "texture_transform", "normal_map", "normal_scale",
                   "emission_texture", "alpha_mode", "alpha", "alpha_cutoff"});
     Material m;
     m.name = name;
@@ -327,7 +332,7 @@ Material read_material(const std::string& name, const Node& n, Scene& scene) {
     if (auto v = n.find("ior")) m.ior = v->number_above(0.0);
     // Any field of the metallic-roughness model makes the material one (and is then checked).
     for (const char* field : {"base_color", "metallic", "roughness", "transmission", "thin", "attenuation_color",
-                              "attenuation_distance", "clearcoat", "clearcoat_roughness"}) {
+                              "attenuation_distance", "clearcoat", "clearcoat_roughness", "sheen_color", "sheen_roughness"}) {
         if (n.find(field)) {
             m.metallic_roughness = read_metallic_roughness(n);
             return m;

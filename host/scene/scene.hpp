@@ -135,6 +135,9 @@ struct Material {
         // of ior 1.5 and this roughness, weighted by `clearcoat` (kernel/lobes/coat.glsl).
         double clearcoat = 0.0;            // 0 to 1
         double clearcoat_roughness = 0.0;  // 0 to 1
+        // Sheen over it, under the coat (glTF's KHR_materials_sheen; kernel/lobes/sheen.glsl).
+        dvec3 sheen_color{0.0};         // each 0 to 1; black: none
+        double sheen_roughness = 0.0;   // 0 to 1
         // Whether light crossing it is absorbed: solid glass with some attenuation.
         bool absorbs() const {
             return transmission > 0.0 && metallic < 1.0 && !thin && std::isfinite(attenuation_distance) &&

@@ -40,6 +40,7 @@
 #include "lobes/ggx.glsl"
 #include "lobes/ggx_multiple.glsl"
 #include "lobes/coat.glsl"
+#include "lobes/sheen.glsl"
 #include "bsdf.glsl"
 #include "global.glsl"
 #include "sample.glsl"

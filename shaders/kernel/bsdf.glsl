@@ -5,14 +5,16 @@
 //   glossy   ks * specular, normalized Phong       (glossy.glsl)
 //   ggx      GGX microfacet reflection             metallic-roughness (ggx.glsl)
 //   coat     a clear coat over the others          metallic-roughness (coat.glsl)
+//   sheen    cloth's sheen, under the coat         metallic-roughness (sheen.glsl)
 //   mirror   reflect                               a delta lobe (mirror.glsl)
 //   glass    transmit, split by Fresnel            delta lobes (glass.glsl)
 //
 // A metallic-roughness material (HAS_MICROFACET) has the diffuse and the ggx lobes
 // only, the diffuse one coupled to the ggx one so that their sum stays at most 1
 // (diffuse.glsl), and with transmission glass: the glass lobe carries glass_share of
-// the material (texture.glsl), the smooth lobes the rest (Lobes.smooth_share). A clear
-// coat lies over all of them: they keep Lobes.under_coat of what they send toward wo.
+// the material (texture.glsl), the smooth lobes the rest (Lobes.smooth_share). Sheen
+// lies over all of them and a clear coat over that: the layers under each keep what
+// it lets through toward wo (SheenLobe.keep, Lobes.under_coat).
 //
 // A scattering event picks one lobe group at random in proportion to its weight:
 // the smooth group (the lobes of lobes/smooth_lobes.glsl, sampled together as a
@@ -40,15 +42,20 @@ Lobes material_lobes(Material m, float cos_o) {
     l.glass = glass_lobe(m);
     l.smooth_share = 1.0f - glass_share(m);
     l.under_coat = under_coat(l.coat, cos_o);
-    if (HAS_COAT && l.under_coat < 1.0f) {
-        // Value and selection weight alike: the glass's colours, the others' records.
-#define SMOOTH_LOBE(id, name, Type, FEATURE) if (id != COAT_LOBE) l.name.weight *= l.under_coat;
+    // What the layers leave the base toward wo: its selection weights and the glass's
+    // and mirror's colours take it here, the smooth lobes' values in eval_smooth.
+    float under = HAS_SHEEN ? l.under_coat * l.sheen.keep : l.under_coat;
+    if ((HAS_COAT || HAS_SHEEN) && under < 1.0f) {
+#define SMOOTH_LOBE(id, name, Type, FEATURE) if (id != COAT_LOBE && id != SHEEN_LOBE) l.name.weight *= under;
 #include "lobes/smooth_lobes.glsl"
-        l.mirror.color *= l.under_coat;
-        l.mirror.weight *= l.under_coat;
-        l.glass.color *= l.under_coat;
-        l.glass.reflected *= l.under_coat;
-        l.glass.weight *= l.under_coat;
+        l.mirror.color *= under;
+        l.mirror.weight *= under;
+        l.glass.color *= under;
+        l.glass.reflected *= under;
+        l.glass.weight *= under;
+    }
+    if (HAS_SHEEN && HAS_COAT) {
+        l.sheen.weight *= l.under_coat;
     }
 #define SMOOTH_LOBE(id, name, Type, FEATURE) CHECK(is_finite_bits(l.name.weight) && l.name.weight >= 0.0f);
 #include "lobes/smooth_lobes.glsl"
@@ -64,10 +71,16 @@ float smooth_sum(Lobes l) {
 }
 
 // The smooth group's weight among the groups: that sum times the group's share, the
-// coat's whole (it lies over the glass too).
+// layers' whole (they lie over the glass too).
 float smooth_weight(Lobes l) {
     float w = l.smooth_share * smooth_sum(l);
-    return HAS_COAT ? w + (1.0f - l.smooth_share) * l.coat.weight : w;
+    if (HAS_COAT) {
+        w += (1.0f - l.smooth_share) * l.coat.weight;
+    }
+    if (HAS_SHEEN) {
+        w += (1.0f - l.smooth_share) * l.sheen.weight;
+    }
+    return w;
 }
 
 float lobes_total(Lobes l) {
@@ -79,16 +92,22 @@ float lobes_total(Lobes l) {
 vec3 eval_smooth(Lobes l, vec3 n, vec3 wo, vec3 wi) {
     vec3 f = vec3(0.0f);
     vec3 coat = vec3(0.0f);
+    vec3 sheen = vec3(0.0f);
 #define SMOOTH_LOBE(id, name, Type, FEATURE)                \
     if (FEATURE && name##_present(l.name)) {                \
         if (id == COAT_LOBE) {                              \
             coat = name##_eval(l.name, n, wo, wi);          \
+        } else if (id == SHEEN_LOBE) {                      \
+            sheen = name##_eval(l.name, n, wo, wi);         \
         } else {                                            \
             f += name##_eval(l.name, n, wo, wi);            \
         }                                                   \
     }
 #include "lobes/smooth_lobes.glsl"
     f *= l.smooth_share;
+    if (HAS_SHEEN) {
+        f = f * l.sheen.keep + sheen;
+    }
     if (HAS_COAT) {
         f = f * l.under_coat + coat;
     }

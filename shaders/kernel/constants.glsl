@@ -109,6 +109,12 @@ const uint ALPHA_BLEND = 2u;   // present with probability equal to the opacity
 // this, so that a roughness of 0 (a polished metal) stays a lobe that next-event
 // estimation and MIS can weigh. Its peak, 1 / (pi alpha^2), is far inside float's range.
 const float MIN_GGX_ALPHA = 0.001f;
+// The sheen's narrowest distribution (lobes/sheen.glsl): roughness 9/31 (0.29), a
+// knot of the albedo table, exponent 1/alpha at most 12. Narrower ones put their
+// albedo into a sliver of grazing directions where it changes faster than the
+// table's knots follow (host/flatten/sheen_albedo.cpp): against quadrature it was
+// 26% off at roughness 0.05 and 9% at 0.15 (cos 0.3) (decisions/0044-sheen.md).
+const float MIN_SHEEN_ALPHA = 81.0f / 961.0f;
 // Knots per axis of the rough lobe's albedo tables (lobes/ggx_multiple.glsl).
 const uint GGX_TABLE_SIZE = 32u;
 

@@ -67,6 +67,8 @@ FEATURE(25, HAS_TANGENTS)
 FEATURE(26, HAS_ABSORPTION)
 // A clear coat over a metallic-roughness material (lobes/coat.glsl).
 FEATURE(27, HAS_COAT)
+// Sheen over a metallic-roughness material (lobes/sheen.glsl), with its albedo table.
+FEATURE(28, HAS_SHEEN)
 // Three per kind of primitive (shapes/kinds.glsl), after the others: HAS_<NAMES>, the
 // scene has some; with HAS_GRID, GRID_<NAMES>, the grid's cells list some, and
 // LOOSE_<NAMES>, its loose primitives, which are tested once per ray instead, hold
@@ -74,5 +76,5 @@ FEATURE(27, HAS_COAT)
 // whose boxes would stretch the grid's (host/flatten/flat_scene.cpp,
 // host/accel/grid.cpp, docs/grid.md).
 #define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
-    FEATURE((28 + 3 * ID), HAS_##NAMES) FEATURE((28 + 3 * ID + 1), GRID_##NAMES) FEATURE((28 + 3 * ID + 2), LOOSE_##NAMES)
+    FEATURE((29 + 3 * ID), HAS_##NAMES) FEATURE((29 + 3 * ID + 1), GRID_##NAMES) FEATURE((29 + 3 * ID + 2), LOOSE_##NAMES)
 #include "shapes/kinds.glsl"

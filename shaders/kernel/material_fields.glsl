@@ -70,6 +70,11 @@ MATERIAL_FIELD3(vec3, attenuation, 12)
 // transmissionTexture): 1 + its index, 0 for none (texture.glsl).
 MATERIAL_FIELD(uint, transmission_map, 12, w)
 
+// Sheen over the metallic-roughness material (lobes/sheen.glsl; glTF's
+// KHR_materials_sheen): its colour (0: none) and the width of its distribution.
+MATERIAL_FIELD3(vec3, sheen_color, 13)
+MATERIAL_FIELD(float, sheen_alpha, 13, w)
+
 #undef MATERIAL_PAD
 #undef MATERIAL_FIELD3
 #undef MATERIAL_FIELD

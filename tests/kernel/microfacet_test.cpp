@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "flatten/ggx_albedo.hpp"
+#include "flatten/sheen_albedo.hpp"
 #include "ggx_reference.hpp"
 #include "kernel/kernel.hpp"
 #include "statistics.hpp"
@@ -499,6 +500,110 @@ TEST(Coat, MixtureSamplingMatchesItsDensity) {
     EXPECT_EQ(l.smooth_share, 0.0f);
     EXPECT_FLOAT_EQ(k.smooth_weight(l), l.coat.weight);
     EXPECT_FLOAT_EQ(l.glass.weight, l.under_coat);
+}
+
+// ------------------------------------------------------------------ sheen
+
+// A kernel that reads the rough lobe's tables and the sheen's after them, as a
+// flattened scene with sheen gives them.
+Kernel kernel_with_sheen_table() {
+    static const std::vector<std::uint32_t> words = [] {
+        std::vector<std::uint32_t> w = vkrt::ggx_albedo_table();
+        const std::vector<std::uint32_t>& sheen = vkrt::sheen_albedo_table();
+        w.insert(w.end(), sheen.begin(), sheen.end());
+        return w;
+    }();
+    Kernel k;
+    k.table_words = words;
+    vkrt::kernel::set_ggx_table_first_word(k.params, 0u);
+    return k;
+}
+
+// lobes_of's material with sheen of colour `sheen` and roughness `sheen_roughness`,
+// and a coat of factor `coat` (roughness 0.3).
+Kernel::Lobes sheened_lobes_of(Kernel& k, vec3 base_color, float metallic, vec3 sheen, float sheen_roughness,
+                               float coat, float cos_o) {
+    vkrt::kernel::Material m{};
+    m.diffuse = (1.0f - metallic) * base_color;
+    m.kd = 1.0f;
+    m.ior = 1.5f;
+    m.ggx_f0 = glm::mix(vec3(0.04f), base_color, metallic);
+    m.ggx_alpha = 0.25f;
+    m.sheen_color = sheen;
+    m.sheen_alpha = std::max(sheen_roughness * sheen_roughness, vkrt::kernel::MIN_SHEEN_ALPHA);
+    m.coat = coat;
+    m.coat_alpha = 0.09f;
+    return k.material_lobes(m, cos_o);
+}
+
+// The table holds the sheen's albedo that quadrature of the kernel's own sheen_value
+// gives, at knots and between them.
+TEST(Sheen, TableHoldsTheAlbedo) {
+    Kernel k = kernel_with_sheen_table();
+    for (float roughness : {0.0f, 0.3f, 0.45f, 0.6f, 1.0f}) {
+        for (double co : {1.0, 0.7, 0.3, 0.1, 0.03}) {
+            const float alpha = std::max(roughness * roughness, vkrt::kernel::MIN_SHEEN_ALPHA);
+            const vec3 wo = from_cos(co);
+            const double e = reflected_integral(wo, [&](vec3 wi) { return double(k.sheen_value(alpha, kUp, wo, wi)) * wi.z; });
+            const double table = k.ggx_table_lookup(k.SHEEN_TABLE, float(co), alpha);
+            std::printf("sheen roughness %.2f cos_o %.1f: quadrature %.4f, table %.4f\n", roughness, co, e, table);
+            EXPECT_NEAR(table, e, 0.005 * e + 1e-3) << "roughness " << roughness << " cos_o " << co;
+        }
+    }
+}
+
+// Under a white sheen a white base keeps reflecting all the light and no more, and
+// under sheen and a coat together; over a black dielectric the sum is the layering's
+// closed form: E_sheen + (1 - E_sheen) R_base, with each albedo from the tables.
+TEST(Sheen, KeepsAWhiteBasesLightAndLayersByItsAlbedo) {
+    Kernel k = kernel_with_sheen_table();
+    for (float roughness : {0.0f, 0.5f, 1.0f}) {
+        for (double co : {1.0, 0.5, 0.1}) {
+            SCOPED_TRACE(testing::Message() << "sheen roughness " << roughness << " cos_o " << co);
+            const vec3 wo = from_cos(co);
+            const auto reflected = [&](const Kernel::Lobes& l) {
+                return reflected_integral(wo, [&](vec3 wi) { return double(k.eval_smooth(l, kUp, wo, wi).x) * wi.z; });
+            };
+            for (float coat : {0.0f, 1.0f}) {
+                const double white = reflected(sheened_lobes_of(k, vec3(1.0f), 0.0f, vec3(1.0f), roughness, coat, float(co)));
+                std::printf("white under sheen %.2f, coat %.0f, cos_o %.1f: %.4f\n", roughness, coat, co, white);
+                EXPECT_LE(white, 1.0 + 2e-3);
+                EXPECT_GE(white, 0.99);
+            }
+            const Kernel::Lobes black = sheened_lobes_of(k, vec3(0.0f), 0.0f, vec3(0.5f), roughness, 0.0f, float(co));
+            const double e = k.ggx_table_lookup(k.SHEEN_TABLE, float(co), black.sheen.alpha);
+            const double r_base = k.ggx_reflectance(vec3(0.04f), float(co), 0.25f).x;
+            EXPECT_NEAR(reflected(black), 0.5 * e + (1.0 - 0.5 * e) * r_base, 2e-3);
+        }
+    }
+}
+
+TEST(Sheen, MixtureSamplingMatchesItsDensity) {
+    Kernel k = kernel_with_sheen_table();
+    const Kernel::Basis frame = k.basis_around(kUp);
+    for (double co : {0.9, 0.2}) {
+        SCOPED_TRACE(testing::Message() << "cos_o " << co);
+        const vec3 wo = from_cos(co);
+        const Kernel::Lobes l = sheened_lobes_of(k, vec3(0.2f, 0.3f, 0.6f), 0.0f, vec3(0.9f, 0.8f, 0.7f), 0.4f, 0.5f, float(co));
+        EXPECT_GT(l.sheen.weight, 0.0f);
+        EXPECT_LT(l.sheen.keep, 1.0f);
+        const double expected =
+            reflected_integral(wo, [&](vec3 wi) { return double(k.eval_smooth(l, kUp, wo, wi).y) * wi.z; });
+        std::mt19937 rng(8);
+        std::uniform_real_distribution<float> u(0.0f, 1.0f);
+        constexpr int n = 200000;
+        double sum = 0.0, sum2 = 0.0;
+        for (int i = 0; i < n; ++i) {
+            const vec3 wi = k.sample_smooth(l, frame, wo, vkrt::kernel::HEMISPHERE_COSINE, u(rng), u(rng), u(rng));
+            const float pdf = k.pdf_smooth(l, frame, wo, wi, vkrt::kernel::HEMISPHERE_COSINE);
+            const double w = wi.z > 0.0f && pdf > 0.0f ? k.eval_smooth(l, kUp, wo, wi).y * wi.z / pdf : 0.0;
+            sum += w;
+            sum2 += w * w;
+        }
+        const double mean = sum / n;
+        const double error = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+        EXPECT_NEAR(mean, expected, 4.0 * error + 2e-4);
+    }
 }
 
 }  // namespace

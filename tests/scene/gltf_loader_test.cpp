@@ -371,10 +371,10 @@ TEST(GltfErrors, AnUnknownAlphaModeIsNamed) {
 }
 
 TEST(Gltf, WhatIsNotRenderedIsNamedOnce) {
-    std::string json = gltf_json("mesh.bin", kOneNode, R"(, "extensionsUsed": ["KHR_materials_sheen"])");
+    std::string json = gltf_json("mesh.bin", kOneNode, R"(, "extensionsUsed": ["KHR_materials_anisotropy"])");
     json.replace(json.find(R"("metallicFactor": 0)"), 19, R"("metallicFactor": 1)");
     const Scene s = vkrt::load_scene(write_gltf("unsupported", json));
-    EXPECT_TRUE(has_warning(s, "the extension KHR_materials_sheen is not supported"));
+    EXPECT_TRUE(has_warning(s, "the extension KHR_materials_anisotropy is not supported"));
     EXPECT_EQ(s.triangles.size(), 8u);
 }
 
@@ -497,6 +497,26 @@ TEST(Gltf, ClearcoatIsRead) {
     json.replace(json.find(plain), plain.size(), R"({"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 2}}})");
     vkrt::test::expect_error_message(load_error(write_gltf("clearcoat_range", json)), "",
                                      {"materials[0].extensions.KHR_materials_clearcoat.clearcoatFactor", "from 0 to 1, got 2"});
+}
+
+// KHR_materials_sheen's factors make the material's sheen; its textures are named as
+// not read; a colour out of range is refused.
+TEST(Gltf, SheenIsRead) {
+    const std::string plain = R"({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0}})";
+    std::string json = gltf_json("mesh.bin", kOneNode);
+    json.replace(json.find(plain), plain.size(), R"({"pbrMetallicRoughness": {"metallicFactor": 0},
+        "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 0.5, 0.25], "sheenRoughnessFactor": 0.75,
+                       "sheenColorTexture": {"index": 0}}}})");
+    const Scene s = vkrt::load_scene(write_gltf("sheen", json));
+    ASSERT_TRUE(s.materials[0].metallic_roughness.has_value());
+    EXPECT_EQ(s.materials[0].metallic_roughness->sheen_color, dvec3(1, 0.5, 0.25));
+    EXPECT_DOUBLE_EQ(s.materials[0].metallic_roughness->sheen_roughness, 0.75);
+    EXPECT_TRUE(has_warning(s, "sheen textures"));
+
+    json = gltf_json("mesh.bin", kOneNode);
+    json.replace(json.find(plain), plain.size(), R"({"extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 2, 1]}}})");
+    vkrt::test::expect_error_message(load_error(write_gltf("sheen_range", json)), "",
+                                     {"materials[0].extensions.KHR_materials_sheen.sheenColorFactor[1]", "from 0 to 1, got 2"});
 }
 
 // ------------------------------------------------------------------ bad files

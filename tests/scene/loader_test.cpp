@@ -652,6 +652,10 @@ TEST_F(SceneLoaderTest, MetallicRoughnessMaterials) {
                  {": materials.m.transmission: expected a number between 0 and 1, got 1.5"});
     expect_error(Parts{.materials = R"({"m": {"transmission": 1, "ior": 0}})"},
                  {": materials.m.ior: expected a number > 0, got 0"});
+    expect_error(Parts{.materials = R"({"m": {"sheen_roughness": 0.5}})"},
+                 {": materials.m.sheen_roughness: a sheen's roughness needs \"sheen_color\""});
+    expect_error(Parts{.materials = R"({"m": {"sheen_color": [1, 2, 1]}})"},
+                 {": materials.m.sheen_color[1]: expected a number between 0 and 1, got 2"});
     expect_error(Parts{.materials = R"({"m": {"clearcoat": 1.5}})"},
                  {": materials.m.clearcoat: expected a number between 0 and 1, got 1.5"});
     expect_error(Parts{.materials = R"({"m": {"clearcoat_roughness": 0.5}})"},

@@ -7,6 +7,10 @@ float mean3(vec3 v) {
     return (v.x + v.y + v.z) * (1.0f / 3.0f);
 }
 
+float max3(vec3 v) {
+    return max(v.x, max(v.y, v.z));
+}
+
 // (1 - cos_d)^5, cos_d clamped to [0, 1].
 float schlick_scalar(float cos_d) {
     float m = clamp(1.0f - cos_d, 0.0f, 1.0f);

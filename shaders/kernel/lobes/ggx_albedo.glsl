@@ -29,6 +29,9 @@ uint ggx_table_knot(float x, INOUT(float) t) {
 }
 
 const uint GGX_SCHLICK_TABLE = GGX_TABLE_SIZE * GGX_TABLE_SIZE + GGX_TABLE_SIZE;
+// With HAS_SHEEN a third table follows, laid out alike: the sheen lobe's albedo with
+// a colour of 1 (sheen.glsl), at alpha = the square of the sheen roughness.
+const uint SHEEN_TABLE = 2u * GGX_SCHLICK_TABLE;
 
 // Bilinear in sqrt(mu) and sqrt(alpha), from the table at word `table`.
 float ggx_table_lookup(uint table, float mu, float alpha) {

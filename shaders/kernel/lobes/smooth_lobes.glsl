@@ -32,5 +32,6 @@ SMOOTH_LOBE(1u, glossy, GlossyLobe, HAS_SPECULAR)      // normalized Phong (glos
 SMOOTH_LOBE(2u, ggx, GgxLobe, HAS_MICROFACET)          // GGX microfacet reflection (ggx.glsl)
 SMOOTH_LOBE(3u, ggx_multiple, GgxMultipleLobe, HAS_MICROFACET)  // what ggx loses between microfacets (ggx_multiple.glsl)
 SMOOTH_LOBE(4u, coat, CoatLobe, HAS_COAT)              // a clear coat over all the others (coat.glsl)
+SMOOTH_LOBE(5u, sheen, SheenLobe, HAS_SHEEN)           // sheen, under the coat and over the rest (sheen.glsl)
 
 #undef SMOOTH_LOBE
