@@ -253,16 +253,20 @@ TEST(Ggx, WhiteFurnaceLosesOnlyTheMultipleScattering) {
     EXPECT_NEAR(average, 0.4, 0.05);
 }
 
-// The metallic-roughness material as bsdf.glsl assembles it.
-Kernel::Lobes lobes_of(Kernel& k, vec3 base_color, float metallic, float roughness, float cos_o) {
-    const vec3 f0 = glm::mix(vec3(0.04f), base_color, metallic);
+// An untextured metallic-roughness material as flat_scene.cpp builds it.
+vkrt::kernel::Material metallic_roughness(vec3 base_color, float metallic, float roughness) {
     vkrt::kernel::Material m{};
     m.diffuse = (1.0f - metallic) * base_color;
     m.kd = 1.0f;
     m.ior = 1.5f;
-    m.ggx_f0 = f0;
+    m.ggx_f0 = glm::mix(vec3(0.04f), base_color, metallic);
     m.ggx_alpha = roughness * roughness;
-    return k.material_lobes(m, cos_o);
+    return m;
+}
+
+// Its lobes as bsdf.glsl assembles them.
+Kernel::Lobes lobes_of(Kernel& k, vec3 base_color, float metallic, float roughness, float cos_o) {
+    return k.material_lobes(metallic_roughness(base_color, metallic, roughness), cos_o);
 }
 
 TEST(MetallicRoughness, IsReciprocal) {
@@ -306,30 +310,35 @@ TEST(MetallicRoughness, ConservesEnergy) {
 // The mixture's stated density integrates to what lands above the surface, and
 // sample_smooth follows it: the kernel's weight eval cos / pdf averages to the
 // quadrature of eval cos.
+// The mixture l, seen from cos(theta_o) = co, draws by the density it states: the
+// kernel's weight eval cos / pdf over 200,000 draws (seed `seed`) averages to the
+// quadrature of eval cos, in the green channel, within four standard errors.
+void expect_sampling_follows_density(Kernel& k, const Kernel::Lobes& l, double co, unsigned seed) {
+    const Kernel::Basis frame = k.basis_around(kUp);
+    const vec3 wo = from_cos(co);
+    const double expected = reflected_integral(wo, [&](vec3 wi) { return double(k.eval_smooth(l, kUp, wo, wi).y) * wi.z; });
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    constexpr int n = 200000;
+    double sum = 0.0, sum2 = 0.0;
+    for (int i = 0; i < n; ++i) {
+        const vec3 wi = k.sample_smooth(l, frame, wo, vkrt::kernel::HEMISPHERE_COSINE, u(rng), u(rng), u(rng));
+        const float pdf = k.pdf_smooth(l, frame, wo, wi, vkrt::kernel::HEMISPHERE_COSINE);
+        const double w = wi.z > 0.0f && pdf > 0.0f ? k.eval_smooth(l, kUp, wo, wi).y * wi.z / pdf : 0.0;
+        sum += w;
+        sum2 += w * w;
+    }
+    const double mean = sum / n;
+    const double error = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+    EXPECT_NEAR(mean, expected, 4.0 * error + 2e-4);
+}
+
 TEST(MetallicRoughness, MixtureSamplingMatchesItsDensity) {
     Kernel k = kernel_with_tables();
-    const Kernel::Basis frame = k.basis_around(kUp);
     for (float metallic : {0.0f, 0.5f}) {
         for (double co : {0.9, 0.3}) {
             SCOPED_TRACE(testing::Message() << "metallic " << metallic << " cos_o " << co);
-            const vec3 wo = from_cos(co);
-            const Kernel::Lobes l = lobes_of(k, vec3(0.9f, 0.6f, 0.3f), metallic, 0.5f, float(co));
-            const double expected =
-                reflected_integral(wo, [&](vec3 wi) { return double(k.eval_smooth(l, kUp, wo, wi).y) * wi.z; });
-            std::mt19937 rng(21);
-            std::uniform_real_distribution<float> u(0.0f, 1.0f);
-            constexpr int n = 200000;
-            double sum = 0.0, sum2 = 0.0;
-            for (int i = 0; i < n; ++i) {
-                const vec3 wi = k.sample_smooth(l, frame, wo, vkrt::kernel::HEMISPHERE_COSINE, u(rng), u(rng), u(rng));
-                const float pdf = k.pdf_smooth(l, frame, wo, wi, vkrt::kernel::HEMISPHERE_COSINE);
-                const double w = wi.z > 0.0f && pdf > 0.0f ? k.eval_smooth(l, kUp, wo, wi).y * wi.z / pdf : 0.0;
-                sum += w;
-                sum2 += w * w;
-            }
-            const double mean = sum / n;
-            const double error = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
-            EXPECT_NEAR(mean, expected, 4.0 * error + 2e-4);
+            expect_sampling_follows_density(k, lobes_of(k, vec3(0.9f, 0.6f, 0.3f), metallic, 0.5f, float(co)), co, 21);
         }
     }
 }
@@ -414,13 +423,7 @@ TEST(GgxMultiple, IsReciprocalAndFollowsItsDensity) {
 // roughness `coat_roughness` (lobes/coat.glsl).
 Kernel::Lobes coated_lobes_of(Kernel& k, vec3 base_color, float metallic, float roughness, float coat,
                               float coat_roughness, float cos_o) {
-    const vec3 f0 = glm::mix(vec3(0.04f), base_color, metallic);
-    vkrt::kernel::Material m{};
-    m.diffuse = (1.0f - metallic) * base_color;
-    m.kd = 1.0f;
-    m.ior = 1.5f;
-    m.ggx_f0 = f0;
-    m.ggx_alpha = roughness * roughness;
+    vkrt::kernel::Material m = metallic_roughness(base_color, metallic, roughness);
     m.coat = coat;
     m.coat_alpha = coat_roughness * coat_roughness;
     return k.material_lobes(m, cos_o);
@@ -465,29 +468,12 @@ TEST(Coat, KeepsAWhiteBasesLightAndLayersByItsAlbedo) {
 // and the coat's weight over glass brings the group back when the rest is all glass.
 TEST(Coat, MixtureSamplingMatchesItsDensity) {
     Kernel k = kernel_with_tables();
-    const Kernel::Basis frame = k.basis_around(kUp);
     for (double co : {0.9, 0.3}) {
         SCOPED_TRACE(testing::Message() << "cos_o " << co);
-        const vec3 wo = from_cos(co);
         const Kernel::Lobes l = coated_lobes_of(k, vec3(0.9f, 0.6f, 0.3f), 0.0f, 0.7f, 0.8f, 0.2f, float(co));
         EXPECT_GT(l.coat.weight, 0.0f);
         EXPECT_LT(l.under_coat, 1.0f);
-        const double expected =
-            reflected_integral(wo, [&](vec3 wi) { return double(k.eval_smooth(l, kUp, wo, wi).y) * wi.z; });
-        std::mt19937 rng(5);
-        std::uniform_real_distribution<float> u(0.0f, 1.0f);
-        constexpr int n = 200000;
-        double sum = 0.0, sum2 = 0.0;
-        for (int i = 0; i < n; ++i) {
-            const vec3 wi = k.sample_smooth(l, frame, wo, vkrt::kernel::HEMISPHERE_COSINE, u(rng), u(rng), u(rng));
-            const float pdf = k.pdf_smooth(l, frame, wo, wi, vkrt::kernel::HEMISPHERE_COSINE);
-            const double w = wi.z > 0.0f && pdf > 0.0f ? k.eval_smooth(l, kUp, wo, wi).y * wi.z / pdf : 0.0;
-            sum += w;
-            sum2 += w * w;
-        }
-        const double mean = sum / n;
-        const double error = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
-        EXPECT_NEAR(mean, expected, 4.0 * error + 2e-4);
+        expect_sampling_follows_density(k, l, co, 5);
     }
     vkrt::kernel::Material glass{};
     glass.ggx_f0 = vec3(0.04f);
@@ -523,12 +509,7 @@ Kernel kernel_with_sheen_table() {
 // and a coat of factor `coat` (roughness 0.3).
 Kernel::Lobes sheened_lobes_of(Kernel& k, vec3 base_color, float metallic, vec3 sheen, float sheen_roughness,
                                float coat, float cos_o) {
-    vkrt::kernel::Material m{};
-    m.diffuse = (1.0f - metallic) * base_color;
-    m.kd = 1.0f;
-    m.ior = 1.5f;
-    m.ggx_f0 = glm::mix(vec3(0.04f), base_color, metallic);
-    m.ggx_alpha = 0.25f;
+    vkrt::kernel::Material m = metallic_roughness(base_color, metallic, 0.5f);
     m.sheen_color = sheen;
     m.sheen_alpha = std::max(sheen_roughness * sheen_roughness, vkrt::kernel::MIN_SHEEN_ALPHA);
     m.coat = coat;
@@ -580,29 +561,12 @@ TEST(Sheen, KeepsAWhiteBasesLightAndLayersByItsAlbedo) {
 
 TEST(Sheen, MixtureSamplingMatchesItsDensity) {
     Kernel k = kernel_with_sheen_table();
-    const Kernel::Basis frame = k.basis_around(kUp);
     for (double co : {0.9, 0.2}) {
         SCOPED_TRACE(testing::Message() << "cos_o " << co);
-        const vec3 wo = from_cos(co);
         const Kernel::Lobes l = sheened_lobes_of(k, vec3(0.2f, 0.3f, 0.6f), 0.0f, vec3(0.9f, 0.8f, 0.7f), 0.4f, 0.5f, float(co));
         EXPECT_GT(l.sheen.weight, 0.0f);
         EXPECT_LT(l.sheen.keep, 1.0f);
-        const double expected =
-            reflected_integral(wo, [&](vec3 wi) { return double(k.eval_smooth(l, kUp, wo, wi).y) * wi.z; });
-        std::mt19937 rng(8);
-        std::uniform_real_distribution<float> u(0.0f, 1.0f);
-        constexpr int n = 200000;
-        double sum = 0.0, sum2 = 0.0;
-        for (int i = 0; i < n; ++i) {
-            const vec3 wi = k.sample_smooth(l, frame, wo, vkrt::kernel::HEMISPHERE_COSINE, u(rng), u(rng), u(rng));
-            const float pdf = k.pdf_smooth(l, frame, wo, wi, vkrt::kernel::HEMISPHERE_COSINE);
-            const double w = wi.z > 0.0f && pdf > 0.0f ? k.eval_smooth(l, kUp, wo, wi).y * wi.z / pdf : 0.0;
-            sum += w;
-            sum2 += w * w;
-        }
-        const double mean = sum / n;
-        const double error = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
-        EXPECT_NEAR(mean, expected, 4.0 * error + 2e-4);
+        expect_sampling_follows_density(k, l, co, 8);
     }
 }
 
