@@ -39,11 +39,12 @@ bool coat_present(CoatLobe l) {
 // What the layers under the coat keep of the light they send toward cos(theta_o) =
 // cos_o: 1 - c R_coat(cos_o); 1 without a coat.
 float under_coat(CoatLobe l, float cos_o) {
-    if (!coat_present(l) || !(cos_o > 0.0f)) {
-        return 1.0f;
+    float kept = 1.0f;
+    if (coat_present(l) && cos_o > 0.0f) {
+        float r = COAT_F0 * ggx_albedo(cos_o, l.alpha) + (1.0f - COAT_F0) * ggx_table_lookup(GGX_SCHLICK_TABLE, cos_o, l.alpha);
+        kept = 1.0f - l.factor * r;
     }
-    float r = COAT_F0 * ggx_albedo(cos_o, l.alpha) + (1.0f - COAT_F0) * ggx_table_lookup(GGX_SCHLICK_TABLE, cos_o, l.alpha);
-    return 1.0f - l.factor * r;
+    return kept;
 }
 
 vec3 coat_eval(CoatLobe l, vec3 n, vec3 wo, vec3 wi) {

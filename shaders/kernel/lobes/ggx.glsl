@@ -41,17 +41,19 @@ float ggx_lambda(float c, float alpha) {
 
 // The lobe's value f for unit directions wo, wi about the unit normal n (0 where
 // either lies below).
+// One return, no early exit, as for ggx_pdf: such functions the host inlines
+// (host/gpu/spirv_specialize.cpp).
 vec3 ggx_eval(vec3 f0, float alpha, vec3 n, vec3 wo, vec3 wi) {
     precise float co = dot(n, wo);
     precise float ci = dot(n, wi);
-    if (!(co > 0.0f && ci > 0.0f)) {
-        return vec3(0.0f);
+    precise vec3 f = vec3(0.0f);
+    if (co > 0.0f && ci > 0.0f) {
+        vec3 h = unit_vector(wo + wi);
+        precise float oh = dot(wo, h);
+        precise float nh = dot(n, h);
+        precise float g2 = 1.0f / (1.0f + ggx_lambda(co, alpha) + ggx_lambda(ci, alpha));
+        f = fresnel_schlick(f0, oh) * (ggx_d(nh, alpha) * g2 / (4.0f * co * ci));
     }
-    vec3 h = unit_vector(wo + wi);
-    precise float oh = dot(wo, h);
-    precise float nh = dot(n, h);
-    precise float g2 = 1.0f / (1.0f + ggx_lambda(co, alpha) + ggx_lambda(ci, alpha));
-    precise vec3 f = fresnel_schlick(f0, oh) * (ggx_d(nh, alpha) * g2 / (4.0f * co * ci));
     return f;
 }
 
@@ -59,13 +61,13 @@ vec3 ggx_eval(vec3 f0, float alpha, vec3 n, vec3 wo, vec3 wi) {
 float ggx_pdf(float alpha, vec3 n, vec3 wo, vec3 wi) {
     precise float co = dot(n, wo);
     precise float ci = dot(n, wi);
-    if (!(co > 0.0f && ci > 0.0f)) {
-        return 0.0f;
+    precise float pdf = 0.0f;
+    if (co > 0.0f && ci > 0.0f) {
+        vec3 h = unit_vector(wo + wi);
+        precise float nh = dot(n, h);
+        precise float g1 = 1.0f / (1.0f + ggx_lambda(co, alpha));
+        pdf = ggx_d(nh, alpha) * g1 / (4.0f * co);
     }
-    vec3 h = unit_vector(wo + wi);
-    precise float nh = dot(n, h);
-    precise float g1 = 1.0f / (1.0f + ggx_lambda(co, alpha));
-    precise float pdf = ggx_d(nh, alpha) * g1 / (4.0f * co);
     return pdf;
 }
 

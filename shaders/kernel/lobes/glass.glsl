@@ -112,11 +112,13 @@ uvec4 media_after_refraction(uvec4 media, uint material, bool front_face) {
 // length, per channel; glTF's KHR_materials_volume, material_fields.glsl), 1 in air
 // and without HAS_ABSORPTION. t is INFINITY_T for a ray that leaves the scene: an
 // absorbing medium then lets nothing through, and a clear one (sigma 0) everything.
+// One return, no early exit: such functions the host inlines (host/gpu/spirv_specialize.cpp).
 vec3 medium_transmittance(uvec4 media, float t) {
-    if (!HAS_ABSORPTION || media.x == 0u) {
-        return vec3(1.0f);
+    vec3 kept = vec3(1.0f);
+    if (HAS_ABSORPTION && media.x != 0u) {
+        vec3 sigma = load_material(media.x - 1u).attenuation;
+        kept = vec3(sigma.x > 0.0f ? exp(-sigma.x * t) : 1.0f, sigma.y > 0.0f ? exp(-sigma.y * t) : 1.0f,
+                    sigma.z > 0.0f ? exp(-sigma.z * t) : 1.0f);
     }
-    vec3 sigma = load_material(media.x - 1u).attenuation;
-    return vec3(sigma.x > 0.0f ? exp(-sigma.x * t) : 1.0f, sigma.y > 0.0f ? exp(-sigma.y * t) : 1.0f,
-                sigma.z > 0.0f ? exp(-sigma.z * t) : 1.0f);
+    return kept;
 }

@@ -23,15 +23,16 @@ const uint SHEEN_LOBE = 5u;  // its id in smooth_lobes.glsl
 float sheen_value(float alpha, vec3 n, vec3 wo, vec3 wi) {
     float co = dot(n, wo);
     float ci = dot(n, wi);
-    if (!(co > 0.0f && ci > 0.0f)) {
-        return 0.0f;
+    float f = 0.0f;
+    if (co > 0.0f && ci > 0.0f) {
+        vec3 h = unit_vector(wo + wi);
+        float c = clamp(dot(n, h), 0.0f, 1.0f);
+        float sin2 = max(0.0f, 1.0f - c * c);
+        float inv = 1.0f / alpha;
+        float d = (2.0f + inv) * pow(sin2, 0.5f * inv) * (0.5f / PI);
+        f = d / (4.0f * (ci + co - ci * co));
     }
-    vec3 h = unit_vector(wo + wi);
-    float c = clamp(dot(n, h), 0.0f, 1.0f);
-    float sin2 = max(0.0f, 1.0f - c * c);
-    float inv = 1.0f / alpha;
-    float d = (2.0f + inv) * pow(sin2, 0.5f * inv) * (0.5f / PI);
-    return d / (4.0f * (ci + co - ci * co));
+    return f;
 }
 
 // Members in an order no other lobe record has (smooth_lobes.glsl says why).
