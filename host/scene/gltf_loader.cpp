@@ -315,12 +315,7 @@ private:
             mr.attenuation_distance = x;
         }
         if (const tinygltf::Value& tint = volume->second.Get("attenuationColor"); tint.Type() != tinygltf::NULL_TYPE) {
-            if (!tint.IsArray() || tint.ArrayLen() != 3) fail_at(at + ".attenuationColor", "expected 3 numbers from 0 to 1");
-            for (int i = 0; i < 3; ++i) {
-                const tinygltf::Value& c = tint.Get(i);
-                mr.attenuation_color[i] = unit(c.IsNumber() ? c.GetNumberAsDouble() : -1.0,
-                                               fmt::format("{}.attenuationColor[{}]", at, i));
-            }
+            mr.attenuation_color = unit_color(tint, at + ".attenuationColor");
         }
         // A thin wall has no inside to absorb in (the extension ignores the volume then).
         if (mr.thin) {
@@ -359,11 +354,7 @@ private:
         const std::string at = element + ".extensions.KHR_materials_sheen";
         Material::MetallicRoughness& mr = *m.metallic_roughness;
         if (const tinygltf::Value& v = e->second.Get("sheenColorFactor"); v.Type() != tinygltf::NULL_TYPE) {
-            if (!v.IsArray() || v.ArrayLen() != 3) fail_at(at + ".sheenColorFactor", "expected 3 numbers from 0 to 1");
-            for (int i = 0; i < 3; ++i) {
-                const tinygltf::Value& c = v.Get(i);
-                mr.sheen_color[i] = unit(c.IsNumber() ? c.GetNumberAsDouble() : -1.0, fmt::format("{}.sheenColorFactor[{}]", at, i));
-            }
+            mr.sheen_color = unit_color(v, at + ".sheenColorFactor");
         }
         if (const tinygltf::Value& v = e->second.Get("sheenRoughnessFactor"); v.IsNumber()) {
             mr.sheen_roughness = unit(v.GetNumberAsDouble(), at + ".sheenRoughnessFactor");
@@ -397,6 +388,17 @@ private:
             m.metallic_roughness_texture = converted->metallic_roughness;
         }
         return true;
+    }
+
+    // An extension's colour: an array of 3 numbers from 0 to 1, each named when it is not.
+    dvec3 unit_color(const tinygltf::Value& v, const std::string& element) const {
+        if (!v.IsArray() || v.ArrayLen() != 3) fail_at(element, "expected 3 numbers from 0 to 1");
+        dvec3 out;
+        for (int i = 0; i < 3; ++i) {
+            const tinygltf::Value& c = v.Get(i);
+            out[i] = unit(c.IsNumber() ? c.GetNumberAsDouble() : -1.0, fmt::format("{}[{}]", element, i));
+        }
+        return out;
     }
 
     double unit(double v, const std::string& element) const {
