@@ -1,13 +1,12 @@
 #include "flatten/ggx_albedo.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <bit>
 #include <cmath>
-#include <thread>
 
 #include <glm/geometric.hpp>
 
+#include "flatten/table_rows.hpp"
 #include "kernel/kernel.hpp"
 
 namespace vkrt {
@@ -73,25 +72,17 @@ std::vector<std::uint32_t> build() {
     const int n = int(GGX_TABLE_SIZE);
     const std::size_t knots = std::size_t(n) * n, table = knots + n;
     std::vector<std::uint32_t> words(2 * table);
-    // One row of alpha after another, on every core: each thread its own Kernel.
-    std::atomic<int> next_row{0};
-    auto work = [&] {
-        kernel::Kernel k;
-        for (int j = next_row++; j < n; j = next_row++) {
-            const double r = double(j) / (n - 1);
-            const float alpha = std::max(float(r * r), kernel::MIN_GGX_ALPHA);
-            for (int i = 0; i < n; ++i) {
-                const double s = double(i) / (n - 1);
-                const Albedos e = albedos(k, std::max(float(s * s), kGrazing), alpha);
-                words[std::size_t(j) * n + i] = std::bit_cast<std::uint32_t>(float(e.e));
-                words[table + std::size_t(j) * n + i] = std::bit_cast<std::uint32_t>(float(e.e_s));
-            }
+    // One row of alpha after another.
+    for_each_row_on_every_core(n, [&](kernel::Kernel& k, int j) {
+        const double r = double(j) / (n - 1);
+        const float alpha = std::max(float(r * r), kernel::MIN_GGX_ALPHA);
+        for (int i = 0; i < n; ++i) {
+            const double s = double(i) / (n - 1);
+            const Albedos e = albedos(k, std::max(float(s * s), kGrazing), alpha);
+            words[std::size_t(j) * n + i] = std::bit_cast<std::uint32_t>(float(e.e));
+            words[table + std::size_t(j) * n + i] = std::bit_cast<std::uint32_t>(float(e.e_s));
         }
-    };
-    std::vector<std::thread> threads(std::max(1u, std::min(std::thread::hardware_concurrency(), 16u)) - 1);
-    for (std::thread& t : threads) t = std::thread(work);
-    work();
-    for (std::thread& t : threads) t.join();
+    });
     for (std::size_t at : {std::size_t(0), table}) {
         for (int j = 0; j < n; ++j) {
             words[at + knots + j] = std::bit_cast<std::uint32_t>(table_row_mean(&words[at + std::size_t(j) * n], n));

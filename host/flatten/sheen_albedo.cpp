@@ -1,12 +1,11 @@
 #include "flatten/sheen_albedo.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <bit>
 #include <cmath>
-#include <thread>
 
 #include "flatten/ggx_albedo.hpp"
+#include "flatten/table_rows.hpp"
 #include "kernel/kernel.hpp"
 
 namespace vkrt {
@@ -40,22 +39,14 @@ std::vector<std::uint32_t> build() {
     const int n = int(GGX_TABLE_SIZE);
     const std::size_t knots = std::size_t(n) * n;
     std::vector<std::uint32_t> words(knots + n);
-    std::atomic<int> next_row{0};
-    auto work = [&] {
-        kernel::Kernel k;
-        for (int j = next_row++; j < n; j = next_row++) {
-            const double r = double(j) / (n - 1);
-            const float alpha = std::max(float(r * r), kernel::MIN_SHEEN_ALPHA);
-            for (int i = 0; i < n; ++i) {
-                const double s = double(i) / (n - 1);
-                words[std::size_t(j) * n + i] = std::bit_cast<std::uint32_t>(float(albedo(k, std::max(float(s * s), kGrazing), alpha)));
-            }
+    for_each_row_on_every_core(n, [&](kernel::Kernel& k, int j) {
+        const double r = double(j) / (n - 1);
+        const float alpha = std::max(float(r * r), kernel::MIN_SHEEN_ALPHA);
+        for (int i = 0; i < n; ++i) {
+            const double s = double(i) / (n - 1);
+            words[std::size_t(j) * n + i] = std::bit_cast<std::uint32_t>(float(albedo(k, std::max(float(s * s), kGrazing), alpha)));
         }
-    };
-    std::vector<std::thread> threads(std::max(1u, std::min(std::thread::hardware_concurrency(), 16u)) - 1);
-    for (std::thread& t : threads) t = std::thread(work);
-    work();
-    for (std::thread& t : threads) t.join();
+    });
     for (int j = 0; j < n; ++j) words[knots + j] = std::bit_cast<std::uint32_t>(table_row_mean(&words[std::size_t(j) * n], n));
     return words;
 }
