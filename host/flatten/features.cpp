@@ -81,6 +81,7 @@ FeatureSet analyze_features(const Scene& scene) {
     bool absorption = false;
     bool coat = false;
     bool sheen = false;
+    bool rough_glass = false;
     bool microfacet = false;
     bool textures = false;
     // Only triangles and quads have the texture coordinates a normal map needs.
@@ -98,6 +99,12 @@ FeatureSet analyze_features(const Scene& scene) {
         microfacet = microfacet || m.metallic_roughness.has_value();
         coat = coat || (m.metallic_roughness && m.metallic_roughness->clearcoat > 0.0);
         sheen = sheen || (m.metallic_roughness && m.metallic_roughness->sheen_color != dvec3(0.0));
+        // Rough where its GGX width passes the kernel's floor (kernel/lobes/glass.glsl);
+        // a metallic texture can leave glass where the factor is 1.
+        rough_glass = rough_glass ||
+                      (m.metallic_roughness && m.metallic_roughness->transmission > 0.0 &&
+                       (m.metallic_roughness->metallic < 1.0 || m.metallic_roughness_texture) &&
+                       m.metallic_roughness->roughness * m.metallic_roughness->roughness > kernel::MIN_GGX_ALPHA);
         absorption = absorption || (m.metallic_roughness && m.metallic_roughness->absorbs() &&
                                     scene.render.mode == RenderMode::Global);
         textures = textures || m.textured();
@@ -151,6 +158,7 @@ FeatureSet analyze_features(const Scene& scene) {
     f.set(Feature::HAS_REFRACTION, secondary && refraction);
     // Absorption happens inside glass, which only global mode's paths enter (refraction with it).
     f.set(Feature::HAS_ABSORPTION, secondary && refraction && absorption);
+    f.set(Feature::HAS_ROUGH_GLASS, secondary && refraction && rough_glass && global);
     f.set(Feature::HAS_AREA_LIGHTS, area_lights);
     // Local mode shades a metallic-roughness material by its diffuse lobe (scene.hpp).
     f.set(Feature::HAS_MICROFACET, microfacet && global);

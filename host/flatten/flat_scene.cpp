@@ -4,6 +4,7 @@
 #include "flatten/emission_footprint.hpp"
 #include "flatten/environment_table.hpp"
 #include "flatten/ggx_albedo.hpp"
+#include "flatten/rough_glass_albedo.hpp"
 #include "flatten/sheen_albedo.hpp"
 #include "scene/shapes/support.hpp"
 #include "scene/texture_image.hpp"
@@ -202,7 +203,8 @@ void add_environment(const Scene& scene, FlatScene& g) {
 
 // The rough lobe's albedo tables, which its multiple-scattering lobe reads
 // (kernel/lobes/ggx_multiple.glsl), after what table_words holds already, and with
-// HAS_SHEEN the sheen's right after them (kernel/lobes/sheen.glsl).
+// HAS_SHEEN the sheen's right after them (kernel/lobes/sheen.glsl), then with
+// HAS_ROUGH_GLASS rough glass's (kernel/lobes/rough_glass.glsl).
 void add_ggx_tables(FlatScene& g) {
     const std::vector<std::uint32_t>& table = ggx_albedo_table();
     kernel::set_ggx_table_first_word(g.params, static_cast<std::uint32_t>(g.table_words.size()));
@@ -210,6 +212,10 @@ void add_ggx_tables(FlatScene& g) {
     if (g.features.has(Feature::HAS_SHEEN)) {
         const std::vector<std::uint32_t>& sheen = sheen_albedo_table();
         g.table_words.insert(g.table_words.end(), sheen.begin(), sheen.end());
+    }
+    if (g.features.has(Feature::HAS_ROUGH_GLASS)) {
+        const std::vector<std::uint32_t>& glass = rough_glass_albedo_table();
+        g.table_words.insert(g.table_words.end(), glass.begin(), glass.end());
     }
 }
 

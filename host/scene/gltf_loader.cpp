@@ -293,9 +293,6 @@ private:
             }
             m.transmission_texture = textures_.texture(info, at, Encoding::Linear, m);
         }
-        if (mr.transmission > 0.0 && mr.roughness > 0.0) {
-            note_unsupported("rough transmission (the glass is smooth; its reflection keeps the roughness)");
-        }
         mr.thin = true;
         const auto volume = g.extensions.find("KHR_materials_volume");
         if (volume == g.extensions.end()) return;

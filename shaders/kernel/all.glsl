@@ -41,6 +41,7 @@
 #include "lobes/ggx_multiple.glsl"
 #include "lobes/coat.glsl"
 #include "lobes/sheen.glsl"
+#include "lobes/rough_glass.glsl"
 #include "bsdf.glsl"
 #include "global.glsl"
 #include "sample.glsl"

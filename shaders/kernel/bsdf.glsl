@@ -7,7 +7,8 @@
 //   coat     a clear coat over the others          metallic-roughness (coat.glsl)
 //   sheen    cloth's sheen, under the coat         metallic-roughness (sheen.glsl)
 //   mirror   reflect                               a delta lobe (mirror.glsl)
-//   glass    transmit, split by Fresnel            delta lobes (glass.glsl)
+//   glass    transmit, split by Fresnel            delta lobes (glass.glsl), or drawn at a
+//                                                  GGX microfacet when rough (rough_glass.glsl)
 //
 // A metallic-roughness material (HAS_MICROFACET) has the diffuse and the ggx lobes
 // only, the diffuse one coupled to the ggx one so that their sum stays at most 1
@@ -21,7 +22,7 @@
 // mixture, each in proportion to its own weight), the mirror or the glass. Dividing
 // by the chosen group's probability keeps the estimate unbiased; next-event
 // estimation and multiple importance sampling (global.glsl) apply to the smooth group
-// only, as no light sample can land on a delta lobe.
+// only, as no light sample can land on a delta lobe (nor is one taken for rough glass).
 
 struct Lobes {
 #define SMOOTH_LOBE(id, name, Type, FEATURE) Type name;

@@ -117,6 +117,11 @@ const float MIN_GGX_ALPHA = 0.001f;
 const float MIN_SHEEN_ALPHA = 81.0f / 961.0f;
 // Knots per axis of the rough lobe's albedo tables (lobes/ggx_multiple.glsl).
 const uint GGX_TABLE_SIZE = 32u;
+// Rough glass's albedo table (lobes/rough_glass.glsl): knots of log(eta) evenly from
+// -log(ROUGH_GLASS_ETA_MAX) to +log(ROUGH_GLASS_ETA_MAX), eta = 1 among them; a
+// ratio of indices beyond takes the last knot's albedo.
+const uint ROUGH_GLASS_ETA_KNOTS = 33u;
+const float ROUGH_GLASS_ETA_MAX = 3.0f;
 
 // How a texture continues beyond [0, 1] (Texture.info.w, two bits per axis).
 const uint WRAP_REPEAT = 0u;

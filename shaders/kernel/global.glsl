@@ -144,9 +144,10 @@ vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smoo
 // mirror: reflect / P(mirror); glass: its colour / P(glass), reflected with the
 // Fresnel reflectance's probability (which cancels it from the weight) and refracted
 // otherwise, or through a thin wall sent on straight; with "fresnel": false always
-// refracted (total internal reflection reflects). `pick` (uniform in [0, total)) chose the group, u decides within glass.
-// A refraction updates the media the path is in (lobes/glass.glsl).
-Ray scatter_delta(Ray ray, Hit hit, vec3 p, Lobes lobes, float total, float pick, float u, INOUT(vec3) beta,
+// refracted (total internal reflection reflects). `pick` (uniform in [0, total)) chose the group, u.x decides within
+// smooth glass; rough glass (lobes/rough_glass.glsl) draws its microfacet by u and decides by where pick fell in
+// the glass's share. A refraction updates the media the path is in (lobes/glass.glsl).
+Ray scatter_delta(Ray ray, Hit hit, vec3 p, Lobes lobes, float total, float pick, vec2 u, INOUT(vec3) beta,
                   INOUT(uvec4) media) {
     Ray mirrored = Ray(offset_ray_origin(p, hit.geo_normal), mirror_direction(ray.dir, hit.normal));
     // Guarded so that a pick rounded up to `total` never lands on a group of weight 0.
@@ -159,9 +160,15 @@ Ray scatter_delta(Ray ray, Hit hit, vec3 p, Lobes lobes, float total, float pick
     }
     // A thin wall is an interface from air into the glass, whichever side is hit.
     float eta = lobes.glass.thin ? 1.0f / lobes.glass.ior : interface_eta(media, lobes.glass.ior, hit.front_face);
+    // Between equal indices there is no interface, rough or not: the smooth glass's eta 1 goes on straight.
+    if (HAS_ROUGH_GLASS && lobes.glass.alpha > 0.0f && eta != 1.0f) {
+        float split = (pick - smooth_weight(lobes) - lobes.mirror.weight) / lobes.glass.weight;
+        return rough_glass_scatter(ray, hit, p, lobes.glass, eta, clamp(split, 0.0f, 1.0f), u,
+                                   total / lobes.glass.weight, beta, media);
+    }
     Refraction r = refract_fresnel(ray.dir, hit.normal, eta);
     float p_reflect = r.total ? 1.0f : (lobes.glass.fresnel ? r.reflectance : 0.0f);
-    bool reflects = u < p_reflect;
+    bool reflects = u.x < p_reflect;
     note_decision(reflects ? DECISION_GLASS_REFLECTS : DECISION_GLASS_REFRACTS);
     beta *= (reflects ? lobes.glass.reflected : lobes.glass.color) * (total / lobes.glass.weight);
     if (reflects) {
@@ -239,8 +246,12 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
             pdf_prev = pdf;
             ray = Ray(offset_ray_origin(p, hit.geo_normal), wi);
         } else {
-            ray = scatter_delta(ray, hit, p, lobes, total, pick, u.x, beta, media);
+            ray = scatter_delta(ray, hit, p, lobes, total, pick, u, beta, media);
             pdf_prev = 0.0f;
+            // Rough glass ends the path with a direction on the wrong side of the surface.
+            if (HAS_ROUGH_GLASS && !any(greaterThan(beta, vec3(0.0f)))) {
+                return;
+            }
         }
         if (bounce + 1u >= ROULETTE_START) {
             float survive = min(max(beta.x, max(beta.y, beta.z)), 0.95f);
@@ -345,7 +356,7 @@ void paper_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
             s.radiance += beta * (total / w_smooth) * lobes.smooth_share * local * g;
             return;
         }
-        ray = scatter_delta(ray, hit, p, lobes, total, pick, u.x, beta, media);
+        ray = scatter_delta(ray, hit, p, lobes, total, pick, u, beta, media);
         s.bounce_rays += 1u;
     }
 }

@@ -54,7 +54,10 @@ Scene furnace(const std::string& render, std::uint32_t width = 16, std::uint32_t
                      "mirror": {{ "diffuse": [0, 0, 0], "reflect": [1, 1, 1] }},
                      "clear": {{ "roughness": 0, "transmission": 1, "ior": 1.33 }},
                      "pane": {{ "roughness": 0, "transmission": 1, "thin": true }},
-                     "half": {{ "metallic": 0.5, "roughness": 0, "transmission": 1 }} }},
+                     "half": {{ "metallic": 0.5, "roughness": 0, "transmission": 1 }},
+                     "rough": {{ "roughness": 0.6, "transmission": 1, "ior": 1.33 }},
+                     "frosted": {{ "roughness": 1, "transmission": 1, "thin": true }},
+                     "rough_half": {{ "metallic": 0.5, "roughness": 0.8, "transmission": 1 }} }},
       "objects": [{}{}]
     }})", width, height, render, kAlbedo, kAlbedo, kAlbedo, kEmission, kEmission, kEmission, walls, objects));
 }
@@ -152,7 +155,13 @@ INSTANTIATE_TEST_SUITE_P(
         FurnaceCase{"gltf_glass_1000", furnace_render("", 1000), 1000, true,
                     R"(, { "type": "sphere", "center": [0.4, -0.1, -0.4], "radius": 0.35, "material": "clear" },
                          { "type": "quad", "corner": [-0.6, -0.6, -0.6], "edge1": [0.5, 0, 0], "edge2": [0.2, 0.5, 0], "material": "pane" },
-                         { "type": "sphere", "center": [-0.3, 0.3, -0.5], "radius": 0.3, "material": "half" })"}),
+                         { "type": "sphere", "center": [-0.3, 0.3, -0.5], "radius": 0.3, "material": "half" })"},
+        // And rough glass, which gives back what single scattering between its
+        // microfacets loses (kernel/lobes/rough_glass.glsl).
+        FurnaceCase{"rough_glass_1000", furnace_render("", 1000), 1000, true,
+                    R"(, { "type": "sphere", "center": [0.4, -0.1, -0.4], "radius": 0.35, "material": "rough" },
+                         { "type": "quad", "corner": [-0.6, -0.6, -0.6], "edge1": [0.5, 0, 0], "edge2": [0.2, 0.5, 0], "material": "frosted" },
+                         { "type": "sphere", "center": [-0.3, 0.3, -0.5], "radius": 0.3, "material": "rough_half" })"}),
     [](const ::testing::TestParamInfo<FurnaceCase>& param) { return param.param.name; });
 
 // One pixel, many samples, through the reference kernel: its own mean and standard

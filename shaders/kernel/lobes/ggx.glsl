@@ -71,11 +71,12 @@ float ggx_pdf(float alpha, vec3 n, vec3 wo, vec3 wi) {
     return pdf;
 }
 
-// Draws local wi (z along the normal) for local wo (wo.z > 0) by a visible normal: the view is stretched to the
+// Draws a local microfacet normal (z along the normal) visible from local wo (wo.z > 0),
+// with density D(m) G1(wo) max(0, wo.m) / cos(theta_o): the view is stretched to the
 // distribution of alpha = 1, where visible normals are a disc's projection onto the
 // hemisphere, the disc is warped by the fraction of it the view sees, and the
-// normal is unstretched. wi may lie below the surface (the caller ends the path).
-vec3 ggx_sample(float alpha, vec3 wo, float u1, float u2) {
+// normal is unstretched.
+vec3 ggx_visible_normal(float alpha, vec3 wo, float u1, float u2) {
     vec3 v = unit_vector(vec3(alpha * wo.x, alpha * wo.y, wo.z));
     float len2 = v.x * v.x + v.y * v.y;
     vec3 t1 = len2 > 0.0f ? vec3(-v.y, v.x, 0.0f) / sqrt(len2) : vec3(1.0f, 0.0f, 0.0f);
@@ -86,7 +87,13 @@ vec3 ggx_sample(float alpha, vec3 wo, float u1, float u2) {
     float s = 0.5f * (1.0f + v.z);
     precise float p2 = (1.0f - s) * sqrt(max(0.0f, 1.0f - p1 * p1)) + s * (r * sc.x);
     precise vec3 n = p1 * t1 + p2 * t2 + sqrt(max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * v;
-    vec3 m = unit_vector(vec3(alpha * n.x, alpha * n.y, max(0.0f, n.z)));
+    return unit_vector(vec3(alpha * n.x, alpha * n.y, max(0.0f, n.z)));
+}
+
+// Draws local wi for local wo (wo.z > 0): wo mirrored about a visible normal. wi may
+// lie below the surface (the caller ends the path).
+vec3 ggx_sample(float alpha, vec3 wo, float u1, float u2) {
+    vec3 m = ggx_visible_normal(alpha, wo, u1, u2);
     precise vec3 wi = (2.0f * dot(wo, m)) * m - wo;
     return wi;
 }

@@ -10,12 +10,14 @@ struct GlassLobe {
     bool fresnel;    // split by Fresnel; otherwise refracted unless totally reflected
     bool thin;       // a thin wall: the refracted light goes on straight, in the same medium
     float weight;    // the lobe's selection weight: the mean of its colour, or its share
+    float alpha;     // GGX width of rough glass (rough_glass.glsl); 0: smooth
 };
 
 // The paper's glass tints what it reflects and refracts alike by `transmit`. A
 // metallic-roughness material's glass is glTF's (KHR_materials_transmission): it
 // reflects glass_share untinted and refracts glass_share times the base colour
-// (texture.glsl, set_metallic_roughness).
+// (texture.glsl, set_metallic_roughness), and is rough with the material's GGX width
+// above MIN_GGX_ALPHA (HAS_ROUGH_GLASS; rough_glass.glsl).
 GlassLobe glass_lobe(Material m) {
     GlassLobe l;
     l.color = HAS_REFRACTION ? m.transmit : vec3(0.0f);
@@ -24,11 +26,13 @@ GlassLobe glass_lobe(Material m) {
     l.fresnel = m.fresnel != 0u;
     l.thin = false;
     l.weight = mean3(l.color);
+    l.alpha = 0.0f;
     float share = glass_share(m);
     if (share > 0.0f) {
         l.reflected = vec3(share);
         l.thin = m.thin_walled != 0u;
         l.weight = share;
+        l.alpha = HAS_ROUGH_GLASS && m.ggx_alpha > MIN_GGX_ALPHA ? m.ggx_alpha : 0.0f;
     }
     return l;
 }
