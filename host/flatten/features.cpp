@@ -82,6 +82,7 @@ FeatureSet analyze_features(const Scene& scene) {
     bool coat = false;
     bool sheen = false;
     bool rough_glass = false;
+    bool dielectric_specular = false;
     bool microfacet = false;
     bool textures = false;
     // Only triangles and quads have the texture coordinates a normal map needs.
@@ -99,6 +100,7 @@ FeatureSet analyze_features(const Scene& scene) {
         microfacet = microfacet || m.metallic_roughness.has_value();
         coat = coat || (m.metallic_roughness && m.metallic_roughness->clearcoat > 0.0);
         sheen = sheen || (m.metallic_roughness && m.metallic_roughness->sheen_color != dvec3(0.0));
+        dielectric_specular = dielectric_specular || (m.metallic_roughness && m.metallic_roughness->has_specular());
         // Rough where its GGX width passes the kernel's floor (kernel/lobes/glass.glsl);
         // a metallic texture can leave glass where the factor is 1.
         rough_glass = rough_glass ||
@@ -164,6 +166,7 @@ FeatureSet analyze_features(const Scene& scene) {
     f.set(Feature::HAS_MICROFACET, microfacet && global);
     f.set(Feature::HAS_COAT, coat && global);
     f.set(Feature::HAS_SHEEN, sheen && global);
+    f.set(Feature::HAS_DIELECTRIC_SPECULAR, dielectric_specular && global);
     // Only triangles and quads carry texture coordinates.
     f.set(Feature::HAS_TEXTURES, textures && !scene.triangles.empty());
     f.set(Feature::HAS_ENVIRONMENT_MAP, scene.environment.has_value());

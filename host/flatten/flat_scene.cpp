@@ -115,7 +115,12 @@ kernel::Material flatten(const Material& m) {
         out.diffuse = vec3((1.0 - metal) * pbr->base_color);
         out.kd = 1.0f;
         out.fresnel = 1u;
-        out.ggx_f0 = vec3(glm::mix(dvec3(f0), pbr->base_color, metal));
+        // KHR_materials_specular's dielectric: the ior's f0 when it is absent.
+        const dvec3 dielectric = glm::min(dvec3(f0) * pbr->specular_color, dvec3(1.0)) * pbr->specular;
+        out.ggx_f0 = vec3(glm::mix(dielectric, pbr->base_color, metal));
+        out.ggx_f90 = float(glm::mix(pbr->specular, 1.0, metal));
+        out.dielectric_f0_rgb = vec3(dielectric);
+        out.dielectric_f90 = float(pbr->specular);
         out.ggx_alpha = float(std::max(pbr->roughness * pbr->roughness, double(kernel::MIN_GGX_ALPHA)));
         out.base_color = vec3(pbr->base_color);
         out.metallic = float(pbr->metallic);

@@ -222,6 +222,7 @@ private:
             read_glass(g, element, m);
             read_clearcoat(g, element, m);
             read_sheen(g, element, m);
+            read_specular(g, element, m);
             uv_sets_.push_back(m.textured() ? textures_.uv_set() : 0);
             materials_.push_back(static_cast<std::uint32_t>(scene_.materials.size()));
             scene_.materials.push_back(m);
@@ -358,6 +359,31 @@ private:
         }
         if (e->second.Has("sheenColorTexture") || e->second.Has("sheenRoughnessTexture")) {
             note_unsupported("sheen textures (the factors are used)");
+        }
+    }
+
+    // KHR_materials_specular's factors: the dielectric's specular layer (scene.hpp;
+    // kernel/lobes/fresnel.glsl). Its textures are named as not read, as is the
+    // extension on glass, which reflects by its ior's exact Fresnel reflectance.
+    void read_specular(const tinygltf::Material& g, const std::string& element, Material& m) {
+        const auto e = g.extensions.find("KHR_materials_specular");
+        if (e == g.extensions.end() || !m.metallic_roughness) return;
+        const std::string at = element + ".extensions.KHR_materials_specular";
+        Material::MetallicRoughness& mr = *m.metallic_roughness;
+        if (const tinygltf::Value& v = e->second.Get("specularFactor"); v.Type() != tinygltf::NULL_TYPE) {
+            mr.specular = unit(v.IsNumber() ? v.GetNumberAsDouble() : -1.0, at + ".specularFactor");
+        }
+        if (const tinygltf::Value& v = e->second.Get("specularColorFactor"); v.Type() != tinygltf::NULL_TYPE) {
+            if (!v.IsArray() || v.ArrayLen() != 3) fail_at(at + ".specularColorFactor", "expected 3 numbers of at least 0");
+            dvec3 c;
+            for (int i = 0; i < 3; ++i) c[i] = v.Get(i).IsNumber() ? v.Get(i).GetNumberAsDouble() : -1.0;
+            mr.specular_color = color(c, 1e6, at + ".specularColorFactor");
+        }
+        if (e->second.Has("specularTexture") || e->second.Has("specularColorTexture")) {
+            note_unsupported("specular textures (the factors are used)");
+        }
+        if (mr.transmission > 0.0 && mr.has_specular()) {
+            note_unsupported("KHR_materials_specular on glass (its glass reflects by its ior)");
         }
     }
 

@@ -31,6 +31,10 @@ std::string Node::describe() const {
 // ---- Node: objects -----------------------------------------------------------
 
 void Node::allow_only(std::initializer_list<std::string_view> keys) const {
+    allow_only(std::span<const std::string_view>(keys.begin(), keys.size()));
+}
+
+void Node::allow_only(std::span<const std::string_view> keys) const {
     expect_object();
     for (Document::Index i = doc_->first_child(index_); i < value().end; i = doc_->next_sibling(i)) {
         const std::string_view key = doc_->key(doc_->at(i));

@@ -10,6 +10,7 @@
 #include <initializer_list>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -68,6 +69,7 @@ public:
     // Rejects any key not listed: a misspelt optional field would otherwise be
     // ignored and its default used without a word.
     void allow_only(std::initializer_list<std::string_view> keys) const;
+    void allow_only(std::span<const std::string_view> keys) const;
 
     std::optional<Node> find(std::string_view key) const;
 

@@ -199,10 +199,15 @@ RenderSettings read_render(const Node& n) {
 }
 
 
-// glTF's metallic-roughness model (scene.hpp): base_color, metallic and roughness,
-// glass by transmission and thin (absorbing by attenuation_color and _distance), and
-// a clear coat, which replace the Phong fields rather than add to them (ior serves
-// both).
+// The fields of glTF's metallic-roughness model (scene.hpp): base_color, metallic and
+// roughness, glass by transmission and thin (absorbing by attenuation_color and
+// _distance), a clear coat, sheen and the dielectric's specular layer, which replace
+// the Phong fields rather than add to them (ior serves both). Any of them makes a
+// material a metallic-roughness one.
+constexpr std::array<const char*, 13> kMetallicRoughnessFields = {
+    "base_color", "metallic", "roughness", "transmission", "thin", "attenuation_color", "attenuation_distance",
+    "clearcoat", "clearcoat_roughness", "sheen_color", "sheen_roughness", "specular_factor", "specular_color"};
+
 Material::MetallicRoughness read_metallic_roughness(const Node& n) {
     for (const char* phong : {"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit", "fresnel"}) {
         if (n.find(phong)) {
@@ -234,6 +239,8 @@ Material::MetallicRoughness read_metallic_roughness(const Node& n) {
         if (!n.find("sheen_color")) n.fail_field("sheen_roughness", "a sheen's roughness needs \"sheen_color\"");
         pbr.sheen_roughness = v->number_between(0.0, 1.0);
     }
+    if (auto v = n.find("specular_factor")) pbr.specular = v->number_between(0.0, 1.0);
+    if (auto v = n.find("specular_color")) pbr.specular_color = v->color();
     if (auto v = n.find("attenuation_color")) pbr.attenuation_color = v->unit_color();
     if (auto v = n.find("attenuation_distance")) pbr.attenuation_distance = v->number_above(0.0);
     return pbr;
@@ -320,10 +327,12 @@ void read_alpha(const Node& n, Material& m) {
 }
 
 Material read_material(const std::string& name, const Node& n, Scene& scene) {
-    n.allow_only({"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit", "ior", "fresnel", "emission",
-                  "base_color", "metallic", "roughness", "transmission", "thin", "attenuation_color", "attenuation_distance",
-                  "clearcoat", "clearcoat_roughness", "sheen_color", "sheen_roughness", "transmission_texture", "texture", "texture_transform", "normal_map", "normal_scale",
-                  "emission_texture", "alpha_mode", "alpha", "alpha_cutoff"});
+    std::vector<std::string_view> allowed = {"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit", "ior",
+                                        "fresnel", "emission", "transmission_texture", "texture", "texture_transform",
+                                        "normal_map", "normal_scale", "emission_texture", "alpha_mode", "alpha",
+                                        "alpha_cutoff"};
+    allowed.insert(allowed.end(), kMetallicRoughnessFields.begin(), kMetallicRoughnessFields.end());
+    n.allow_only(allowed);
     Material m;
     m.name = name;
     read_texture(n, m, scene);
@@ -331,8 +340,7 @@ Material read_material(const std::string& name, const Node& n, Scene& scene) {
     if (auto v = n.find("emission")) m.emission = v->color();
     if (auto v = n.find("ior")) m.ior = v->number_above(0.0);
     // Any field of the metallic-roughness model makes the material one (and is then checked).
-    for (const char* field : {"base_color", "metallic", "roughness", "transmission", "thin", "attenuation_color",
-                              "attenuation_distance", "clearcoat", "clearcoat_roughness", "sheen_color", "sheen_roughness"}) {
+    for (const char* field : kMetallicRoughnessFields) {
         if (n.find(field)) {
             m.metallic_roughness = read_metallic_roughness(n);
             return m;

@@ -138,6 +138,13 @@ struct Material {
         // Sheen over it, under the coat (glTF's KHR_materials_sheen; kernel/lobes/sheen.glsl).
         dvec3 sheen_color{0.0};         // each 0 to 1; black: none
         double sheen_roughness = 0.0;   // 0 to 1
+        // The dielectric's specular layer (glTF's KHR_materials_specular): it reflects
+        // min(f0 specular_color, 1) specular at normal incidence, f0 from the ior, and
+        // `specular` at grazing incidence; the diffuse lobe takes what it leaves. The
+        // metal and the glass are not affected.
+        double specular = 1.0;           // 0 to 1
+        dvec3 specular_color{1.0};       // each at least 0
+        bool has_specular() const { return specular != 1.0 || specular_color != dvec3(1.0); }
         // Whether light crossing it is absorbed: solid glass with some attenuation.
         bool absorbs() const {
             return transmission > 0.0 && metallic < 1.0 && !thin && std::isfinite(attenuation_distance) &&

@@ -30,7 +30,7 @@ from cycles_still import render_still  # noqa: E402
 def arguments():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     p = argparse.ArgumentParser()
-    p.add_argument("--scene", default="still_life", choices=["still_life", "metals", "leaves", "glass"])
+    p.add_argument("--scene", default="still_life", choices=["still_life", "metals", "leaves", "glass", "layers"])
     p.add_argument("--out", required=True)
     p.add_argument("--render", help="also render with Cycles to this .exr")
     p.add_argument("--spp", type=int, default=256)
@@ -218,14 +218,15 @@ def leaves():
     aim_camera((0, -5.5, 3.2), (0, 5.5, -2.4), 40)
 
 
-def glass(name, rgb, ior, thickness):
-    # Smooth glass (Principled transmission 1, roughness 0). The exporter writes
+def glass(name, rgb, ior, thickness, roughness=0.0):
+    # Glass (Principled transmission 1, smooth by default). The exporter writes
     # KHR_materials_transmission and KHR_materials_ior, and KHR_materials_volume, which
     # makes the glass a solid that refracts as Cycles' does, from the Thickness of a
     # "glTF Material Output" node group (the exporter's own convention).
-    m = principled(name, rgb, roughness=0.0)
+    m = principled(name, rgb, roughness=roughness)
     bsdf = m.node_tree.nodes["Principled BSDF"]
     bsdf.inputs["Transmission"].default_value = 1.0
+    bsdf.inputs["Transmission Roughness"].default_value = roughness
     bsdf.inputs["IOR"].default_value = ior
     group = bpy.data.node_groups.get("glTF Material Output")
     if group is None:
@@ -254,6 +255,31 @@ def glasses():
     lamp_and_camera()
 
 
+def layers():
+    # The layers over a dielectric that glTF's extensions carry, on the checkerboard
+    # floor under the lamp: red car paint under a clear coat (Principled Clearcoat 1,
+    # Clearcoat Roughness 0.05: KHR_materials_clearcoat), a frosted glass sphere
+    # (roughness 0.3: rough KHR_materials_transmission, solid), and a blue plastic
+    # whose Specular 1 and Specular Tint 0.5 the exporter writes as
+    # KHR_materials_specular (with KHR_materials_ior 1.45, Principled's default IOR).
+    png = os.path.join(tempfile.mkdtemp(), "checker.png")
+    checker_png(png)
+    bpy.ops.mesh.primitive_plane_add(size=8, location=(0, 0, 0))
+    give(bpy.context.object, textured("floor", png, roughness=0.8))
+    paint = principled("car_paint", (0.5, 0.02, 0.02), metallic=0.5, roughness=0.4)
+    paint.node_tree.nodes["Principled BSDF"].inputs["Clearcoat"].default_value = 1.0
+    paint.node_tree.nodes["Principled BSDF"].inputs["Clearcoat Roughness"].default_value = 0.05
+    plastic = principled("tinted_plastic", (0.1, 0.25, 0.7), roughness=0.3)
+    plastic.node_tree.nodes["Principled BSDF"].inputs["Specular"].default_value = 1.0
+    plastic.node_tree.nodes["Principled BSDF"].inputs["Specular Tint"].default_value = 0.5
+    for x, material in [(-1.3, paint), (0.0, glass("frosted", (1.0, 1.0, 1.0), 1.5, 1.1, roughness=0.3)),
+                        (1.3, plastic)]:
+        bpy.ops.mesh.primitive_uv_sphere_add(segments=48, ring_count=24, radius=0.55, location=(x, 0.2, 0.55))
+        bpy.ops.object.shade_smooth()
+        give(bpy.context.object, material)
+    lamp_and_camera()
+
+
 def main():
     args = arguments()
     bpy.ops.wm.read_factory_settings(use_empty=True)
@@ -265,7 +291,7 @@ def main():
     world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.05, 0.05, 0.05, 1)
     world.node_tree.nodes["Background"].inputs["Strength"].default_value = 1.0
     scene.world = world
-    {"still_life": still_life, "metals": metals, "leaves": leaves, "glass": glasses}[args.scene]()
+    {"still_life": still_life, "metals": metals, "leaves": leaves, "glass": glasses, "layers": layers}[args.scene]()
     bpy.ops.export_scene.gltf(filepath=args.out, export_format="GLB", export_cameras=True, export_lights=True,
                               export_apply=True, export_yup=True)
     if args.render:

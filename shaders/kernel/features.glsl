@@ -72,6 +72,10 @@ FEATURE(28, HAS_SHEEN)
 // Rough glass (lobes/rough_glass.glsl), with its albedo table: a metallic-roughness
 // material with transmission and a roughness above MIN_GGX_ALPHA's square root.
 FEATURE(29, HAS_ROUGH_GLASS)
+// A metallic-roughness material whose dielectric reflects other than its ior says
+// (glTF's KHR_materials_specular): the GGX lobe's Fresnel rises to ggx_f90 at
+// grazing incidence instead of 1 (lobes/fresnel.glsl).
+FEATURE(30, HAS_DIELECTRIC_SPECULAR)
 // Three per kind of primitive (shapes/kinds.glsl), after the others: HAS_<NAMES>, the
 // scene has some; with HAS_GRID, GRID_<NAMES>, the grid's cells list some, and
 // LOOSE_<NAMES>, its loose primitives, which are tested once per ray instead, hold
@@ -79,5 +83,5 @@ FEATURE(29, HAS_ROUGH_GLASS)
 // whose boxes would stretch the grid's (host/flatten/flat_scene.cpp,
 // host/accel/grid.cpp, docs/grid.md).
 #define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
-    FEATURE((30 + 3 * ID), HAS_##NAMES) FEATURE((30 + 3 * ID + 1), GRID_##NAMES) FEATURE((30 + 3 * ID + 2), LOOSE_##NAMES)
+    FEATURE((31 + 3 * ID), HAS_##NAMES) FEATURE((31 + 3 * ID + 1), GRID_##NAMES) FEATURE((31 + 3 * ID + 2), LOOSE_##NAMES)
 #include "shapes/kinds.glsl"

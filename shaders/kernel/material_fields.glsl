@@ -48,7 +48,9 @@ MATERIAL_FIELD(float, transmission, 9, w) // the share of its dielectric that is
 MATERIAL_FIELD(uint, alpha_mode, 10, x)    // ALPHA_OPAQUE, ALPHA_MASK or ALPHA_BLEND
 MATERIAL_FIELD(float, alpha, 10, y)        // the opacity factor (glTF's base colour alpha)
 MATERIAL_FIELD(float, alpha_cutoff, 10, z) // ALPHA_MASK: opaque where the opacity is at least this
-MATERIAL_PAD(10, w)
+// The GGX lobe's reflectance at grazing incidence (HAS_DIELECTRIC_SPECULAR; 1 without):
+// the metal's 1 and the dielectric's specular factor mixed as ggx_f0 is.
+MATERIAL_FIELD(float, ggx_f90, 10, w)
 
 // Glass of a metallic-roughness material (lobes/glass.glsl): the dielectric's
 // reflectance at normal incidence, from its index of refraction (glTF's
@@ -74,6 +76,12 @@ MATERIAL_FIELD(uint, transmission_map, 12, w)
 // KHR_materials_sheen): its colour (0: none) and the width of its distribution.
 MATERIAL_FIELD3(vec3, sheen_color, 13)
 MATERIAL_FIELD(float, sheen_alpha, 13, w)
+
+// The dielectric's reflectance with glTF's KHR_materials_specular (HAS_DIELECTRIC_SPECULAR):
+// at normal incidence min(dielectric_f0 * specular colour, 1) * specular factor, at
+// grazing incidence the specular factor; texture.glsl mixes them with the metal's.
+MATERIAL_FIELD3(vec3, dielectric_f0_rgb, 14)
+MATERIAL_FIELD(float, dielectric_f90, 14, w)
 
 #undef MATERIAL_PAD
 #undef MATERIAL_FIELD3

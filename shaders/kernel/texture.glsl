@@ -109,14 +109,16 @@ float glass_share(Material m) {
 // takes glass_share = transmission (1 - metallic) of it, the other lobes the rest:
 // the metal's share of those is metallic / (1 - glass_share), so that the metal keeps
 // its share of the whole, and the dielectric reflects dielectric_f0 at normal
-// incidence.
+// incidence (with HAS_DIELECTRIC_SPECULAR, dielectric_f0_rgb, and dielectric_f90 at
+// grazing incidence).
 void set_metallic_roughness(INOUT(Material) m, vec3 base, float metallic, float roughness) {
     m.metallic = metallic;
     float glass = glass_share(m);
     float metal = glass > 0.0f ? (glass < 1.0f ? metallic / (1.0f - glass) : 0.0f) : metallic;
     m.diffuse = (1.0f - metal) * base;
     m.kd = 1.0f;
-    m.ggx_f0 = mix(vec3(m.dielectric_f0), base, metal);
+    m.ggx_f0 = mix(HAS_DIELECTRIC_SPECULAR ? m.dielectric_f0_rgb : vec3(m.dielectric_f0), base, metal);
+    m.ggx_f90 = HAS_DIELECTRIC_SPECULAR ? mix(m.dielectric_f90, 1.0f, metal) : 1.0f;
     m.ggx_alpha = max(roughness * roughness, MIN_GGX_ALPHA);
     m.transmit = glass * base;
 }

@@ -126,7 +126,7 @@ TEST(Ggx, EvaluationMatchesTheFormulaInDouble) {
             const vec3 wi(float(si * std::cos(p)), float(si * std::sin(p)), float(ci));
             const vec3 wo = from_cos(co);
             // With reflectance 1, F is 1 at every angle.
-            const double f = k.ggx_eval(vec3(1.0f), float(alpha), kUp, wo, wi).x;
+            const double f = k.ggx_eval(vec3(1.0f), 1.0f, float(alpha), kUp, wo, wi).x;
             const double expected = lobe_cos(alpha, co, wi.x, wi.y, wi.z) / wi.z;
             EXPECT_NEAR(f, expected, 2e-4 * expected + 1e-6) << "alpha " << alpha << " cos_o " << co << " cos_i " << ci;
         }
@@ -223,7 +223,7 @@ TEST(Ggx, WhiteFurnaceLosesOnlyTheMultipleScattering) {
             for (int i = 0; i < n; ++i) {
                 const vec3 wi = k.ggx_sample(float(alpha), wo, u(rng), u(rng));
                 const float pdf = k.ggx_pdf(float(alpha), kUp, wo, wi);
-                const double w = pdf > 0.0f ? k.ggx_eval(vec3(1.0f), float(alpha), kUp, wo, wi).x * wi.z / pdf : 0.0;
+                const double w = pdf > 0.0f ? k.ggx_eval(vec3(1.0f), 1.0f, float(alpha), kUp, wo, wi).x * wi.z / pdf : 0.0;
                 ASSERT_LE(w, 1.0 + 1e-4) << "a visible-normal sample's weight is G2 / G1 <= 1";
                 sum += w;
                 sum2 += w * w;
@@ -260,6 +260,7 @@ vkrt::kernel::Material metallic_roughness(vec3 base_color, float metallic, float
     m.kd = 1.0f;
     m.ior = 1.5f;
     m.ggx_f0 = glm::mix(vec3(0.04f), base_color, metallic);
+    m.ggx_f90 = 1.0f;
     m.ggx_alpha = roughness * roughness;
     return m;
 }
@@ -368,6 +369,7 @@ TEST(GgxMultiple, WhiteFurnaceKeepsTheLight) {
     Kernel k = kernel_with_tables();
     vkrt::kernel::Material m{};
     m.ggx_f0 = vec3(1.0f);
+    m.ggx_f90 = 1.0f;
     std::printf("roughness  cos_o  single  single + multiple\n");
     for (float roughness : {0.1f, 0.3f, 0.5f, 0.7f, 0.85f, 1.0f}) {
         m.ggx_alpha = std::max(roughness * roughness, vkrt::kernel::MIN_GGX_ALPHA);
@@ -396,6 +398,7 @@ TEST(GgxMultiple, IsReciprocalAndFollowsItsDensity) {
     Kernel k = kernel_with_tables();
     vkrt::kernel::Material m{};
     m.ggx_f0 = vec3(0.9f, 0.6f, 0.3f);
+    m.ggx_f90 = 1.0f;
     m.ggx_alpha = 0.64f;
     std::mt19937 rng(3);
     std::normal_distribution<float> g;
@@ -456,7 +459,7 @@ TEST(Coat, KeepsAWhiteBasesLightAndLayersByItsAlbedo) {
                 const float alpha = coat_roughness * coat_roughness;
                 const double r_coat = 0.04 * k.ggx_albedo(float(co), alpha) +
                                       0.96 * k.ggx_table_lookup(k.GGX_SCHLICK_TABLE, float(co), alpha);
-                const double r_base = k.ggx_reflectance(vec3(0.04f), float(co), 0.25f).x;
+                const double r_base = k.ggx_reflectance(vec3(0.04f), 1.0f, float(co), 0.25f).x;
                 const double black = reflected(coated_lobes_of(k, vec3(0.0f), 0.0f, 0.5f, 0.5f, coat_roughness, float(co)));
                 EXPECT_NEAR(black, 0.5 * r_coat + (1.0 - 0.5 * r_coat) * r_base, 2e-3);
             }
@@ -477,6 +480,7 @@ TEST(Coat, MixtureSamplingMatchesItsDensity) {
     }
     vkrt::kernel::Material glass{};
     glass.ggx_f0 = vec3(0.04f);
+    glass.ggx_f90 = 1.0f;
     glass.ggx_alpha = 0.25f;
     glass.transmission = 1.0f;
     glass.transmit = vec3(1.0f);
@@ -553,7 +557,7 @@ TEST(Sheen, KeepsAWhiteBasesLightAndLayersByItsAlbedo) {
             }
             const Kernel::Lobes black = sheened_lobes_of(k, vec3(0.0f), 0.0f, vec3(0.5f), roughness, 0.0f, float(co));
             const double e = k.ggx_table_lookup(k.SHEEN_TABLE, float(co), black.sheen.alpha);
-            const double r_base = k.ggx_reflectance(vec3(0.04f), float(co), 0.25f).x;
+            const double r_base = k.ggx_reflectance(vec3(0.04f), 1.0f, float(co), 0.25f).x;
             EXPECT_NEAR(reflected(black), 0.5 * e + (1.0 - 0.5 * e) * r_base, 2e-3);
         }
     }
@@ -567,6 +571,67 @@ TEST(Sheen, MixtureSamplingMatchesItsDensity) {
         EXPECT_GT(l.sheen.weight, 0.0f);
         EXPECT_LT(l.sheen.keep, 1.0f);
         expect_sampling_follows_density(k, l, co, 8);
+    }
+}
+
+// ------------------------------------------------------- the dielectric's specular layer
+
+// lobes_of's dielectric with glTF's KHR_materials_specular, as flat_scene.cpp builds it:
+// f0 = min(0.04 colour, 1) specular, f90 = specular.
+Kernel::Lobes specular_lobes_of(Kernel& k, vec3 base_color, float roughness, float specular, vec3 color, float cos_o) {
+    vkrt::kernel::Material m = metallic_roughness(base_color, 0.0f, roughness);
+    m.ggx_f0 = glm::min(0.04f * color, vec3(1.0f)) * specular;
+    m.ggx_f90 = specular;
+    return k.material_lobes(m, cos_o);
+}
+
+// Schlick's Fresnel runs from f0 to f90.
+TEST(DielectricSpecular, FresnelRunsFromF0ToF90) {
+    Kernel k;
+    EXPECT_EQ(k.fresnel_schlick(vec3(0.02f), 0.5f, 1.0f), vec3(0.02f));
+    EXPECT_EQ(k.fresnel_schlick(vec3(0.02f), 0.5f, 0.0f), vec3(0.5f));
+    EXPECT_NEAR(k.fresnel_schlick(vec3(0.02f), 0.5f, 0.5f).x, 0.02 + 0.48 / 32.0, 1e-7);
+}
+
+// Whatever the specular layer's strength and colour, a white base keeps reflecting
+// all the light, by quadrature of the kernel's own evaluation, the diffuse lobe taking
+// what the layer leaves; over a black base the layer reflects what the tables say,
+// f0 E + (f90 - f0) E_s + F_ms (1 - E) (ggx_albedo.glsl); with a strength of 0 the
+// material is Lambertian: the rough lobe weighs nothing.
+TEST(DielectricSpecular, KeepsAWhiteBasesLightAndReflectsByItsTables) {
+    Kernel k = kernel_with_tables();
+    for (float specular : {0.0f, 0.5f, 1.0f}) {
+        for (vec3 color : {vec3(1.0f), vec3(8.0f, 1.0f, 0.25f)}) {
+            for (float roughness : {0.2f, 0.6f, 1.0f}) {
+                for (double co : {1.0, 0.5, 0.1}) {
+                    SCOPED_TRACE(testing::Message() << "specular " << specular << " colour " << color.x << " roughness "
+                                                    << roughness << " cos_o " << co);
+                    const vec3 wo = from_cos(co);
+                    const auto reflected = [&](const Kernel::Lobes& l, int c) {
+                        return reflected_integral(wo, [&](vec3 wi) { return double(k.eval_smooth(l, kUp, wo, wi)[c]) * wi.z; });
+                    };
+                    const Kernel::Lobes white = specular_lobes_of(k, vec3(1.0f), roughness, specular, color, float(co));
+                    const Kernel::Lobes black = specular_lobes_of(k, vec3(0.0f), roughness, specular, color, float(co));
+                    if (specular == 0.0f) EXPECT_EQ(white.ggx.weight, 0.0f);
+                    const vec3 tables = k.ggx_reflectance(black.ggx.f0, black.ggx.f90, float(co), roughness * roughness);
+                    for (int c = 0; c < 3; ++c) {
+                        const double w = reflected(white, c);
+                        EXPECT_LE(w, 1.0 + 2e-3) << "channel " << c;
+                        EXPECT_GE(w, 0.99) << "channel " << c;
+                        EXPECT_NEAR(reflected(black, c), tables[c], 2e-3) << "channel " << c;
+                    }
+                }
+            }
+        }
+    }
+}
+
+TEST(DielectricSpecular, MixtureSamplingMatchesItsDensity) {
+    Kernel k = kernel_with_tables();
+    for (double co : {0.9, 0.2}) {
+        SCOPED_TRACE(testing::Message() << "cos_o " << co);
+        expect_sampling_follows_density(
+            k, specular_lobes_of(k, vec3(0.3f, 0.5f, 0.7f), 0.4f, 0.6f, vec3(2.0f, 1.0f, 0.5f), float(co)), co, 9);
     }
 }
 

@@ -113,6 +113,9 @@ TEST(Texture, MetallicRoughnessTexturesScaleTheFactors) {
     pbr.ior = 1.5f;
     pbr.ggx_f0 = glm::vec3(0.42f, 0.32f, 0.22f);
     pbr.dielectric_f0 = 0.04f;
+    pbr.dielectric_f0_rgb = glm::vec3(0.04f);
+    pbr.dielectric_f90 = 1.0f;
+    pbr.ggx_f90 = 1.0f;
     pbr.ggx_alpha = 0.36f;
     pbr.color_map = 1u;
     pbr.metal_rough_map = 2u;

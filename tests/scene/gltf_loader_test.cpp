@@ -520,6 +520,32 @@ TEST(Gltf, SheenIsRead) {
                                      {"materials[0].extensions.KHR_materials_sheen.sheenColorFactor[1]", "from 0 to 1, got 2"});
 }
 
+// KHR_materials_specular's factors make the dielectric's specular layer; its textures,
+// and the extension on glass, are named as not read; a factor out of range is refused.
+TEST(Gltf, SpecularIsRead) {
+    const std::string plain = R"({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0}})";
+    std::string json = gltf_json("mesh.bin", kOneNode);
+    json.replace(json.find(plain), plain.size(), R"({"pbrMetallicRoughness": {"metallicFactor": 0},
+        "extensions": {"KHR_materials_specular": {"specularFactor": 0.25, "specularColorFactor": [2, 1, 0.5],
+                       "specularTexture": {"index": 0}}}})");
+    const Scene s = vkrt::load_scene(write_gltf("specular", json));
+    ASSERT_TRUE(s.materials[0].metallic_roughness.has_value());
+    EXPECT_DOUBLE_EQ(s.materials[0].metallic_roughness->specular, 0.25);
+    EXPECT_EQ(s.materials[0].metallic_roughness->specular_color, dvec3(2, 1, 0.5));
+    EXPECT_TRUE(has_warning(s, "specular textures"));
+    EXPECT_FALSE(has_warning(s, "on glass"));
+
+    json = gltf_json("mesh.bin", kOneNode);
+    json.replace(json.find(plain), plain.size(), R"({"extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
+        "KHR_materials_specular": {"specularFactor": 0.5}}})");
+    EXPECT_TRUE(has_warning(vkrt::load_scene(write_gltf("specular_glass", json)), "KHR_materials_specular on glass"));
+
+    json = gltf_json("mesh.bin", kOneNode);
+    json.replace(json.find(plain), plain.size(), R"({"extensions": {"KHR_materials_specular": {"specularColorFactor": [1, -2, 1]}}})");
+    vkrt::test::expect_error_message(load_error(write_gltf("specular_range", json)), "",
+                                     {"materials[0].extensions.KHR_materials_specular.specularColorFactor", "got -2"});
+}
+
 // ------------------------------------------------------------------ bad files
 
 TEST(GltfErrors, AnIndexOutOfRangeNamesTheAccessor) {

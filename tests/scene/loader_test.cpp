@@ -645,6 +645,13 @@ TEST_F(SceneLoaderTest, MetallicRoughnessMaterials) {
     EXPECT_DOUBLE_EQ(s.materials[1].metallic_roughness->roughness, 0.5);
     EXPECT_TRUE(s.warnings.empty());
     EXPECT_FALSE(load(Parts{}.text()).materials[0].metallic_roughness.has_value()) << "Phong by default";
+    EXPECT_FALSE(s.materials[1].metallic_roughness->has_specular());
+    // glTF's KHR_materials_specular, by its factors' names.
+    const Scene specular = load(Parts{.materials = R"({"chalk": {"specular_factor": 0.5, "specular_color": [2, 1, 0]}})"}.text());
+    ASSERT_TRUE(specular.materials[0].metallic_roughness.has_value());
+    EXPECT_DOUBLE_EQ(specular.materials[0].metallic_roughness->specular, 0.5);
+    expect_vec(specular.materials[0].metallic_roughness->specular_color, {2, 1, 0});
+    EXPECT_TRUE(specular.materials[0].metallic_roughness->has_specular());
 
     expect_error(Parts{.materials = R"({"m": {"metallic": 1, "diffuse": [1, 1, 1]}})"},
                  {": materials.m.diffuse: a metallic-roughness material (base_color, metallic, roughness, transmission) has no Phong fields"});
@@ -656,6 +663,12 @@ TEST_F(SceneLoaderTest, MetallicRoughnessMaterials) {
                  {": materials.m.sheen_roughness: a sheen's roughness needs \"sheen_color\""});
     expect_error(Parts{.materials = R"({"m": {"sheen_color": [1, 2, 1]}})"},
                  {": materials.m.sheen_color[1]: expected a number between 0 and 1, got 2"});
+    expect_error(Parts{.materials = R"({"m": {"specular_factor": 2}})"},
+                 {": materials.m.specular_factor: expected a number between 0 and 1, got 2"});
+    expect_error(Parts{.materials = R"({"m": {"specular_color": [1, -1, 1]}})"},
+                 {": materials.m.specular_color[1]: expected a number >= 0, got -1"});
+    expect_error(Parts{.materials = R"({"m": {"specular_color": [1, 1, 1], "specular": [1, 1, 1]}})"},
+                 {": materials.m.specular: a metallic-roughness material (base_color, metallic, roughness, transmission) has no Phong fields"});
     expect_error(Parts{.materials = R"({"m": {"clearcoat": 1.5}})"},
                  {": materials.m.clearcoat: expected a number between 0 and 1, got 1.5"});
     expect_error(Parts{.materials = R"({"m": {"clearcoat_roughness": 0.5}})"},

@@ -48,7 +48,7 @@ float under_coat(CoatLobe l, float cos_o) {
 }
 
 vec3 coat_eval(CoatLobe l, vec3 n, vec3 wo, vec3 wi) {
-    return l.factor * ggx_eval(vec3(COAT_F0), l.alpha, n, wo, wi);
+    return l.factor * ggx_eval(vec3(COAT_F0), 1.0f, l.alpha, n, wo, wi);
 }
 
 float coat_pdf(CoatLobe l, Basis frame, vec3 wo, vec3 wi, uint /* hemisphere */) {

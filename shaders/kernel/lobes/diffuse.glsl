@@ -16,6 +16,7 @@ struct DiffuseLobe {
     vec3 albedo;    // kd * diffuse
     bool coupled;   // under the material's rough lobe
     vec3 f0;        // that lobe's reflectance at normal incidence (0 when not coupled)
+    float f90;      // and at grazing incidence (fresnel.glsl)
     float alpha;    // its width (0 when not coupled)
     vec3 scale;     // the value but for the (1 - R) factors: albedo / (pi (1 - R_avg)), or albedo / pi
     float weight;   // its albedo seen from wo: the selection weight
@@ -28,15 +29,16 @@ DiffuseLobe diffuse_lobe(Material m, float cos_o) {
     l.albedo = m.diffuse * m.kd;
     l.coupled = HAS_MICROFACET && m.ggx_alpha > 0.0f;
     l.f0 = l.coupled ? m.ggx_f0 : vec3(0.0f);
+    l.f90 = material_f90(m);
     l.alpha = l.coupled ? m.ggx_alpha : 0.0f;
     l.scale = l.albedo * (1.0f / PI);
     l.weight = mean3(l.albedo);
     if (l.coupled) {
         // R_avg < 1 unless f0 = 1, which only a metal without a diffuse lobe has.
-        vec3 left = vec3(1.0f) - ggx_mean_reflectance(l.f0, l.alpha);
+        vec3 left = vec3(1.0f) - ggx_mean_reflectance(l.f0, l.f90, l.alpha);
         l.scale = vec3(left.x > 0.0f ? l.scale.x / left.x : 0.0f, left.y > 0.0f ? l.scale.y / left.y : 0.0f,
                        left.z > 0.0f ? l.scale.z / left.z : 0.0f);
-        l.weight = cos_o > 0.0f ? mean3(l.albedo * (vec3(1.0f) - ggx_reflectance(l.f0, cos_o, l.alpha))) : 0.0f;
+        l.weight = cos_o > 0.0f ? mean3(l.albedo * (vec3(1.0f) - ggx_reflectance(l.f0, l.f90, cos_o, l.alpha))) : 0.0f;
     }
     return l;
 }
@@ -54,7 +56,8 @@ vec3 diffuse_eval(DiffuseLobe l, vec3 n, vec3 wo, vec3 wi) {
         if (!(co > 0.0f && ci > 0.0f)) {
             return vec3(0.0f);
         }
-        f *= (vec3(1.0f) - ggx_reflectance(l.f0, co, l.alpha)) * (vec3(1.0f) - ggx_reflectance(l.f0, ci, l.alpha));
+        f *= (vec3(1.0f) - ggx_reflectance(l.f0, l.f90, co, l.alpha)) *
+             (vec3(1.0f) - ggx_reflectance(l.f0, l.f90, ci, l.alpha));
     }
     return f;
 }

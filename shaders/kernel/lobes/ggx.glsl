@@ -43,7 +43,7 @@ float ggx_lambda(float c, float alpha) {
 // either lies below).
 // One return, no early exit, as for ggx_pdf: such functions the host inlines
 // (host/gpu/spirv_specialize.cpp).
-vec3 ggx_eval(vec3 f0, float alpha, vec3 n, vec3 wo, vec3 wi) {
+vec3 ggx_eval(vec3 f0, float f90, float alpha, vec3 n, vec3 wo, vec3 wi) {
     precise float co = dot(n, wo);
     precise float ci = dot(n, wi);
     precise vec3 f = vec3(0.0f);
@@ -52,7 +52,7 @@ vec3 ggx_eval(vec3 f0, float alpha, vec3 n, vec3 wo, vec3 wi) {
         precise float oh = dot(wo, h);
         precise float nh = dot(n, h);
         precise float g2 = 1.0f / (1.0f + ggx_lambda(co, alpha) + ggx_lambda(ci, alpha));
-        f = fresnel_schlick(f0, oh) * (ggx_d(nh, alpha) * g2 / (4.0f * co * ci));
+        f = fresnel_schlick(f0, f90, oh) * (ggx_d(nh, alpha) * g2 / (4.0f * co * ci));
     }
     return f;
 }
@@ -105,6 +105,7 @@ vec3 ggx_sample(float alpha, vec3 wo, float u1, float u2) {
 struct GgxLobe {
     float alpha;
     vec3 f0;
+    float f90;
     float weight;
 };
 
@@ -112,7 +113,8 @@ GgxLobe ggx_lobe(Material m, float cos_o) {
     GgxLobe l;
     l.alpha = HAS_MICROFACET ? m.ggx_alpha : 0.0f;
     l.f0 = l.alpha > 0.0f ? m.ggx_f0 : vec3(0.0f);
-    l.weight = l.alpha > 0.0f && cos_o > 0.0f ? mean3(fresnel_schlick(l.f0, cos_o)) : 0.0f;
+    l.f90 = material_f90(m);
+    l.weight = l.alpha > 0.0f && cos_o > 0.0f ? mean3(fresnel_schlick(l.f0, l.f90, cos_o)) : 0.0f;
     return l;
 }
 
@@ -122,7 +124,7 @@ bool ggx_present(GgxLobe l) {
 
 // The mixture's interface (smooth_lobes.glsl), over the functions above.
 vec3 ggx_eval(GgxLobe l, vec3 n, vec3 wo, vec3 wi) {
-    return ggx_eval(l.f0, l.alpha, n, wo, wi);
+    return ggx_eval(l.f0, l.f90, l.alpha, n, wo, wi);
 }
 
 float ggx_pdf(GgxLobe l, Basis frame, vec3 wo, vec3 wi, uint /* hemisphere */) {

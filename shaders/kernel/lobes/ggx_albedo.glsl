@@ -7,8 +7,8 @@
 //   E_s(mu)  the same with the Fresnel (1 - wo.h)^5, Schlick's weight
 //
 // and their means over the cosine-weighted hemisphere, 2 int_0^1 E(mu) mu dmu. As
-// Schlick's Fresnel is f0 + (1 - f0)(1 - wo.h)^5, the lobe of reflectance f0
-// reflects f0 E + (1 - f0) E_s by single scattering.
+// Schlick's Fresnel is f0 + (f90 - f0)(1 - wo.h)^5, the lobe of reflectance f0 (f90 at
+// grazing incidence) reflects f0 E + (f90 - f0) E_s by single scattering.
 
 // The tables in table_words from ggx_table_first_word(), for each of E and E_s:
 // GGX_TABLE_SIZE^2 values, mu fastest, then GGX_TABLE_SIZE values of the mean, at the knots
@@ -61,25 +61,25 @@ float ggx_mean_albedo(float alpha) {
 }
 
 // F_ms of Kulla and Conty: the Fresnel of light that leaves after bouncing between
-// microfacets, F_avg^2 E_avg / (1 - F_avg (1 - E_avg)), F_avg = f0 + (1 - f0) / 21
+// microfacets, F_avg^2 E_avg / (1 - F_avg (1 - E_avg)), F_avg = f0 + (f90 - f0) / 21
 // the mean of Schlick's Fresnel over the cosine-weighted hemisphere.
-vec3 ggx_multiple_fresnel(vec3 f0, float e_avg) {
-    vec3 f_avg = f0 + (vec3(1.0f) - f0) * (1.0f / 21.0f);
+vec3 ggx_multiple_fresnel(vec3 f0, float f90, float e_avg) {
+    vec3 f_avg = f0 + (vec3(f90) - f0) * (1.0f / 21.0f);
     return f_avg * f_avg * e_avg / (vec3(1.0f) - f_avg * (1.0f - e_avg));
 }
 
-// What the rough lobe of reflectance f0 reflects from cos(theta) = mu, single and
-// multiple scattering together.
-vec3 ggx_reflectance(vec3 f0, float mu, float alpha) {
+// What the rough lobe of reflectance f0 (f90) reflects from cos(theta) = mu, single
+// and multiple scattering together.
+vec3 ggx_reflectance(vec3 f0, float f90, float mu, float alpha) {
     float e = ggx_albedo(mu, alpha);
     float e_s = ggx_table_lookup(GGX_SCHLICK_TABLE, mu, alpha);
-    vec3 f_ms = ggx_multiple_fresnel(f0, ggx_mean_albedo(alpha));
-    return f0 * e + (vec3(1.0f) - f0) * e_s + f_ms * (1.0f - e);
+    vec3 f_ms = ggx_multiple_fresnel(f0, f90, ggx_mean_albedo(alpha));
+    return f0 * e + (vec3(f90) - f0) * e_s + f_ms * (1.0f - e);
 }
 
 // Its mean over the cosine-weighted hemisphere.
-vec3 ggx_mean_reflectance(vec3 f0, float alpha) {
+vec3 ggx_mean_reflectance(vec3 f0, float f90, float alpha) {
     float e_avg = ggx_mean_albedo(alpha);
     float e_s_avg = ggx_table_mean(GGX_SCHLICK_TABLE, alpha);
-    return f0 * e_avg + (vec3(1.0f) - f0) * e_s_avg + ggx_multiple_fresnel(f0, e_avg) * (1.0f - e_avg);
+    return f0 * e_avg + (vec3(f90) - f0) * e_s_avg + ggx_multiple_fresnel(f0, f90, e_avg) * (1.0f - e_avg);
 }

@@ -28,7 +28,7 @@ GgxMultipleLobe ggx_multiple_lobe(Material m, float cos_o) {
     l.weight = 0.0f;
     if (l.alpha > 0.0f && cos_o > 0.0f) {
         float e_avg = ggx_mean_albedo(l.alpha);
-        vec3 f_ms = ggx_multiple_fresnel(m.ggx_f0, e_avg);
+        vec3 f_ms = ggx_multiple_fresnel(m.ggx_f0, material_f90(m), e_avg);
         // E_avg < 1 where E(mu) < 1 somewhere, which any alpha > 0 has; the guard keeps
         // a table rounded to 1 from dividing by zero.
         l.scale = e_avg < 1.0f ? f_ms * (1.0f / (PI * (1.0f - e_avg))) : vec3(0.0f);
