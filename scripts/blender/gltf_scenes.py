@@ -7,7 +7,8 @@
 #       --scene still_life --out scenes/gltf/still_life.glb [--render cycles.exr --spp 1024]
 #
 # Materials are Principled BSDFs set only through what glTF carries (base colour,
-# metallic, roughness, emission; Specular stays 0.5, glTF's 4% reflectance), and
+# metallic, roughness, emission, transmission, clear coat; Specular stays 0.5,
+# glTF's 4% reflectance, but on the "layers" scene's plastic), and
 # Cycles renders them as they are, with its multiple-scattering GGX, which vkrt's
 # compensated GGX stands for (docs/decisions/0040-ggx-multiple-scattering.md; the
 # diffuse lobes still differ, docs/decisions/0029-metallic-roughness.md); the
