@@ -93,6 +93,10 @@ void set_texture_fields(const Material& m, kernel::Material& out) {
     out.normal_map = map(m.normal_map);
     out.emission_map = map(m.emission_texture);
     out.transmission_map = map(m.transmission_texture);
+    out.coat_map = map(m.clearcoat_texture);
+    out.coat_rough_map = map(m.clearcoat_roughness_texture);
+    out.sheen_map = map(m.sheen_color_texture);
+    out.sheen_rough_map = map(m.sheen_roughness_texture);
     out.uv_u = vec3(float(a[0]), float(a[1]), float(a[2]));
     out.uv_v = vec3(float(a[3]), float(a[4]), float(a[5]));
 }

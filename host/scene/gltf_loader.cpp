@@ -282,18 +282,8 @@ private:
             mr.transmission = unit(factor.GetNumberAsDouble(),
                                    element + ".extensions.KHR_materials_transmission.transmissionFactor");
         }
-        if (e->second.Has("transmissionTexture")) {
-            tinygltf::TextureInfo info;
-            const tinygltf::Value& t = e->second.Get("transmissionTexture");
-            const std::string at = element + ".extensions.KHR_materials_transmission.transmissionTexture";
-            if (!t.IsObject() || !t.Get("index").IsInt()) fail_at(at, "expected a textureInfo with an \"index\"");
-            info.index = t.Get("index").GetNumberAsInt();
-            if (t.Get("texCoord").IsInt()) info.texCoord = t.Get("texCoord").GetNumberAsInt();
-            if (t.Has("extensions") && t.Get("extensions").Has("KHR_texture_transform")) {
-                info.extensions["KHR_texture_transform"] = t.Get("extensions").Get("KHR_texture_transform");
-            }
-            m.transmission_texture = textures_.texture(info, at, Encoding::Linear, m);
-        }
+        m.transmission_texture = extension_texture(e->second, "transmissionTexture",
+                                                   element + ".extensions.KHR_materials_transmission", Encoding::Linear, m);
         mr.thin = true;
         const auto volume = g.extensions.find("KHR_materials_volume");
         if (volume == g.extensions.end()) return;
@@ -336,9 +326,8 @@ private:
         if (const tinygltf::Value& v = e->second.Get("clearcoatRoughnessFactor"); v.IsNumber()) {
             mr.clearcoat_roughness = unit(v.GetNumberAsDouble(), at + ".clearcoatRoughnessFactor");
         }
-        if (e->second.Has("clearcoatTexture") || e->second.Has("clearcoatRoughnessTexture")) {
-            note_unsupported("clear coat textures (the factors are used)");
-        }
+        m.clearcoat_texture = extension_texture(e->second, "clearcoatTexture", at, Encoding::Linear, m);
+        m.clearcoat_roughness_texture = extension_texture(e->second, "clearcoatRoughnessTexture", at, Encoding::Linear, m);
         if (e->second.Has("clearcoatNormalTexture")) {
             note_unsupported("clear coat normal maps (the coat has the material's shading normal)");
         }
@@ -357,9 +346,8 @@ private:
         if (const tinygltf::Value& v = e->second.Get("sheenRoughnessFactor"); v.IsNumber()) {
             mr.sheen_roughness = unit(v.GetNumberAsDouble(), at + ".sheenRoughnessFactor");
         }
-        if (e->second.Has("sheenColorTexture") || e->second.Has("sheenRoughnessTexture")) {
-            note_unsupported("sheen textures (the factors are used)");
-        }
+        m.sheen_color_texture = extension_texture(e->second, "sheenColorTexture", at, Encoding::SrgbUnlessFloat, m);
+        m.sheen_roughness_texture = extension_texture(e->second, "sheenRoughnessTexture", at, Encoding::Linear, m);
     }
 
     // KHR_materials_specular's factors: the dielectric's specular layer (scene.hpp;
@@ -411,6 +399,24 @@ private:
             m.metallic_roughness_texture = converted->metallic_roughness;
         }
         return true;
+    }
+
+    // The texture an extension's textureInfo `key` names (its index, texCoord and
+    // KHR_texture_transform), read as the core material's textures are; none when the
+    // extension has no such key.
+    std::optional<std::uint32_t> extension_texture(const tinygltf::Value& extension, const char* key,
+                                                   const std::string& at_extension, Encoding encoding, Material& m) {
+        if (!extension.Has(key)) return std::nullopt;
+        tinygltf::TextureInfo info;
+        const tinygltf::Value& t = extension.Get(key);
+        const std::string at = at_extension + "." + key;
+        if (!t.IsObject() || !t.Get("index").IsInt()) fail_at(at, "expected a textureInfo with an \"index\"");
+        info.index = t.Get("index").GetNumberAsInt();
+        if (t.Get("texCoord").IsInt()) info.texCoord = t.Get("texCoord").GetNumberAsInt();
+        if (t.Has("extensions") && t.Get("extensions").Has("KHR_texture_transform")) {
+            info.extensions["KHR_texture_transform"] = t.Get("extensions").Get("KHR_texture_transform");
+        }
+        return textures_.texture(info, at, encoding, m);
     }
 
     // An extension's colour: an array of 3 numbers from 0 to 1, each named when it is not.

@@ -204,6 +204,11 @@ RenderSettings read_render(const Node& n) {
 // _distance), a clear coat, sheen and the dielectric's specular layer, which replace
 // the Phong fields rather than add to them (ior serves both). Any of them makes a
 // material a metallic-roughness one.
+// A material's texture fields (read_texture).
+constexpr std::array<const char*, 8> kTextureFields = {
+    "texture", "normal_map", "emission_texture", "transmission_texture", "clearcoat_texture",
+    "clearcoat_roughness_texture", "sheen_color_texture", "sheen_roughness_texture"};
+
 constexpr std::array<const char*, 13> kMetallicRoughnessFields = {
     "base_color", "metallic", "roughness", "transmission", "thin", "attenuation_color", "attenuation_distance",
     "clearcoat", "clearcoat_roughness", "sheen_color", "sheen_roughness", "specular_factor", "specular_color"};
@@ -270,9 +275,9 @@ void read_normal_map(const Node& n, Material& m, Scene& scene) {
 // in degrees here, like every angle of the format).
 void read_texture(const Node& n, Material& m, Scene& scene) {
     if (auto t = n.find("texture_transform")) {
-        if (!n.find("texture") && !n.find("normal_map") && !n.find("emission_texture") && !n.find("transmission_texture")) {
+        if (std::none_of(kTextureFields.begin(), kTextureFields.end(), [&](const char* f) { return n.find(f).has_value(); })) {
             n.fail_field("texture_transform", "a texture transform needs a \"texture\", a \"normal_map\", an "
-                                              "\"emission_texture\" or a \"transmission_texture\"");
+                                              "\"emission_texture\" or a layer's texture");
         }
         t->allow_only({"offset", "rotation", "scale"});
         double offset[2] = {0.0, 0.0}, scale[2] = {1.0, 1.0}, rotation = 0.0;
@@ -296,10 +301,29 @@ void read_texture(const Node& n, Material& m, Scene& scene) {
         const std::string element = fmt::format("{}: {}", n.file(), file->path());
         m.emission_texture = load_texture(scene, file->file_path(), Encoding::SrgbUnlessFloat, element);
     }
-    if (auto file = n.find("transmission_texture")) {
-        if (!n.find("transmission")) n.fail_field("transmission_texture", "a transmission texture needs \"transmission\"");
-        const std::string element = fmt::format("{}: {}", n.file(), file->path());
-        m.transmission_texture = load_texture(scene, file->file_path(), Encoding::Linear, element);
+    // The metallic-roughness layers' textures, each needing its factor.
+    const struct {
+        const char* field;
+        const char* factor;
+        const char* what;
+        Encoding encoding;
+        std::optional<std::uint32_t> Material::*slot;
+    } layers[] = {
+        {"transmission_texture", "transmission", "a transmission texture", Encoding::Linear, &Material::transmission_texture},
+        {"clearcoat_texture", "clearcoat", "a clear coat texture", Encoding::Linear, &Material::clearcoat_texture},
+        {"clearcoat_roughness_texture", "clearcoat", "a clear coat roughness texture", Encoding::Linear,
+         &Material::clearcoat_roughness_texture},
+        {"sheen_color_texture", "sheen_color", "a sheen colour texture", Encoding::SrgbUnlessFloat,
+         &Material::sheen_color_texture},
+        {"sheen_roughness_texture", "sheen_color", "a sheen roughness texture", Encoding::Linear,
+         &Material::sheen_roughness_texture},
+    };
+    for (const auto& layer : layers) {
+        if (auto file = n.find(layer.field)) {
+            if (!n.find(layer.factor)) n.fail_field(layer.field, fmt::format("{} needs \"{}\"", layer.what, layer.factor));
+            const std::string element = fmt::format("{}: {}", n.file(), file->path());
+            m.*layer.slot = load_texture(scene, file->file_path(), layer.encoding, element);
+        }
     }
 }
 
@@ -327,11 +351,11 @@ void read_alpha(const Node& n, Material& m) {
 }
 
 Material read_material(const std::string& name, const Node& n, Scene& scene) {
-    std::vector<std::string_view> allowed = {"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit", "ior",
-                                        "fresnel", "emission", "transmission_texture", "texture", "texture_transform",
-                                        "normal_map", "normal_scale", "emission_texture", "alpha_mode", "alpha",
-                                        "alpha_cutoff"};
+    std::vector<std::string_view> allowed = {"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit",
+                                             "ior", "fresnel", "emission", "texture_transform", "normal_scale",
+                                             "alpha_mode", "alpha", "alpha_cutoff"};
     allowed.insert(allowed.end(), kMetallicRoughnessFields.begin(), kMetallicRoughnessFields.end());
+    allowed.insert(allowed.end(), kTextureFields.begin(), kTextureFields.end());
     n.allow_only(allowed);
     Material m;
     m.name = name;

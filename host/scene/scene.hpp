@@ -168,12 +168,23 @@ struct Material {
     // With metallic_roughness transmission: a linear texture whose red channel
     // multiplies the transmission (glTF's transmissionTexture), at the same coordinates.
     std::optional<std::uint32_t> transmission_texture;
+    // With metallic_roughness layers (kernel/texture.glsl, apply_layer_textures), at the
+    // same coordinates: linear textures whose red channel multiplies clearcoat and
+    // whose green multiplies clearcoat_roughness (glTF's clearcoatTexture and
+    // clearcoatRoughnessTexture); a colour texture multiplying sheen_color and a linear
+    // one whose alpha multiplies sheen_roughness (glTF's sheen textures).
+    std::optional<std::uint32_t> clearcoat_texture;
+    std::optional<std::uint32_t> clearcoat_roughness_texture;
+    std::optional<std::uint32_t> sheen_color_texture;
+    std::optional<std::uint32_t> sheen_roughness_texture;
     // Every texture slot above, for what treats them alike.
-    std::array<std::optional<std::uint32_t>*, 5> texture_slots() {
-        return {&texture, &metallic_roughness_texture, &normal_map, &emission_texture, &transmission_texture};
+    std::array<std::optional<std::uint32_t>*, 9> texture_slots() {
+        return {&texture, &metallic_roughness_texture, &normal_map, &emission_texture, &transmission_texture,
+                &clearcoat_texture, &clearcoat_roughness_texture, &sheen_color_texture, &sheen_roughness_texture};
     }
     bool textured() const {
-        return texture || metallic_roughness_texture || normal_map || emission_texture || transmission_texture;
+        return texture || metallic_roughness_texture || normal_map || emission_texture || transmission_texture ||
+               clearcoat_texture || clearcoat_roughness_texture || sheen_color_texture || sheen_roughness_texture;
     }
     std::array<double, 6> uv_transform{1.0, 0.0, 0.0, 0.0, 1.0, 0.0};
     // Coverage (glTF's alphaMode; kernel/alpha.glsl): the opacity at a point is

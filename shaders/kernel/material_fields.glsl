@@ -83,6 +83,14 @@ MATERIAL_FIELD(float, sheen_alpha, 13, w)
 MATERIAL_FIELD3(vec3, dielectric_f0_rgb, 14)
 MATERIAL_FIELD(float, dielectric_f90, 14, w)
 
+// The layers' textures (texture.glsl; glTF's KHR_materials_clearcoat and _sheen): 1 +
+// the texture's index, 0 for none. Red multiplies the coat's factor, green its
+// roughness; the colour multiplies the sheen's colour, alpha its roughness.
+MATERIAL_FIELD(uint, coat_map, 15, x)
+MATERIAL_FIELD(uint, coat_rough_map, 15, y)
+MATERIAL_FIELD(uint, sheen_map, 15, z)
+MATERIAL_FIELD(uint, sheen_rough_map, 15, w)
+
 #undef MATERIAL_PAD
 #undef MATERIAL_FIELD3
 #undef MATERIAL_FIELD

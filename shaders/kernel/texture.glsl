@@ -40,30 +40,32 @@ vec4 texel_at(Texture t, uint x, uint y) {
 }
 
 // Texel index i, from -1 to 2n, on an axis of n texels, by the wrap mode. (GLSL
-// leaves % of negative numbers undefined: a period is added first.)
+// leaves % of negative numbers undefined: a period is added first.) This and
+// wrap_coordinate have one return, no early exit, as texel_at: such functions the
+// host inlines (host/gpu/spirv_specialize.cpp), and every texture lookup calls them.
 uint wrap_index(int i, uint n, uint mode) {
     int size = int(n);
+    uint index = 0u;
     if (mode == WRAP_CLAMP) {
-        return uint(clamp(i, 0, size - 1));
-    }
-    if (mode == WRAP_MIRROR) {
+        index = uint(clamp(i, 0, size - 1));
+    } else if (mode == WRAP_MIRROR) {
         int m = (i + 2 * size) % (2 * size);
-        return uint(m < size ? m : 2 * size - 1 - m);
+        index = uint(m < size ? m : 2 * size - 1 - m);
+    } else {
+        index = uint((i + size) % size);
     }
-    return uint((i + size) % size);
+    return index;
 }
 
 // A texture coordinate brought into [0, 2], where repeat and mirror (both periodic
 // with 2) and clamp give what they give at the coordinate itself; not finite or
 // beyond 1e30 (where floats have no fraction left): 0.
 float wrap_coordinate(float c, uint mode) {
-    if (!(abs(c) < 1.0e30f)) {
-        return 0.0f;
+    float w = 0.0f;
+    if (abs(c) < 1.0e30f) {
+        w = mode == WRAP_CLAMP ? clamp(c, 0.0f, 1.0f) : clamp(c - 2.0f * floor(c * 0.5f), 0.0f, 2.0f);
     }
-    if (mode == WRAP_CLAMP) {
-        return clamp(c, 0.0f, 1.0f);
-    }
-    return clamp(c - 2.0f * floor(c * 0.5f), 0.0f, 2.0f);
+    return w;
 }
 
 // The texture's value at (u, v): (0, 0) is the top left corner of the image, (1, 1)
@@ -123,12 +125,36 @@ void set_metallic_roughness(INOUT(Material) m, vec3 base, float metallic, float 
     m.transmit = glass * base;
 }
 
+// The layers' textures at texture coordinates uv (material_uv): the coat's factor
+// times the coat texture's red, its roughness times the coat roughness texture's
+// green; the sheen's colour times the sheen colour texture, its roughness times the
+// sheen roughness texture's alpha (glTF's packings). A width is the roughness
+// squared, floored: the floor times the texture's square is below the floor, so
+// scaling the stored width is scaling the roughness.
+void apply_layer_textures(INOUT(Material) m, vec2 uv) {
+    if (HAS_COAT && m.coat_map != 0u) {
+        m.coat = clamp(m.coat * texture_bilinear(load_texture(m.coat_map - 1u), uv).r, 0.0f, 1.0f);
+    }
+    if (HAS_COAT && m.coat_rough_map != 0u) {
+        float g = clamp(texture_bilinear(load_texture(m.coat_rough_map - 1u), uv).g, 0.0f, 1.0f);
+        m.coat_alpha = max(m.coat_alpha * (g * g), MIN_GGX_ALPHA);
+    }
+    if (HAS_SHEEN && m.sheen_map != 0u) {
+        m.sheen_color = clamp(m.sheen_color * vec3(texture_bilinear(load_texture(m.sheen_map - 1u), uv)), vec3(0.0f),
+                              vec3(1.0f));
+    }
+    if (HAS_SHEEN && m.sheen_rough_map != 0u) {
+        float a = clamp(texture_bilinear(load_texture(m.sheen_rough_map - 1u), uv).a, 0.0f, 1.0f);
+        m.sheen_alpha = max(m.sheen_alpha * (a * a), MIN_SHEEN_ALPHA);
+    }
+}
+
 // The material at a hit, textured. A Phong material's diffuse colour times the
 // colour texture; a metallic-roughness material rebuilt from its factors (flat_scene.cpp)
 // times its textures: base colour times the colour texture, metallic times the
 // metallic-roughness texture's blue channel, roughness times its green (glTF's
 // packing), transmission times the transmission texture's red; the emission times
-// the emission texture. Vertex colours multiply the
+// the emission texture; the layers' textures as apply_layer_textures says. Vertex colours multiply the
 // colour as the colour texture does (vertex_data.glsl). Only triangles and quads
 // have texture coordinates and vertex colours; other shapes keep the untextured
 // material.
@@ -137,6 +163,10 @@ Material surface_material(Hit hit) {
     bool triangle = (hit.prim >> REF_KIND_SHIFT) == REF_TRIANGLE;
     if (HAS_TEXTURES && m.emission_map != 0u && triangle) {
         m.emission = textured_emission(m, material_uv(m, hit.uv));
+    }
+    if (HAS_TEXTURES && (HAS_COAT || HAS_SHEEN) && triangle &&
+        (m.coat_map != 0u || m.coat_rough_map != 0u || m.sheen_map != 0u || m.sheen_rough_map != 0u)) {
+        apply_layer_textures(m, material_uv(m, hit.uv));
     }
     bool textured = HAS_TEXTURES && (m.color_map != 0u || m.metal_rough_map != 0u || m.transmission_map != 0u) && triangle;
     bool tinted = HAS_VERTEX_COLORS && triangle && triangle_has_colors(hit.prim & REF_INDEX_MASK);

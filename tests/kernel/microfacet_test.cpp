@@ -612,7 +612,9 @@ TEST(DielectricSpecular, KeepsAWhiteBasesLightAndReflectsByItsTables) {
                     };
                     const Kernel::Lobes white = specular_lobes_of(k, vec3(1.0f), roughness, specular, color, float(co));
                     const Kernel::Lobes black = specular_lobes_of(k, vec3(0.0f), roughness, specular, color, float(co));
-                    if (specular == 0.0f) EXPECT_EQ(white.ggx.weight, 0.0f);
+                    if (specular == 0.0f) {
+                        EXPECT_EQ(white.ggx.weight, 0.0f);
+                    }
                     const vec3 tables = k.ggx_reflectance(black.ggx.f0, black.ggx.f90, float(co), roughness * roughness);
                     for (int c = 0; c < 3; ++c) {
                         const double w = reflected(white, c);

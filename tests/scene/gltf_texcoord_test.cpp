@@ -77,6 +77,22 @@ TEST(GltfTexCoord, TheTransmissionTextureReadsItsSet) {
     EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
 }
 
+// The layers' textures (KHR_materials_clearcoat's and _sheen's) are the material's
+// too, on its set: the colour read as sRGB, the rest as linear data.
+TEST(GltfTexCoord, TheLayersTexturesReadTheirSet) {
+    const Scene s = load_scene(two_set_quad("layers", R"({"pbrMetallicRoughness": {"metallicFactor": 0},
+        "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1, "clearcoatTexture": {"index": 0, "texCoord": 1},
+                                                   "clearcoatRoughnessTexture": {"index": 0, "texCoord": 1}},
+                       "KHR_materials_sheen": {"sheenColorFactor": [1, 1, 1], "sheenColorTexture": {"index": 0, "texCoord": 1},
+                                               "sheenRoughnessTexture": {"index": 0, "texCoord": 1}}}})"));
+    const Material& m = s.materials[0];
+    ASSERT_TRUE(m.clearcoat_texture && m.clearcoat_roughness_texture && m.sheen_color_texture && m.sheen_roughness_texture);
+    EXPECT_EQ(*m.clearcoat_texture, *m.clearcoat_roughness_texture) << "one image, one encoding: one texture";
+    EXPECT_NE(*m.sheen_color_texture, *m.sheen_roughness_texture) << "sRGB and linear are two textures";
+    EXPECT_EQ(*s.triangles[0].uvs, kSetOne);
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+}
+
 // KHR_texture_transform's texCoord overrides the textureInfo's (the extension says so).
 TEST(GltfTexCoord, TheTransformsSetOverrides) {
     const Scene s = load_scene(two_set_quad("transform", R"({"pbrMetallicRoughness": {"metallicFactor": 0,

@@ -663,6 +663,10 @@ TEST_F(SceneLoaderTest, MetallicRoughnessMaterials) {
                  {": materials.m.sheen_roughness: a sheen's roughness needs \"sheen_color\""});
     expect_error(Parts{.materials = R"({"m": {"sheen_color": [1, 2, 1]}})"},
                  {": materials.m.sheen_color[1]: expected a number between 0 and 1, got 2"});
+    expect_error(Parts{.materials = R"({"m": {"base_color": [1, 1, 1], "clearcoat_roughness_texture": "c.png"}})"},
+                 {": materials.m.clearcoat_roughness_texture: a clear coat roughness texture needs \"clearcoat\""});
+    expect_error(Parts{.materials = R"({"m": {"roughness": 1, "sheen_color_texture": "s.png"}})"},
+                 {": materials.m.sheen_color_texture: a sheen colour texture needs \"sheen_color\""});
     expect_error(Parts{.materials = R"({"m": {"specular_factor": 2}})"},
                  {": materials.m.specular_factor: expected a number between 0 and 1, got 2"});
     expect_error(Parts{.materials = R"({"m": {"specular_color": [1, -1, 1]}})"},
