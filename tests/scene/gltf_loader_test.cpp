@@ -426,20 +426,23 @@ TEST(GltfErrors, AnIncludedFilesErrorFollowsTheScenesPath) {
     }
 }
 
+// A file of one node whose one material is the JSON `material` (in place of kOneNode's
+// plain grey dielectric), for the extensions' tests.
+std::filesystem::path with_material(const std::string& name, const std::string& material) {
+    const std::string plain = R"({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0}})";
+    std::string json = gltf_json("mesh.bin", kOneNode);
+    json.replace(json.find(plain), plain.size(), material);
+    return write_gltf(name, json);
+}
+
 // Glass: KHR_materials_transmission's factor, KHR_materials_ior's index, and
 // KHR_materials_volume's thickness, which makes the glass refract, and its
 // attenuation; without a volume it is a thin wall, which absorbs nothing. What is
 // not rendered is named.
 TEST(Gltf, GlassExtensionsAreRead) {
-    const std::string plain = R"({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0}})";
-    const auto with_material = [&](const std::string& name, const std::string& material) {
-        std::string json = gltf_json("mesh.bin", kOneNode);
-        json.replace(json.find(plain), plain.size(), material);
-        return vkrt::load_scene(write_gltf(name, json));
-    };
-    const Scene solid = with_material("glass_solid", R"({"pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0},
+    const Scene solid = vkrt::load_scene(with_material("glass_solid", R"({"pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0},
         "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.75}, "KHR_materials_ior": {"ior": 1.33},
-                       "KHR_materials_volume": {"thicknessFactor": 0.1, "attenuationDistance": 2, "attenuationColor": [1, 0.5, 0.25]}}})");
+                       "KHR_materials_volume": {"thicknessFactor": 0.1, "attenuationDistance": 2, "attenuationColor": [1, 0.5, 0.25]}}})"));
     ASSERT_TRUE(solid.materials[0].metallic_roughness.has_value());
     EXPECT_DOUBLE_EQ(solid.materials[0].metallic_roughness->transmission, 0.75);
     EXPECT_FALSE(solid.materials[0].metallic_roughness->thin);
@@ -449,33 +452,27 @@ TEST(Gltf, GlassExtensionsAreRead) {
     EXPECT_DOUBLE_EQ(solid.materials[0].ior, 1.33);
     EXPECT_TRUE(solid.warnings.empty()) << solid.warnings.front();
 
-    const Scene thin = with_material("glass_thin", R"({"pbrMetallicRoughness": {"roughnessFactor": 0.4},
+    const Scene thin = vkrt::load_scene(with_material("glass_thin", R"({"pbrMetallicRoughness": {"roughnessFactor": 0.4},
         "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
-                       "KHR_materials_volume": {"thicknessFactor": 0, "attenuationDistance": 2, "attenuationColor": [1, 0.5, 0.5]}}})");
+                       "KHR_materials_volume": {"thicknessFactor": 0, "attenuationDistance": 2, "attenuationColor": [1, 0.5, 0.5]}}})"));
     EXPECT_TRUE(thin.materials[0].metallic_roughness->thin);
     EXPECT_FALSE(thin.materials[0].metallic_roughness->absorbs());
     EXPECT_DOUBLE_EQ(thin.materials[0].ior, 1.5);
     EXPECT_DOUBLE_EQ(thin.materials[0].metallic_roughness->roughness, 0.4);  // rough glass
     EXPECT_TRUE(thin.warnings.empty()) << thin.warnings.front();
 
-    std::string json = gltf_json("mesh.bin", kOneNode);
-    json.replace(json.find(plain), plain.size(),
-                 R"({"extensions": {"KHR_materials_transmission": {"transmissionTexture": {"index": 0}}}})");
-    vkrt::test::expect_error_message(load_error(write_gltf("glass_texture", json)), "",
+    vkrt::test::expect_error_message(
+        load_error(with_material("glass_texture", R"({"extensions": {"KHR_materials_transmission": {"transmissionTexture": {"index": 0}}}})")), "",
                                      {"KHR_materials_transmission.transmissionTexture.index", "texture 0 does not exist"});
-    json = gltf_json("mesh.bin", kOneNode);
-    json.replace(json.find(plain), plain.size(), R"({"extensions": {"KHR_materials_ior": {"ior": 0.5}}})");
-    vkrt::test::expect_error_message(load_error(write_gltf("glass_ior", json)), "",
+    vkrt::test::expect_error_message(load_error(with_material("glass_ior", R"({"extensions": {"KHR_materials_ior": {"ior": 0.5}}})")), "",
                                      {"materials[0].extensions.KHR_materials_ior.ior", "from 1 to 1000, got 0.5"});
     for (const auto& [volume, piece] :
          {std::pair{R"("attenuationDistance": 0)", "KHR_materials_volume.attenuationDistance: expected a number above 0"},
           std::pair{R"("attenuationColor": [1, 2, 1])", "KHR_materials_volume.attenuationColor[1]"},
           std::pair{R"("attenuationColor": [1, 1])", "KHR_materials_volume.attenuationColor: expected 3 numbers from 0 to 1"}}) {
-        json = gltf_json("mesh.bin", kOneNode);
-        json.replace(json.find(plain), plain.size(),
-                     fmt::format(R"({{"extensions": {{"KHR_materials_transmission": {{"transmissionFactor": 1}},
-                                     "KHR_materials_volume": {{"thicknessFactor": 1, {}}}}}}})", volume));
-        vkrt::test::expect_error_message(load_error(write_gltf("glass_volume", json)), "", {piece});
+        const std::string material = fmt::format(R"({{"extensions": {{"KHR_materials_transmission": {{"transmissionFactor": 1}},
+                                     "KHR_materials_volume": {{"thicknessFactor": 1, {}}}}}}})", volume);
+        vkrt::test::expect_error_message(load_error(with_material("glass_volume", material)), "", {piece});
     }
 }
 
@@ -483,71 +480,56 @@ TEST(Gltf, GlassExtensionsAreRead) {
 // named as not read; a factor out of range, or a texture the file lacks, is refused
 // (gltf_texcoord_test reads its textures).
 TEST(Gltf, ClearcoatIsRead) {
-    const std::string plain = R"({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0}})";
-    std::string json = gltf_json("mesh.bin", kOneNode);
-    json.replace(json.find(plain), plain.size(), R"({"pbrMetallicRoughness": {"metallicFactor": 0},
+    const Scene s = vkrt::load_scene(with_material("clearcoat", R"({"pbrMetallicRoughness": {"metallicFactor": 0},
         "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 0.75, "clearcoatRoughnessFactor": 0.25,
-                       "clearcoatNormalTexture": {"index": 0}}}})");
-    const Scene s = vkrt::load_scene(write_gltf("clearcoat", json));
+                       "clearcoatNormalTexture": {"index": 0}}}})"));
     ASSERT_TRUE(s.materials[0].metallic_roughness.has_value());
     EXPECT_DOUBLE_EQ(s.materials[0].metallic_roughness->clearcoat, 0.75);
     EXPECT_DOUBLE_EQ(s.materials[0].metallic_roughness->clearcoat_roughness, 0.25);
     EXPECT_TRUE(has_warning(s, "clear coat normal maps"));
 
-    json = gltf_json("mesh.bin", kOneNode);
-    json.replace(json.find(plain), plain.size(), R"({"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1,
-        "clearcoatRoughnessTexture": {"index": 0}}}})");
-    vkrt::test::expect_error_message(load_error(write_gltf("clearcoat_texture", json)), "",
+    vkrt::test::expect_error_message(load_error(with_material("clearcoat_texture", R"({"extensions": {"KHR_materials_clearcoat":
+        {"clearcoatFactor": 1, "clearcoatRoughnessTexture": {"index": 0}}}})")), "",
                                      {"KHR_materials_clearcoat.clearcoatRoughnessTexture.index", "texture 0 does not exist"});
 
-    json = gltf_json("mesh.bin", kOneNode);
-    json.replace(json.find(plain), plain.size(), R"({"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 2}}})");
-    vkrt::test::expect_error_message(load_error(write_gltf("clearcoat_range", json)), "",
+    vkrt::test::expect_error_message(
+        load_error(with_material("clearcoat_range", R"({"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 2}}})")), "",
                                      {"materials[0].extensions.KHR_materials_clearcoat.clearcoatFactor", "from 0 to 1, got 2"});
 }
 
 // KHR_materials_sheen's factors make the material's sheen; a colour out of range is
 // refused (gltf_texcoord_test reads its textures).
 TEST(Gltf, SheenIsRead) {
-    const std::string plain = R"({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0}})";
-    std::string json = gltf_json("mesh.bin", kOneNode);
-    json.replace(json.find(plain), plain.size(), R"({"pbrMetallicRoughness": {"metallicFactor": 0},
-        "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 0.5, 0.25], "sheenRoughnessFactor": 0.75}}})");
-    const Scene s = vkrt::load_scene(write_gltf("sheen", json));
+    const Scene s = vkrt::load_scene(with_material("sheen", R"({"pbrMetallicRoughness": {"metallicFactor": 0},
+        "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 0.5, 0.25], "sheenRoughnessFactor": 0.75}}})"));
     ASSERT_TRUE(s.materials[0].metallic_roughness.has_value());
     EXPECT_EQ(s.materials[0].metallic_roughness->sheen_color, dvec3(1, 0.5, 0.25));
     EXPECT_DOUBLE_EQ(s.materials[0].metallic_roughness->sheen_roughness, 0.75);
     EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
 
-    json = gltf_json("mesh.bin", kOneNode);
-    json.replace(json.find(plain), plain.size(), R"({"extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 2, 1]}}})");
-    vkrt::test::expect_error_message(load_error(write_gltf("sheen_range", json)), "",
+    vkrt::test::expect_error_message(
+        load_error(with_material("sheen_range", R"({"extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 2, 1]}}})")), "",
                                      {"materials[0].extensions.KHR_materials_sheen.sheenColorFactor[1]", "from 0 to 1, got 2"});
 }
 
 // KHR_materials_specular's factors make the dielectric's specular layer; its textures,
 // and the extension on glass, are named as not read; a factor out of range is refused.
 TEST(Gltf, SpecularIsRead) {
-    const std::string plain = R"({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0}})";
-    std::string json = gltf_json("mesh.bin", kOneNode);
-    json.replace(json.find(plain), plain.size(), R"({"pbrMetallicRoughness": {"metallicFactor": 0},
+    const Scene s = vkrt::load_scene(with_material("specular", R"({"pbrMetallicRoughness": {"metallicFactor": 0},
         "extensions": {"KHR_materials_specular": {"specularFactor": 0.25, "specularColorFactor": [2, 1, 0.5],
-                       "specularTexture": {"index": 0}}}})");
-    const Scene s = vkrt::load_scene(write_gltf("specular", json));
+                       "specularTexture": {"index": 0}}}})"));
     ASSERT_TRUE(s.materials[0].metallic_roughness.has_value());
     EXPECT_DOUBLE_EQ(s.materials[0].metallic_roughness->specular, 0.25);
     EXPECT_EQ(s.materials[0].metallic_roughness->specular_color, dvec3(2, 1, 0.5));
     EXPECT_TRUE(has_warning(s, "specular textures"));
     EXPECT_FALSE(has_warning(s, "on glass"));
 
-    json = gltf_json("mesh.bin", kOneNode);
-    json.replace(json.find(plain), plain.size(), R"({"extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
-        "KHR_materials_specular": {"specularFactor": 0.5}}})");
-    EXPECT_TRUE(has_warning(vkrt::load_scene(write_gltf("specular_glass", json)), "KHR_materials_specular on glass"));
+    EXPECT_TRUE(has_warning(vkrt::load_scene(with_material("specular_glass", R"({"extensions": {
+        "KHR_materials_transmission": {"transmissionFactor": 1}, "KHR_materials_specular": {"specularFactor": 0.5}}})")),
+                            "KHR_materials_specular on glass"));
 
-    json = gltf_json("mesh.bin", kOneNode);
-    json.replace(json.find(plain), plain.size(), R"({"extensions": {"KHR_materials_specular": {"specularColorFactor": [1, -2, 1]}}})");
-    vkrt::test::expect_error_message(load_error(write_gltf("specular_range", json)), "",
+    vkrt::test::expect_error_message(load_error(with_material("specular_range",
+        R"({"extensions": {"KHR_materials_specular": {"specularColorFactor": [1, -2, 1]}}})")), "",
                                      {"materials[0].extensions.KHR_materials_specular.specularColorFactor", "got -2"});
 }
 
