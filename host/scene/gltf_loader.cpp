@@ -312,9 +312,9 @@ private:
         }
     }
 
-    // KHR_materials_clearcoat's factors: a clear coat over the material
-    // (kernel/lobes/coat.glsl). Its textures and its own normal map are named as not
-    // read: the factors are used, and the coat shares the material's shading normal.
+    // KHR_materials_clearcoat's factors and textures: a clear coat over the material
+    // (kernel/lobes/coat.glsl). Its own normal map is named as not read: the coat
+    // shares the material's shading normal.
     void read_clearcoat(const tinygltf::Material& g, const std::string& element, Material& m) {
         const auto e = g.extensions.find("KHR_materials_clearcoat");
         if (e == g.extensions.end() || !m.metallic_roughness) return;
@@ -333,8 +333,8 @@ private:
         }
     }
 
-    // KHR_materials_sheen's factors: sheen over the material, under its coat
-    // (kernel/lobes/sheen.glsl). Its textures are named as not read: the factors are used.
+    // KHR_materials_sheen's factors and textures: sheen over the material, under its
+    // coat (kernel/lobes/sheen.glsl).
     void read_sheen(const tinygltf::Material& g, const std::string& element, Material& m) {
         const auto e = g.extensions.find("KHR_materials_sheen");
         if (e == g.extensions.end() || !m.metallic_roughness) return;

@@ -199,16 +199,16 @@ RenderSettings read_render(const Node& n) {
 }
 
 
-// The fields of glTF's metallic-roughness model (scene.hpp): base_color, metallic and
-// roughness, glass by transmission and thin (absorbing by attenuation_color and
-// _distance), a clear coat, sheen and the dielectric's specular layer, which replace
-// the Phong fields rather than add to them (ior serves both). Any of them makes a
-// material a metallic-roughness one.
 // A material's texture fields (read_texture).
 constexpr std::array<const char*, 8> kTextureFields = {
     "texture", "normal_map", "emission_texture", "transmission_texture", "clearcoat_texture",
     "clearcoat_roughness_texture", "sheen_color_texture", "sheen_roughness_texture"};
 
+// The fields of glTF's metallic-roughness model (scene.hpp): base_color, metallic and
+// roughness, glass by transmission and thin (absorbing by attenuation_color and
+// _distance), a clear coat, sheen and the dielectric's specular layer, which replace
+// the Phong fields rather than add to them (ior serves both). Any of them makes a
+// material a metallic-roughness one (read_material), which this reads.
 constexpr std::array<const char*, 13> kMetallicRoughnessFields = {
     "base_color", "metallic", "roughness", "transmission", "thin", "attenuation_color", "attenuation_distance",
     "clearcoat", "clearcoat_roughness", "sheen_color", "sheen_roughness", "specular_factor", "specular_color"};
