@@ -85,9 +85,15 @@ FeatureSet analyze_features(const Scene& scene) {
     bool dielectric_specular = false;
     bool microfacet = false;
     bool textures = false;
-    // Only triangles and quads have the texture coordinates a normal map needs.
+    // Only triangles and quads have the texture coordinates a normal map needs; a
+    // coat's own map bends only a coat, which global mode alone renders.
     bool normal_maps = false;
-    for (const auto& t : scene.triangles) normal_maps = normal_maps || scene.materials[t.material].normal_map.has_value();
+    for (const auto& t : scene.triangles) {
+        const Material& m = scene.materials[t.material];
+        const bool coat_map = m.clearcoat_normal_map && m.metallic_roughness && m.metallic_roughness->clearcoat > 0.0 &&
+                              scene.render.mode == RenderMode::Global;
+        normal_maps = normal_maps || m.normal_map.has_value() || coat_map;
+    }
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         const Material& m = scene.materials[i];
         if (!used[i]) continue;

@@ -97,6 +97,7 @@ void set_texture_fields(const Material& m, kernel::Material& out) {
     out.coat_rough_map = map(m.clearcoat_roughness_texture);
     out.sheen_map = map(m.sheen_color_texture);
     out.sheen_rough_map = map(m.sheen_roughness_texture);
+    out.coat_normal_map = map(m.clearcoat_normal_map);
     out.uv_u = vec3(float(a[0]), float(a[1]), float(a[2]));
     out.uv_v = vec3(float(a[3]), float(a[4]), float(a[5]));
 }

@@ -313,8 +313,8 @@ private:
     }
 
     // KHR_materials_clearcoat's factors and textures: a clear coat over the material
-    // (kernel/lobes/coat.glsl). Its own normal map is named as not read: the coat
-    // shares the material's shading normal.
+    // (kernel/lobes/coat.glsl), with its own normal map (without one it lies on the
+    // surface's normal, not the material's mapped one).
     void read_clearcoat(const tinygltf::Material& g, const std::string& element, Material& m) {
         const auto e = g.extensions.find("KHR_materials_clearcoat");
         if (e == g.extensions.end() || !m.metallic_roughness) return;
@@ -328,9 +328,7 @@ private:
         }
         m.clearcoat_texture = extension_texture(e->second, "clearcoatTexture", at, Encoding::Linear, m);
         m.clearcoat_roughness_texture = extension_texture(e->second, "clearcoatRoughnessTexture", at, Encoding::Linear, m);
-        if (e->second.Has("clearcoatNormalTexture")) {
-            note_unsupported("clear coat normal maps (the coat has the material's shading normal)");
-        }
+        m.clearcoat_normal_map = extension_normal_texture(e->second, "clearcoatNormalTexture", at, m);
     }
 
     // KHR_materials_sheen's factors and textures: sheen over the material, under its
@@ -407,16 +405,38 @@ private:
     std::optional<std::uint32_t> extension_texture(const tinygltf::Value& extension, const char* key,
                                                    const std::string& at_extension, Encoding encoding, Material& m) {
         if (!extension.Has(key)) return std::nullopt;
-        tinygltf::TextureInfo info;
-        const tinygltf::Value& t = extension.Get(key);
         const std::string at = at_extension + "." + key;
+        return textures_.texture(texture_info(extension.Get(key), at), at, encoding, m);
+    }
+
+    // The same for a normalTextureInfo (its scale, 1 when absent).
+    std::optional<std::uint32_t> extension_normal_texture(const tinygltf::Value& extension, const char* key,
+                                                          const std::string& at_extension, Material& m) {
+        if (!extension.Has(key)) return std::nullopt;
+        const std::string at = at_extension + "." + key;
+        const tinygltf::Value& t = extension.Get(key);
+        const tinygltf::TextureInfo plain = texture_info(t, at);
+        tinygltf::NormalTextureInfo info;
+        info.index = plain.index;
+        info.texCoord = plain.texCoord;
+        info.extensions = plain.extensions;
+        if (t.Has("scale")) {
+            if (!t.Get("scale").IsNumber()) fail_at(at + ".scale", "expected a number");
+            info.scale = t.Get("scale").GetNumberAsDouble();
+        }
+        return textures_.normal_texture(info, at, m);
+    }
+
+    // A textureInfo object at `at`: its index, texCoord and KHR_texture_transform.
+    tinygltf::TextureInfo texture_info(const tinygltf::Value& t, const std::string& at) const {
         if (!t.IsObject() || !t.Get("index").IsInt()) fail_at(at, "expected a textureInfo with an \"index\"");
+        tinygltf::TextureInfo info;
         info.index = t.Get("index").GetNumberAsInt();
         if (t.Get("texCoord").IsInt()) info.texCoord = t.Get("texCoord").GetNumberAsInt();
         if (t.Has("extensions") && t.Get("extensions").Has("KHR_texture_transform")) {
             info.extensions["KHR_texture_transform"] = t.Get("extensions").Get("KHR_texture_transform");
         }
-        return textures_.texture(info, at, encoding, m);
+        return info;
     }
 
     // An extension's colour: an array of 3 numbers from 0 to 1, each named when it is not.

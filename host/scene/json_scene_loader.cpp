@@ -200,9 +200,9 @@ RenderSettings read_render(const Node& n) {
 
 
 // A material's texture fields (read_texture).
-constexpr std::array<const char*, 8> kTextureFields = {
+constexpr std::array<const char*, 9> kTextureFields = {
     "texture", "normal_map", "emission_texture", "transmission_texture", "clearcoat_texture",
-    "clearcoat_roughness_texture", "sheen_color_texture", "sheen_roughness_texture"};
+    "clearcoat_roughness_texture", "sheen_color_texture", "sheen_roughness_texture", "clearcoat_normal_map"};
 
 // The fields of glTF's metallic-roughness model (scene.hpp): base_color, metallic and
 // roughness, glass by transmission and thin (absorbing by attenuation_color and
@@ -251,14 +251,16 @@ Material::MetallicRoughness read_metallic_roughness(const Node& n) {
     return pbr;
 }
 
-// A material's normal map: a linear image of tangent-space normals, glTF's encoding
-// (TextureImage::normal_scale), its x and y scaled by normal_scale.
-void read_normal_map(const Node& n, Material& m, Scene& scene) {
-    auto scale_node = n.find("normal_scale");
-    auto file = n.find("normal_map");
+// A normal map in field `field`: a linear image of tangent-space normals, glTF's
+// encoding (TextureImage::normal_scale), its x and y scaled by the field
+// `scale_field`. The material's ("normal_map", "normal_scale") or its clear coat's
+// ("clearcoat_normal_map", "clearcoat_normal_scale", which needs "clearcoat").
+std::optional<std::uint32_t> read_normal_map(const Node& n, const char* field, const char* scale_field, Scene& scene) {
+    auto scale_node = n.find(scale_field);
+    auto file = n.find(field);
     if (!file) {
-        if (scale_node) n.fail_field("normal_scale", "a normal scale needs a \"normal_map\"");
-        return;
+        if (scale_node) n.fail_field(scale_field, fmt::format("a normal scale needs a \"{}\"", field));
+        return std::nullopt;
     }
     double scale = 1.0;
     if (scale_node) {
@@ -266,8 +268,9 @@ void read_normal_map(const Node& n, Material& m, Scene& scene) {
         if (!(std::abs(scale) <= 1e6)) scale_node->fail(fmt::format("expected a number from -1e6 to 1e6, got {}", scale));
     }
     const std::string element = fmt::format("{}: {}", n.file(), file->path());
-    m.normal_map = load_texture(scene, file->file_path(), Encoding::Linear, element);
-    scene.textures[*m.normal_map].normal_scale = scale;
+    const std::uint32_t map = load_texture(scene, file->file_path(), Encoding::Linear, element);
+    scene.textures[map].normal_scale = scale;
+    return map;
 }
 
 // A material's colour texture: the image file (relative to the scene file) and the
@@ -296,7 +299,11 @@ void read_texture(const Node& n, Material& m, Scene& scene) {
         const std::string element = fmt::format("{}: {}", n.file(), file->path());
         m.texture = load_texture(scene, file->file_path(), Encoding::SrgbUnlessFloat, element);
     }
-    read_normal_map(n, m, scene);
+    m.normal_map = read_normal_map(n, "normal_map", "normal_scale", scene);
+    if (n.find("clearcoat_normal_map") && !n.find("clearcoat")) {
+        n.fail_field("clearcoat_normal_map", "a clear coat normal map needs \"clearcoat\"");
+    }
+    m.clearcoat_normal_map = read_normal_map(n, "clearcoat_normal_map", "clearcoat_normal_scale", scene);
     if (auto file = n.find("emission_texture")) {
         const std::string element = fmt::format("{}: {}", n.file(), file->path());
         m.emission_texture = load_texture(scene, file->file_path(), Encoding::SrgbUnlessFloat, element);
@@ -353,7 +360,7 @@ void read_alpha(const Node& n, Material& m) {
 Material read_material(const std::string& name, const Node& n, Scene& scene) {
     std::vector<std::string_view> allowed = {"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit",
                                              "ior", "fresnel", "emission", "texture_transform", "normal_scale",
-                                             "alpha_mode", "alpha", "alpha_cutoff"};
+                                             "clearcoat_normal_scale", "alpha_mode", "alpha", "alpha_cutoff"};
     allowed.insert(allowed.end(), kMetallicRoughnessFields.begin(), kMetallicRoughnessFields.end());
     allowed.insert(allowed.end(), kTextureFields.begin(), kTextureFields.end());
     n.allow_only(allowed);

@@ -177,14 +177,20 @@ struct Material {
     std::optional<std::uint32_t> clearcoat_roughness_texture;
     std::optional<std::uint32_t> sheen_color_texture;
     std::optional<std::uint32_t> sheen_roughness_texture;
+    // With a clear coat: the coat's own normal map, encoded and scaled as normal_map
+    // is (glTF's clearcoatNormalTexture). Without one the coat lies on the surface's
+    // normal, which normal_map does not bend (kernel/normal_map.glsl, coat_normal).
+    std::optional<std::uint32_t> clearcoat_normal_map;
     // Every texture slot above, for what treats them alike.
-    std::array<std::optional<std::uint32_t>*, 9> texture_slots() {
+    std::array<std::optional<std::uint32_t>*, 10> texture_slots() {
         return {&texture, &metallic_roughness_texture, &normal_map, &emission_texture, &transmission_texture,
-                &clearcoat_texture, &clearcoat_roughness_texture, &sheen_color_texture, &sheen_roughness_texture};
+                &clearcoat_texture, &clearcoat_roughness_texture, &sheen_color_texture, &sheen_roughness_texture,
+                &clearcoat_normal_map};
     }
     bool textured() const {
         return texture || metallic_roughness_texture || normal_map || emission_texture || transmission_texture ||
-               clearcoat_texture || clearcoat_roughness_texture || sheen_color_texture || sheen_roughness_texture;
+               clearcoat_texture || clearcoat_roughness_texture || sheen_color_texture || sheen_roughness_texture ||
+               clearcoat_normal_map;
     }
     std::array<double, 6> uv_transform{1.0, 0.0, 0.0, 0.0, 1.0, 0.0};
     // Coverage (glTF's alphaMode; kernel/alpha.glsl): the opacity at a point is

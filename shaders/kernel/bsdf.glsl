@@ -33,16 +33,20 @@ struct Lobes {
     float under_coat;    // what the coat lets through toward wo of the other lobes' light (coat.glsl; 1: no coat)
 };
 
-// The lobes of material m seen from a direction at cos(theta_o) = cos_o to the
-// shading normal, on which some lobes' selection weights depend.
-Lobes material_lobes(Material m, float cos_o) {
+// The lobes of material m seen from wo (unit, away from the surface) at a hit whose
+// shading normal is n and whose clear coat lies on coat_n (normal_map.glsl): some
+// lobes' selection weights depend on wo's cosine to their normal.
+Lobes material_lobes(Material m, vec3 n, vec3 coat_n, vec3 wo) {
+    float cos_o = dot(n, wo);
+    float coat_cos_o = dot(coat_n, wo);
     Lobes l;
-#define SMOOTH_LOBE(id, name, Type, FEATURE) l.name = name##_lobe(m, cos_o);
+#define SMOOTH_LOBE(id, name, Type, FEATURE) l.name = name##_lobe(m, id == COAT_LOBE ? coat_cos_o : cos_o);
 #include "lobes/smooth_lobes.glsl"
+    l.coat.normal = coat_n;
     l.mirror = mirror_lobe(m);
     l.glass = glass_lobe(m);
     l.smooth_share = 1.0f - glass_share(m);
-    l.under_coat = under_coat(l.coat, cos_o);
+    l.under_coat = under_coat(l.coat, coat_cos_o);
     // What the layers leave the base toward wo: its selection weights and the glass's
     // and mirror's colours take it here, the smooth lobes' values in eval_smooth.
     float under = HAS_SHEEN ? l.under_coat * l.sheen.keep : l.under_coat;

@@ -34,7 +34,8 @@ float power_heuristic(float pdf_this, float pdf_other) {
     return 1.0f / (1.0f + r * r);
 }
 
-// Traces a path's next ray into `hit`, its shading normal normal-mapped, and weighs
+// Traces a path's next ray into `hit`, its shading normal normal-mapped (and the
+// normal its clear coat lies on into coat_n, normal_map.glsl), and weighs
 // the path's throughput by what the medium it crossed let through (`media`, the
 // medium the ray travels in). When it leaves the scene, adds what the sky sends along
 // it weighed by that throughput and returns false; counts the eye ray's hit. pdf_prev is the density
@@ -42,7 +43,7 @@ float power_heuristic(float pdf_this, float pdf_other) {
 // ray that finds the environment is weighed against next-event estimation's
 // drawing it (the power heuristic, as for emitters).
 bool path_hit(Ray ray, uint bounce, uvec4 media, float pdf_prev, INOUT(vec3) beta, INOUT(SampleResult) s,
-              INOUT(Hit) hit) {
+              INOUT(Hit) hit, INOUT(vec3) coat_n) {
     hit = closest_hit(ray, INFINITY_T);
     if (HAS_ABSORPTION) {
         beta *= medium_transmittance(media, hit.t);
@@ -58,6 +59,7 @@ bool path_hit(Ray ray, uint bounce, uvec4 media, float pdf_prev, INOUT(vec3) bet
     if (bounce == 0u) {
         s.eye_hits = 1u;
     }
+    coat_n = HAS_COAT ? coat_normal(hit, -ray.dir) : vec3(0.0f);
     hit.normal = mapped_normal(hit, -ray.dir);
     return true;
 }
@@ -197,7 +199,8 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
     loop_enter();
     for (uint bounce = 0u; loop_tick(); bounce += 1u) {
         Hit hit;
-        if (!path_hit(ray, bounce, media, pdf_prev, beta, s, hit)) {
+        vec3 coat_n;
+        if (!path_hit(ray, bounce, media, pdf_prev, beta, s, hit, coat_n)) {
             return;
         }
         Material m = surface_material(hit);
@@ -213,7 +216,7 @@ void path_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
             return;
         }
         CHECK(is_unit(ray.dir) && is_unit(hit.normal));
-        Lobes lobes = material_lobes(m, dot(hit.normal, -ray.dir));
+        Lobes lobes = material_lobes(m, hit.normal, coat_n, -ray.dir);
         float total = lobes_total(lobes);
         if (!(total > 0.0f)) {
             return;
@@ -316,7 +319,8 @@ void paper_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
     loop_enter();
     for (uint bounce = 0u; loop_tick(); bounce += 1u) {
         Hit hit;
-        if (!path_hit(ray, bounce, media, 0.0f, beta, s, hit)) {
+        vec3 coat_n;
+        if (!path_hit(ray, bounce, media, 0.0f, beta, s, hit, coat_n)) {
             return;
         }
         Material m = surface_material(hit);
@@ -325,7 +329,7 @@ void paper_sample(Ray eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
             return;
         }
         CHECK(is_unit(ray.dir) && is_unit(hit.normal));
-        Lobes lobes = material_lobes(m, dot(hit.normal, -ray.dir));
+        Lobes lobes = material_lobes(m, hit.normal, coat_n, -ray.dir);
         float total = lobes_total(lobes);
         if (!(total > 0.0f)) {
             return;  // a black surface: its local term, and the sample, is 0

@@ -91,6 +91,14 @@ MATERIAL_FIELD(uint, coat_rough_map, 15, y)
 MATERIAL_FIELD(uint, sheen_map, 15, z)
 MATERIAL_FIELD(uint, sheen_rough_map, 15, w)
 
+// The clear coat's own normal map (normal_map.glsl coat_normal; glTF's
+// clearcoatNormalTexture): 1 + the texture's index, 0 for none (the coat then lies on
+// the surface's normal, not the base's mapped one).
+MATERIAL_FIELD(uint, coat_normal_map, 16, x)
+MATERIAL_PAD(16, y)
+MATERIAL_PAD(16, z)
+MATERIAL_PAD(16, w)
+
 #undef MATERIAL_PAD
 #undef MATERIAL_FIELD3
 #undef MATERIAL_FIELD

@@ -1,5 +1,6 @@
 // Normal maps (HAS_NORMAL_MAPS): a material's texture of tangent-space normals bends
-// the shading normal of triangles and quads. The map holds glTF's encoding c of a
+// the shading normal of triangles and quads, and a clear coat's own map the normal
+// its coat lies on (coat_normal). The map holds glTF's encoding c of a
 // tangent-space normal, decoded here as glTF defines it, after filtering (which
 // commutes with the affine map): (2 c - 1) * (scale, scale, 1) with the texture's
 // scale (Texture.decode.x), +x toward +u, +y up the image (toward -v, since v runs
@@ -30,21 +31,14 @@ vec3 bent_toward_viewer(vec3 mapped, vec3 wo) {
     return mapped;
 }
 
-// The shading normal at a hit, normal-mapped where its material has a map and the
-// hit has texture coordinates; hit.normal otherwise. wo: unit, toward the viewer.
-// Only the shading normal bends: the geometric one still offsets rays and decides
-// the faces. A map that points straight up (x = y = 0: a flat map, or scale 0)
-// returns hit.normal itself, bit for bit; so do coordinates of zero area (no
-// tangent). A back face takes the front face's mapped normal, negated.
-vec3 mapped_normal(Hit hit, vec3 wo) {
-    if (!HAS_NORMAL_MAPS || (hit.prim >> REF_KIND_SHIFT) != REF_TRIANGLE) {
-        return hit.normal;
-    }
-    Material m = load_material(hit.material);
-    if (m.normal_map == 0u) {
-        return hit.normal;
-    }
-    Texture map = load_texture(m.normal_map - 1u);
+// hit.normal bent by the normal map `map` (1 + its texture's index) of material m,
+// the hit a triangle's or a quad's. wo: unit, toward the viewer. Only the shading
+// normal bends: the geometric one still offsets rays and decides the faces. A map
+// that points straight up (x = y = 0: a flat map, or scale 0) returns hit.normal
+// itself, bit for bit; so do coordinates of zero area (no tangent). A back face
+// takes the front face's mapped normal, negated.
+vec3 normal_from_map(Hit hit, Material m, uint map_index, vec3 wo) {
+    Texture map = load_texture(map_index - 1u);
     vec3 encoded = vec3(texture_bilinear(map, material_uv(m, hit.uv)));
     float scale = map.decode.x;
     precise vec3 ts = vec3((2.0f * encoded.x - 1.0f) * scale, (2.0f * encoded.y - 1.0f) * scale,
@@ -93,4 +87,33 @@ vec3 mapped_normal(Hit hit, vec3 wo) {
     // bitangent, up the image, is -cross(n, t).
     vec3 b = (det > 0.0f ? -1.0f : 1.0f) * cross(n, t);
     return bent_toward_viewer(sgn * unit_vector(ts.x * t + ts.y * b + ts.z * n), wo);
+}
+
+// The shading normal at a hit: hit.normal (the normal the shape interpolates) bent by
+// its material's normal map where it has one and the hit has texture coordinates.
+vec3 mapped_normal(Hit hit, vec3 wo) {
+    vec3 n = hit.normal;
+    if (HAS_NORMAL_MAPS && (hit.prim >> REF_KIND_SHIFT) == REF_TRIANGLE) {
+        Material m = load_material(hit.material);
+        if (m.normal_map != 0u) {
+            n = normal_from_map(hit, m, m.normal_map, wo);
+        }
+    }
+    return n;
+}
+
+// The normal a clear coat (lobes/coat.glsl) lies on, from a hit whose hit.normal is
+// not yet mapped: bent by the coat's own normal map where it has one, else
+// hit.normal itself. The base's normal map does not bend the coat: glTF's
+// KHR_materials_clearcoat gives the coat the surface's normal unless
+// clearcoatNormalTexture says otherwise.
+vec3 coat_normal(Hit hit, vec3 wo) {
+    vec3 n = hit.normal;
+    if (HAS_COAT && HAS_NORMAL_MAPS && (hit.prim >> REF_KIND_SHIFT) == REF_TRIANGLE) {
+        Material m = load_material(hit.material);
+        if (m.coat_normal_map != 0u) {
+            n = normal_from_map(hit, m, m.coat_normal_map, wo);
+        }
+    }
+    return n;
 }

@@ -17,7 +17,7 @@ Kernel::Lobes broken_lobes(Kernel& k) {
     vkrt::kernel::Material m{};
     m.diffuse = glm::vec3(std::numeric_limits<float>::quiet_NaN(), 0.5f, 0.5f);
     m.kd = 1.0f;
-    return k.material_lobes(m, 1.0f);
+    return k.material_lobes(m, glm::vec3(0, 0, 1), glm::vec3(0, 0, 1), glm::vec3(0, 0, 1));
 }
 
 class KernelChecks : public ::testing::Test {
@@ -57,8 +57,8 @@ TEST_F(KernelChecks, AValidMaterialPassesThem) {
     vkrt::kernel::Material m{};
     m.diffuse = glm::vec3(0.5f);
     m.kd = 1.0f;
-    const Kernel::Lobes l = k.material_lobes(m, 0.5f);
     const glm::vec3 n(0, 0, 1), wo = glm::normalize(glm::vec3(1, 0, 1)), wi = glm::normalize(glm::vec3(-1, 1, 2));
+    const Kernel::Lobes l = k.material_lobes(m, n, n, wo);
     EXPECT_FLOAT_EQ(k.eval_smooth(l, n, wo, wi).x, 0.5f / vkrt::kernel::PI);
     EXPECT_EQ(checks::failures.load(), 0u) << checks::first;
 }

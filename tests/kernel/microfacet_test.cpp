@@ -267,7 +267,7 @@ vkrt::kernel::Material metallic_roughness(vec3 base_color, float metallic, float
 
 // Its lobes as bsdf.glsl assembles them.
 Kernel::Lobes lobes_of(Kernel& k, vec3 base_color, float metallic, float roughness, float cos_o) {
-    return k.material_lobes(metallic_roughness(base_color, metallic, roughness), cos_o);
+    return k.material_lobes(metallic_roughness(base_color, metallic, roughness), kUp, kUp, from_cos(cos_o));
 }
 
 TEST(MetallicRoughness, IsReciprocal) {
@@ -376,7 +376,7 @@ TEST(GgxMultiple, WhiteFurnaceKeepsTheLight) {
         for (double co : {1.0, 0.7, 0.4, 0.2, 0.05}) {
             SCOPED_TRACE(testing::Message() << "roughness " << roughness << " cos_o " << co);
             const vec3 wo = from_cos(co);
-            const Kernel::Lobes l = k.material_lobes(m, float(co));
+            const Kernel::Lobes l = k.material_lobes(m, kUp, kUp, from_cos(float(co)));
             const double single =
                 reflected_integral(wo, [&](vec3 wi) { return double(k.ggx_eval(l.ggx, kUp, wo, wi).x) * wi.z; });
             const double multiple = hemisphere_integral(
@@ -405,13 +405,13 @@ TEST(GgxMultiple, IsReciprocalAndFollowsItsDensity) {
     for (int i = 0; i < 200; ++i) {
         vec3 a = glm::normalize(vec3(g(rng), g(rng), std::abs(g(rng)) + 0.01f));
         vec3 b = glm::normalize(vec3(g(rng), g(rng), std::abs(g(rng)) + 0.01f));
-        const vec3 ab = k.ggx_multiple_eval(k.material_lobes(m, a.z).ggx_multiple, kUp, a, b);
-        const vec3 ba = k.ggx_multiple_eval(k.material_lobes(m, b.z).ggx_multiple, kUp, b, a);
+        const vec3 ab = k.ggx_multiple_eval(k.material_lobes(m, kUp, kUp, from_cos(a.z)).ggx_multiple, kUp, a, b);
+        const vec3 ba = k.ggx_multiple_eval(k.material_lobes(m, kUp, kUp, from_cos(b.z)).ggx_multiple, kUp, b, a);
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(ab[c], ba[c], 1e-5f * std::max(1.0f, ab[c]));
     }
     const Kernel::Basis frame = k.basis_around(kUp);
     const vec3 wo = from_cos(0.5);
-    const Kernel::GgxMultipleLobe l = k.material_lobes(m, 0.5f).ggx_multiple;
+    const Kernel::GgxMultipleLobe l = k.material_lobes(m, kUp, kUp, from_cos(0.5f)).ggx_multiple;
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     for (int i = 0; i < 1000; ++i) {
         const vec3 wi = k.ggx_multiple_sample(l, frame, wo, vkrt::kernel::HEMISPHERE_UNIFORM, u(rng), u(rng));
@@ -429,7 +429,7 @@ Kernel::Lobes coated_lobes_of(Kernel& k, vec3 base_color, float metallic, float 
     vkrt::kernel::Material m = metallic_roughness(base_color, metallic, roughness);
     m.coat = coat;
     m.coat_alpha = coat_roughness * coat_roughness;
-    return k.material_lobes(m, cos_o);
+    return k.material_lobes(m, kUp, kUp, from_cos(cos_o));
 }
 
 // Under a coat, a white base keeps reflecting all it did: by quadrature of the
@@ -486,7 +486,7 @@ TEST(Coat, MixtureSamplingMatchesItsDensity) {
     glass.transmit = vec3(1.0f);
     glass.coat = 1.0f;
     glass.coat_alpha = 0.01f;
-    const Kernel::Lobes l = k.material_lobes(glass, 0.8f);
+    const Kernel::Lobes l = k.material_lobes(glass, kUp, kUp, from_cos(0.8f));
     EXPECT_EQ(l.smooth_share, 0.0f);
     EXPECT_FLOAT_EQ(k.smooth_weight(l), l.coat.weight);
     EXPECT_FLOAT_EQ(l.glass.weight, l.under_coat);
@@ -518,7 +518,7 @@ Kernel::Lobes sheened_lobes_of(Kernel& k, vec3 base_color, float metallic, vec3 
     m.sheen_alpha = std::max(sheen_roughness * sheen_roughness, vkrt::kernel::MIN_SHEEN_ALPHA);
     m.coat = coat;
     m.coat_alpha = 0.09f;
-    return k.material_lobes(m, cos_o);
+    return k.material_lobes(m, kUp, kUp, from_cos(cos_o));
 }
 
 // The table holds the sheen's albedo that quadrature of the kernel's own sheen_value
@@ -582,7 +582,7 @@ Kernel::Lobes specular_lobes_of(Kernel& k, vec3 base_color, float roughness, flo
     vkrt::kernel::Material m = metallic_roughness(base_color, 0.0f, roughness);
     m.ggx_f0 = glm::min(0.04f * color, vec3(1.0f)) * specular;
     m.ggx_f90 = specular;
-    return k.material_lobes(m, cos_o);
+    return k.material_lobes(m, kUp, kUp, from_cos(cos_o));
 }
 
 // Schlick's Fresnel runs from f0 to f90.

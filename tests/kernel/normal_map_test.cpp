@@ -24,6 +24,7 @@
 #include "kernel/kernel.hpp"
 #include "scene/load_scene.hpp"
 #include "scene/texture_image.hpp"
+#include "mapped_triangle.hpp"
 #include "test_support.hpp"
 
 namespace vkrt {
@@ -212,72 +213,28 @@ TEST(NormalMap, TheTrianglesOwnTangentsOrientTheFrame) {
 
 // The kernel function itself: zero texture-coordinate area keeps the normal; a
 // normal bent away from the viewer is brought back toward it.
-struct MappedTriangle {
-    std::vector<kernel::Material> materials;
-    std::vector<kernel::Triangle> triangles;
-    // One half-float texel, scale 1.
-    std::vector<kernel::Texture> records = {kernel::Texture(uvec4(0u, 1u, 1u, 0u), kernel::vec4(1.0f, 0.0f, 0.0f, 0.0f))};
-    std::vector<std::uint32_t> words;
-    Kernel k;
-
-    // One texel of tangent-space normal `ts`, in glTF's encoding (ts + 1) / 2 (exact
-    // for these values); a triangle in z = 0 facing +z.
-    MappedTriangle(vec3 ts, std::array<vec2, 3> uv) {
-        const vec3 c = (ts + 1.0f) * 0.5f;
-        words = {glm::packHalf2x16(vec2(c.x, c.y)), glm::packHalf2x16(vec2(c.z, 1.0f))};
-        kernel::Material m{};
-        m.normal_map = 1u;
-        m.uv_u = vec3(1.0f, 0.0f, 0.0f);
-        m.uv_v = vec3(0.0f, 1.0f, 0.0f);
-        materials.push_back(m);
-        kernel::Triangle t{};
-        t.p0 = vec4(0.0f, 0.0f, 0.0f, uv[0].x);
-        t.p1 = vec4(1.0f, 0.0f, 0.0f, uv[0].y);
-        t.p2 = vec4(0.0f, 1.0f, 0.0f, uv[1].x);
-        t.n0.w = uv[1].y;
-        t.n1.w = uv[2].x;
-        t.n2.w = uv[2].y;
-        t.meta = uvec4(0u, 0u, kernel::SHAPE_TRIANGLE, 0u);
-        triangles.push_back(t);
-        k.materials = materials;
-        k.triangles = triangles;
-        k.textures = records;
-        k.texture_words = words;
-    }
-    vec3 normal(vec3 wo) {
-        Kernel::Hit hit = k.no_hit();
-        hit.t = 1.0f;
-        hit.normal = hit.geo_normal = vec3(0.0f, 0.0f, 1.0f);
-        hit.front_face = true;
-        hit.material = 0u;
-        hit.prim = kernel::REF_TRIANGLE << kernel::REF_KIND_SHIFT;
-        hit.uv = vec2(0.25f, 0.25f);
-        return k.mapped_normal(hit, wo);
-    }
-};
-
 TEST(NormalMapKernel, ZeroTextureAreaKeepsTheNormal) {
     const vec3 tilt(0.5f, 0.0f, 1.0f);
-    MappedTriangle same(tilt, {vec2(0.3f, 0.3f), vec2(0.3f, 0.3f), vec2(0.3f, 0.3f)});
+    test::MappedTriangle same(tilt, {vec2(0.3f, 0.3f), vec2(0.3f, 0.3f), vec2(0.3f, 0.3f)});
     EXPECT_EQ(same.normal(vec3(0, 0, 1)), vec3(0, 0, 1));
-    MappedTriangle line(tilt, {vec2(0.0f, 0.0f), vec2(1.0f, 1.0f), vec2(2.0f, 2.0f)});
+    test::MappedTriangle line(tilt, {vec2(0.0f, 0.0f), vec2(1.0f, 1.0f), vec2(2.0f, 2.0f)});
     EXPECT_EQ(line.normal(vec3(0, 0, 1)), vec3(0, 0, 1));
     // Coordinates along the edges: the tilt goes to +x, a unit vector.
-    MappedTriangle plain(tilt, {vec2(0.0f, 0.0f), vec2(1.0f, 0.0f), vec2(0.0f, 1.0f)});
+    test::MappedTriangle plain(tilt, {vec2(0.0f, 0.0f), vec2(1.0f, 0.0f), vec2(0.0f, 1.0f)});
     const vec3 n = plain.normal(vec3(0, 0, 1));
     EXPECT_NEAR(n.x, 1.0f / std::sqrt(5.0f), 1e-6f);
     EXPECT_NEAR(n.y, 0.0f, 1e-6f);
     EXPECT_NEAR(n.z, 2.0f / std::sqrt(5.0f), 1e-6f);
     // Mirrored coordinates (v along -y) flip the bitangent: "up the image" stays -v.
-    MappedTriangle up(vec3(0.0f, 0.5f, 1.0f), {vec2(0.0f, 0.0f), vec2(1.0f, 0.0f), vec2(0.0f, 1.0f)});
-    MappedTriangle up_mirrored(vec3(0.0f, 0.5f, 1.0f), {vec2(0.0f, 1.0f), vec2(1.0f, 1.0f), vec2(0.0f, 0.0f)});
+    test::MappedTriangle up(vec3(0.0f, 0.5f, 1.0f), {vec2(0.0f, 0.0f), vec2(1.0f, 0.0f), vec2(0.0f, 1.0f)});
+    test::MappedTriangle up_mirrored(vec3(0.0f, 0.5f, 1.0f), {vec2(0.0f, 1.0f), vec2(1.0f, 1.0f), vec2(0.0f, 0.0f)});
     EXPECT_LT(up.normal(vec3(0, 0, 1)).y, -0.4f);
     EXPECT_GT(up_mirrored.normal(vec3(0, 0, 1)).y, 0.4f);
 }
 
 TEST(NormalMapKernel, ANormalBentAwayFromTheViewerIsBroughtBack) {
     // Tilted almost into the plane toward +x, seen from -x at a grazing angle.
-    MappedTriangle steep(vec3(20.0f, 0.0f, 1.0f), {vec2(0.0f, 0.0f), vec2(1.0f, 0.0f), vec2(0.0f, 1.0f)});
+    test::MappedTriangle steep(vec3(20.0f, 0.0f, 1.0f), {vec2(0.0f, 0.0f), vec2(1.0f, 0.0f), vec2(0.0f, 1.0f)});
     const vec3 wo = glm::normalize(vec3(-1.0f, 0.0f, 0.2f));
     const vec3 n = steep.normal(wo);
     // Its component along wo replaced by MIN_MAPPED_COSINE: 0.01 / |n - (n.wo) wo + 0.01 wo|.

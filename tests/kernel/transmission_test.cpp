@@ -209,7 +209,7 @@ TEST(Transmission, HostAndKernelBuildTheSameMaterial) {
     }
     EXPECT_FLOAT_EQ(rebuilt.ggx_alpha, host.ggx_alpha);
     // The lobes split the material: glass 0.25, the smooth lobes the rest.
-    const kernel::Kernel::Lobes lobes = k.material_lobes(rebuilt, 1.0f);
+    const kernel::Kernel::Lobes lobes = k.material_lobes(rebuilt, vec3(0, 0, 1), vec3(0, 0, 1), vec3(0, 0, 1));
     EXPECT_FLOAT_EQ(lobes.glass.weight, 0.25f);
     EXPECT_FLOAT_EQ(lobes.smooth_share, 0.75f);
     EXPECT_EQ(lobes.glass.reflected, vec3(0.25f));

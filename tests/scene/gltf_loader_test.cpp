@@ -476,17 +476,23 @@ TEST(Gltf, GlassExtensionsAreRead) {
     }
 }
 
-// KHR_materials_clearcoat's factors make the material's clear coat; its normal map is
-// named as not read; a factor out of range, or a texture the file lacks, is refused
-// (gltf_texcoord_test reads its textures).
+// KHR_materials_clearcoat's factors make the material's clear coat; a factor out of
+// range, or a texture the file lacks, is refused (gltf_texcoord_test reads its
+// textures, the coat's normal map among them).
 TEST(Gltf, ClearcoatIsRead) {
     const Scene s = vkrt::load_scene(with_material("clearcoat", R"({"pbrMetallicRoughness": {"metallicFactor": 0},
-        "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 0.75, "clearcoatRoughnessFactor": 0.25,
-                       "clearcoatNormalTexture": {"index": 0}}}})"));
+        "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 0.75, "clearcoatRoughnessFactor": 0.25}}})"));
     ASSERT_TRUE(s.materials[0].metallic_roughness.has_value());
     EXPECT_DOUBLE_EQ(s.materials[0].metallic_roughness->clearcoat, 0.75);
     EXPECT_DOUBLE_EQ(s.materials[0].metallic_roughness->clearcoat_roughness, 0.25);
-    EXPECT_TRUE(has_warning(s, "clear coat normal maps"));
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+
+    vkrt::test::expect_error_message(load_error(with_material("clearcoat_normal", R"({"extensions": {"KHR_materials_clearcoat":
+        {"clearcoatFactor": 1, "clearcoatNormalTexture": {"index": 0}}}})")), "",
+                                     {"KHR_materials_clearcoat.clearcoatNormalTexture.index", "texture 0 does not exist"});
+    vkrt::test::expect_error_message(load_error(with_material("clearcoat_normal_scale", R"({"extensions": {"KHR_materials_clearcoat":
+        {"clearcoatFactor": 1, "clearcoatNormalTexture": {"index": 0, "scale": "big"}}}})")), "",
+                                     {"KHR_materials_clearcoat.clearcoatNormalTexture.scale", "expected a number"});
 
     vkrt::test::expect_error_message(load_error(with_material("clearcoat_texture", R"({"extensions": {"KHR_materials_clearcoat":
         {"clearcoatFactor": 1, "clearcoatRoughnessTexture": {"index": 0}}}})")), "",

@@ -12,6 +12,10 @@
 // 0.04 under 0.2% of the light, is not followed; tests/kernel/microfacet_test.cpp). Weighing by mu_o alone (albedo scaling)
 // keeps the sum's energy but not its reciprocity; bsdf.glsl applies the factor to the
 // smooth lobes below and to the glass and mirror lobes (Lobes.under_coat).
+//
+// The coat lies on a normal of its own (CoatLobe.normal): the surface's, or its own
+// normal map's (glTF's clearcoatNormalTexture), never the base's normal map. Its
+// Fresnel weight and what it lets through are taken at wo's cosine to that normal.
 // decisions/0043-clear-coat.md.
 
 const float COAT_F0 = 0.04f;
@@ -22,13 +26,17 @@ struct CoatLobe {
     float weight;   // c times its Fresnel reflectance toward wo (0 from below)
     float alpha;    // its GGX width; 0: no coat
     float factor;   // c
+    vec3 normal;    // the normal it lies on (normal_map.glsl coat_normal), unit
 };
 
+// The coat of m seen at cos(theta_o) = cos_o to its own normal, which the caller
+// sets (material_lobes).
 CoatLobe coat_lobe(Material m, float cos_o) {
     CoatLobe l;
     l.factor = HAS_COAT && m.ggx_alpha > 0.0f ? m.coat : 0.0f;
     l.alpha = l.factor > 0.0f ? m.coat_alpha : 0.0f;
     l.weight = l.factor > 0.0f && cos_o > 0.0f ? l.factor * fresnel_schlick(vec3(COAT_F0), cos_o).x : 0.0f;
+    l.normal = vec3(0.0f, 0.0f, 1.0f);
     return l;
 }
 
@@ -47,15 +55,29 @@ float under_coat(CoatLobe l, float cos_o) {
     return kept;
 }
 
+// The coat's value where the others' is taken on the shading normal n: the caller
+// weighs every lobe by cos(theta_i) to n, and the coat's cosine is to its own
+// normal, so where the two differ (a normal map bends one of them) its value is
+// scaled by their ratio; where they are the same normal it is its GGX value as is.
 vec3 coat_eval(CoatLobe l, vec3 n, vec3 wo, vec3 wi) {
-    return l.factor * ggx_eval(vec3(COAT_F0), 1.0f, l.alpha, n, wo, wi);
+    vec3 f = l.factor * ggx_eval(vec3(COAT_F0), 1.0f, l.alpha, l.normal, wo, wi);
+    if (any(notEqual(l.normal, n))) {
+        float ci = dot(n, wi);
+        f *= ci > 0.0f ? max(dot(l.normal, wi), 0.0f) / ci : 0.0f;
+    }
+    return f;
 }
 
-float coat_pdf(CoatLobe l, Basis frame, vec3 wo, vec3 wi, uint /* hemisphere */) {
-    return ggx_pdf(l.alpha, frame.n, wo, wi);
+// Drawn and weighed on the coat's own normal, whichever frame the other lobes use.
+float coat_pdf(CoatLobe l, Basis /* frame */, vec3 wo, vec3 wi, uint /* hemisphere */) {
+    return ggx_pdf(l.alpha, l.normal, wo, wi);
 }
 
 vec3 coat_sample(CoatLobe l, Basis frame, vec3 wo, uint /* hemisphere */, float u1, float u2) {
-    vec3 local = vec3(dot(wo, frame.t), dot(wo, frame.b), dot(wo, frame.n));
-    return from_basis(frame, ggx_sample(l.alpha, local, u1, u2));
+    Basis own = frame;
+    if (any(notEqual(l.normal, frame.n))) {
+        own = basis_around(l.normal);
+    }
+    vec3 local = vec3(dot(wo, own.t), dot(wo, own.b), dot(wo, own.n));
+    return from_basis(own, ggx_sample(l.alpha, local, u1, u2));
 }
