@@ -106,7 +106,9 @@ FeatureSet analyze_features(const Scene& scene) {
         microfacet = microfacet || m.metallic_roughness.has_value();
         coat = coat || (m.metallic_roughness && m.metallic_roughness->clearcoat > 0.0);
         sheen = sheen || (m.metallic_roughness && m.metallic_roughness->sheen_color != dvec3(0.0));
-        dielectric_specular = dielectric_specular || (m.metallic_roughness && m.metallic_roughness->has_specular());
+        dielectric_specular = dielectric_specular ||
+                              (m.metallic_roughness && (m.metallic_roughness->has_specular() || m.specular_texture ||
+                                                        m.specular_color_texture));
         // Rough where its GGX width passes the kernel's floor (kernel/lobes/glass.glsl);
         // a metallic texture can leave glass where the factor is 1.
         rough_glass = rough_glass ||

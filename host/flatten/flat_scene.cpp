@@ -98,6 +98,8 @@ void set_texture_fields(const Material& m, kernel::Material& out) {
     out.sheen_map = map(m.sheen_color_texture);
     out.sheen_rough_map = map(m.sheen_roughness_texture);
     out.coat_normal_map = map(m.clearcoat_normal_map);
+    out.specular_map = map(m.specular_texture);
+    out.specular_color_map = map(m.specular_color_texture);
     out.uv_u = vec3(float(a[0]), float(a[1]), float(a[2]));
     out.uv_v = vec3(float(a[3]), float(a[4]), float(a[5]));
 }
@@ -126,6 +128,7 @@ kernel::Material flatten(const Material& m) {
         out.ggx_f90 = float(glm::mix(pbr->specular, 1.0, metal));
         out.dielectric_f0_rgb = vec3(dielectric);
         out.dielectric_f90 = float(pbr->specular);
+        out.specular_color = vec3(pbr->specular_color);
         out.ggx_alpha = float(std::max(pbr->roughness * pbr->roughness, double(kernel::MIN_GGX_ALPHA)));
         out.base_color = vec3(pbr->base_color);
         out.metallic = float(pbr->metallic);

@@ -348,9 +348,9 @@ private:
         m.sheen_roughness_texture = extension_texture(e->second, "sheenRoughnessTexture", at, Encoding::Linear, m);
     }
 
-    // KHR_materials_specular's factors: the dielectric's specular layer (scene.hpp;
-    // kernel/lobes/fresnel.glsl). Its textures are named as not read, as is the
-    // extension on glass, which reflects by its ior's exact Fresnel reflectance.
+    // KHR_materials_specular's factors and textures: the dielectric's specular layer
+    // (scene.hpp; kernel/lobes/fresnel.glsl). The extension on glass is named as not
+    // read: glass reflects by its ior's exact Fresnel reflectance.
     void read_specular(const tinygltf::Material& g, const std::string& element, Material& m) {
         const auto e = g.extensions.find("KHR_materials_specular");
         if (e == g.extensions.end() || !m.metallic_roughness) return;
@@ -365,10 +365,9 @@ private:
             for (int i = 0; i < 3; ++i) c[i] = v.Get(i).IsNumber() ? v.Get(i).GetNumberAsDouble() : -1.0;
             mr.specular_color = color(c, 1e6, at + ".specularColorFactor");
         }
-        if (e->second.Has("specularTexture") || e->second.Has("specularColorTexture")) {
-            note_unsupported("specular textures (the factors are used)");
-        }
-        if (mr.transmission > 0.0 && mr.has_specular()) {
+        m.specular_texture = extension_texture(e->second, "specularTexture", at, Encoding::Linear, m);
+        m.specular_color_texture = extension_texture(e->second, "specularColorTexture", at, Encoding::SrgbUnlessFloat, m);
+        if (mr.transmission > 0.0 && (mr.has_specular() || m.specular_texture || m.specular_color_texture)) {
             note_unsupported("KHR_materials_specular on glass (its glass reflects by its ior)");
         }
     }

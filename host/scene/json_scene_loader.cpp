@@ -200,9 +200,10 @@ RenderSettings read_render(const Node& n) {
 
 
 // A material's texture fields (read_texture).
-constexpr std::array<const char*, 9> kTextureFields = {
+constexpr std::array<const char*, 11> kTextureFields = {
     "texture", "normal_map", "emission_texture", "transmission_texture", "clearcoat_texture",
-    "clearcoat_roughness_texture", "sheen_color_texture", "sheen_roughness_texture", "clearcoat_normal_map"};
+    "clearcoat_roughness_texture", "sheen_color_texture", "sheen_roughness_texture", "clearcoat_normal_map",
+    "specular_texture", "specular_color_texture"};
 
 // The fields of glTF's metallic-roughness model (scene.hpp): base_color, metallic and
 // roughness, glass by transmission and thin (absorbing by attenuation_color and
@@ -324,6 +325,9 @@ void read_texture(const Node& n, Material& m, Scene& scene) {
          &Material::sheen_color_texture},
         {"sheen_roughness_texture", "sheen_color", "a sheen roughness texture", Encoding::Linear,
          &Material::sheen_roughness_texture},
+        {"specular_texture", "specular_factor", "a specular texture", Encoding::Linear, &Material::specular_texture},
+        {"specular_color_texture", "specular_color", "a specular colour texture", Encoding::SrgbUnlessFloat,
+         &Material::specular_color_texture},
     };
     for (const auto& layer : layers) {
         if (auto file = n.find(layer.field)) {

@@ -181,16 +181,22 @@ struct Material {
     // is (glTF's clearcoatNormalTexture). Without one the coat lies on the surface's
     // normal, which normal_map does not bend (kernel/normal_map.glsl, coat_normal).
     std::optional<std::uint32_t> clearcoat_normal_map;
+    // With metallic_roughness: the dielectric's specular textures (glTF's
+    // KHR_materials_specular, kernel/texture.glsl apply_specular_textures), at the same
+    // coordinates: a linear texture whose alpha multiplies `specular` (specularTexture)
+    // and a colour texture multiplying `specular_color` (specularColorTexture).
+    std::optional<std::uint32_t> specular_texture;
+    std::optional<std::uint32_t> specular_color_texture;
     // Every texture slot above, for what treats them alike.
-    std::array<std::optional<std::uint32_t>*, 10> texture_slots() {
+    std::array<std::optional<std::uint32_t>*, 12> texture_slots() {
         return {&texture, &metallic_roughness_texture, &normal_map, &emission_texture, &transmission_texture,
                 &clearcoat_texture, &clearcoat_roughness_texture, &sheen_color_texture, &sheen_roughness_texture,
-                &clearcoat_normal_map};
+                &clearcoat_normal_map, &specular_texture, &specular_color_texture};
     }
     bool textured() const {
         return texture || metallic_roughness_texture || normal_map || emission_texture || transmission_texture ||
                clearcoat_texture || clearcoat_roughness_texture || sheen_color_texture || sheen_roughness_texture ||
-               clearcoat_normal_map;
+               clearcoat_normal_map || specular_texture || specular_color_texture;
     }
     std::array<double, 6> uv_transform{1.0, 0.0, 0.0, 0.0, 1.0, 0.0};
     // Coverage (glTF's alphaMode; kernel/alpha.glsl): the opacity at a point is

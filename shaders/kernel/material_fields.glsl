@@ -95,9 +95,16 @@ MATERIAL_FIELD(uint, sheen_rough_map, 15, w)
 // clearcoatNormalTexture): 1 + the texture's index, 0 for none (the coat then lies on
 // the surface's normal, not the base's mapped one).
 MATERIAL_FIELD(uint, coat_normal_map, 16, x)
-MATERIAL_PAD(16, y)
-MATERIAL_PAD(16, z)
+
+// The dielectric's specular textures (texture.glsl apply_specular_textures; glTF's
+// specularTexture, whose alpha multiplies the specular factor, and
+// specularColorTexture, which multiplies the specular colour): 1 + the texture's
+// index, 0 for none; and that colour, which dielectric_f0_rgb holds multiplied in.
+MATERIAL_FIELD(uint, specular_map, 16, y)
+MATERIAL_FIELD(uint, specular_color_map, 16, z)
 MATERIAL_PAD(16, w)
+MATERIAL_FIELD3(vec3, specular_color, 17)
+MATERIAL_PAD(17, w)
 
 #undef MATERIAL_PAD
 #undef MATERIAL_FIELD3

@@ -149,12 +149,31 @@ void apply_layer_textures(INOUT(Material) m, vec2 uv) {
     }
 }
 
+// The specular textures at texture coordinates uv (material_uv): the specular
+// factor (dielectric_f90) times the specular texture's alpha, the specular colour
+// times the colour texture, and the dielectric's reflectance at normal incidence
+// rebuilt from them as flat_scene.cpp builds it, min(f0 colour, 1) factor
+// (KHR_materials_specular). set_metallic_roughness then mixes them with the metal's.
+void apply_specular_textures(INOUT(Material) m, vec2 uv) {
+    float strength = m.dielectric_f90;
+    vec3 color = m.specular_color;
+    if (m.specular_map != 0u) {
+        strength = clamp(strength * texture_bilinear(load_texture(m.specular_map - 1u), uv).a, 0.0f, 1.0f);
+    }
+    if (m.specular_color_map != 0u) {
+        color = max(color * vec3(texture_bilinear(load_texture(m.specular_color_map - 1u), uv)), vec3(0.0f));
+    }
+    m.dielectric_f0_rgb = min(vec3(m.dielectric_f0) * color, vec3(1.0f)) * strength;
+    m.dielectric_f90 = strength;
+}
+
 // The material at a hit, textured. A Phong material's diffuse colour times the
 // colour texture; a metallic-roughness material rebuilt from its factors (flat_scene.cpp)
 // times its textures: base colour times the colour texture, metallic times the
 // metallic-roughness texture's blue channel, roughness times its green (glTF's
 // packing), transmission times the transmission texture's red; the emission times
-// the emission texture; the layers' textures as apply_layer_textures says. Vertex colours multiply the
+// the emission texture; the layers' and the specular textures as
+// apply_layer_textures and apply_specular_textures say. Vertex colours multiply the
 // colour as the colour texture does (vertex_data.glsl). Only triangles and quads
 // have texture coordinates and vertex colours; other shapes keep the untextured
 // material.
@@ -168,7 +187,9 @@ Material surface_material(Hit hit) {
         (m.coat_map != 0u || m.coat_rough_map != 0u || m.sheen_map != 0u || m.sheen_rough_map != 0u)) {
         apply_layer_textures(m, material_uv(m, hit.uv));
     }
-    bool textured = HAS_TEXTURES && (m.color_map != 0u || m.metal_rough_map != 0u || m.transmission_map != 0u) && triangle;
+    bool specular_textured = HAS_DIELECTRIC_SPECULAR && (m.specular_map != 0u || m.specular_color_map != 0u);
+    bool textured = HAS_TEXTURES && triangle &&
+                    (m.color_map != 0u || m.metal_rough_map != 0u || m.transmission_map != 0u || specular_textured);
     bool tinted = HAS_VERTEX_COLORS && triangle && triangle_has_colors(hit.prim & REF_INDEX_MASK);
     if (textured || tinted) {
         vec2 uv = material_uv(m, hit.uv);
@@ -187,6 +208,9 @@ Material surface_material(Hit hit) {
             }
             if (HAS_TEXTURES && m.transmission_map != 0u) {
                 m.transmission = clamp(m.transmission * texture_bilinear(load_texture(m.transmission_map - 1u), uv).r, 0.0f, 1.0f);
+            }
+            if (HAS_TEXTURES && specular_textured) {
+                apply_specular_textures(m, uv);
             }
             set_metallic_roughness(m, base, metallic, roughness);
         } else {

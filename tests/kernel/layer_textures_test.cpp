@@ -1,8 +1,9 @@
 // The layers' textures (kernel/texture.glsl, apply_layer_textures; glTF's
 // clearcoatTexture, clearcoatRoughnessTexture, sheenColorTexture and
-// sheenRoughnessTexture): a uniform texture of value t renders as the factor times t
-// without the texture, on both backends; and the factor alone renders otherwise, so
-// that the texture is seen to act.
+// sheenRoughnessTexture) and the specular ones (apply_specular_textures; glTF's
+// specularTexture and specularColorTexture): a uniform texture of value t renders as
+// the factor times t without the texture, on both backends; and the factor alone
+// renders otherwise, so that the texture is seen to act.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -49,17 +50,21 @@ std::string uniform_exr(const std::string& name, float r, float g, float b) {
 
 // A black Lambertian-free dielectric quad (specular 0: only its layers reflect) of
 // the layers `layers`, seen at 45 degrees, a small lamp in its mirror direction,
-// under a sky of 0.2.
-Scene layered_quad(const std::string& name, const std::string& layers) {
+// under a sky of 0.2. The specular cases give the dielectric's own fields in
+// `layers`, and a base without them.
+const char* const kLayersOnly = R"("base_color": [0, 0, 0], "specular_factor": 0, "roughness": 1)";
+const char* const kBlackBase = R"("base_color": [0, 0, 0], "roughness": 0.5)";
+
+Scene layered_quad(const std::string& name, const std::string& layers, const std::string& base) {
     return test::scene_from_text(name, fmt::format(R"({{
       "camera": {{ "eye": [0, 2, 2], "look_at": [0, 0, 0], "fov": 30, "width": 16, "height": 12 }},
       "render": {{ "mode": "global", "spp": 256, "max_bounces": 4, "background": [0.2, 0.2, 0.2] }},
-      "materials": {{ "m": {{ "base_color": [0, 0, 0], "specular_factor": 0, "roughness": 1, {} }},
+      "materials": {{ "m": {{ {}, {} }},
                       "lamp": {{ "emission": [20, 20, 20] }} }},
       "objects": [
         {{ "type": "quad", "corner": [-2, 0, -2], "edge1": [0, 0, 4], "edge2": [4, 0, 0], "material": "m" }},
         {{ "type": "quad", "corner": [-0.2, 2, -2.2], "edge1": [0.4, 0, 0], "edge2": [0, 0.4, 0], "material": "lamp" }}
-      ]}})", layers));
+      ]}})", base, layers));
 }
 
 struct Mean {
@@ -82,12 +87,12 @@ Mean image_mean(const Image& image) {
 // `textured` and `factored` agree within 4 combined standard errors on both backends,
 // and `untextured` (the factor the texture scales) differs from `factored` by more.
 void expect_texture_acts_as_factor(const std::string& name, const std::string& textured, const std::string& factored,
-                                   const std::string& untextured) {
+                                   const std::string& untextured, const std::string& base = kLayersOnly) {
     for (const bool vulkan : {false, true}) {
         SCOPED_TRACE(vulkan ? "vulkan" : "cpu");
         const auto render = [&](const std::string& suffix, const std::string& layers) {
-            const RenderOutcome out = vulkan ? test::render_vulkan(layered_quad(name + suffix, layers))
-                                             : test::render_cpu(layered_quad(name + suffix, layers));
+            const Scene scene = layered_quad(name + suffix, layers, base);
+            const RenderOutcome out = vulkan ? test::render_vulkan(scene) : test::render_cpu(scene);
             EXPECT_EQ(out.stats.nonfinite_samples, 0u);
             return image_mean(out.image);
         };
@@ -129,6 +134,20 @@ TEST(LayerTextures, SheenRoughnessTextureScalesTheRoughness) {
         "sheen_roughness", fmt::format(R"("sheen_color": [1, 1, 1], "sheen_roughness": 1, "sheen_roughness_texture": "{}")", half),
         fmt::format(R"("sheen_color": [1, 1, 1], "sheen_roughness": {})", 128.0 / 255.0),
         R"("sheen_color": [1, 1, 1], "sheen_roughness": 1)");
+}
+
+TEST(SpecularTextures, SpecularTextureScalesTheFactor) {
+    const std::string half = uniform_png("specular_half", {0, 0, 0, 128});
+    expect_texture_acts_as_factor("specular", fmt::format(R"("specular_factor": 1, "specular_texture": "{}")", half),
+                                  fmt::format(R"("specular_factor": {})", 128.0 / 255.0), R"("specular_factor": 1)",
+                                  kBlackBase);
+}
+
+TEST(SpecularTextures, SpecularColourTextureScalesTheColour) {
+    const std::string colour = uniform_exr("specular_colour", 4.0f, 1.0f, 0.25f);
+    expect_texture_acts_as_factor(
+        "specular_colour", fmt::format(R"("specular_color": [1, 2, 2], "specular_color_texture": "{}")", colour),
+        R"("specular_color": [4, 2, 0.5])", R"("specular_color": [1, 2, 2])", kBlackBase);
 }
 
 }  // namespace

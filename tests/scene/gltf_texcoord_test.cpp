@@ -77,15 +77,17 @@ TEST(GltfTexCoord, TheTransmissionTextureReadsItsSet) {
     EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
 }
 
-// The layers' textures (KHR_materials_clearcoat's and _sheen's) are the material's
-// too, on its set: the colour read as sRGB, the rest as linear data.
+// The layers' textures (KHR_materials_clearcoat's, _sheen's and _specular's) are the
+// material's too, on its set: the colours read as sRGB, the rest as linear data.
 TEST(GltfTexCoord, TheLayersTexturesReadTheirSet) {
     const Scene s = load_scene(two_set_quad("layers", R"({"pbrMetallicRoughness": {"metallicFactor": 0},
         "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1, "clearcoatTexture": {"index": 0, "texCoord": 1},
                                                    "clearcoatRoughnessTexture": {"index": 0, "texCoord": 1},
                                                    "clearcoatNormalTexture": {"index": 0, "texCoord": 1, "scale": 0.5}},
                        "KHR_materials_sheen": {"sheenColorFactor": [1, 1, 1], "sheenColorTexture": {"index": 0, "texCoord": 1},
-                                               "sheenRoughnessTexture": {"index": 0, "texCoord": 1}}}})"));
+                                               "sheenRoughnessTexture": {"index": 0, "texCoord": 1}},
+                       "KHR_materials_specular": {"specularTexture": {"index": 0, "texCoord": 1},
+                                                  "specularColorTexture": {"index": 0, "texCoord": 1}}}})"));
     const Material& m = s.materials[0];
     ASSERT_TRUE(m.clearcoat_texture && m.clearcoat_roughness_texture && m.sheen_color_texture && m.sheen_roughness_texture &&
                 m.clearcoat_normal_map);
@@ -93,6 +95,9 @@ TEST(GltfTexCoord, TheLayersTexturesReadTheirSet) {
     EXPECT_NE(*m.clearcoat_normal_map, *m.clearcoat_texture) << "a normal map is decoded as normals";
     EXPECT_EQ(s.textures[*m.clearcoat_normal_map].normal_scale, 0.5);
     EXPECT_NE(*m.sheen_color_texture, *m.sheen_roughness_texture) << "sRGB and linear are two textures";
+    ASSERT_TRUE(m.specular_texture && m.specular_color_texture);
+    EXPECT_EQ(*m.specular_texture, *m.sheen_roughness_texture);
+    EXPECT_EQ(*m.specular_color_texture, *m.sheen_color_texture);
     EXPECT_EQ(*s.triangles[0].uvs, kSetOne);
     EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
 }

@@ -667,6 +667,10 @@ TEST_F(SceneLoaderTest, MetallicRoughnessMaterials) {
                  {": materials.m.clearcoat_roughness_texture: a clear coat roughness texture needs \"clearcoat\""});
     expect_error(Parts{.materials = R"({"m": {"roughness": 1, "sheen_color_texture": "s.png"}})"},
                  {": materials.m.sheen_color_texture: a sheen colour texture needs \"sheen_color\""});
+    expect_error(Parts{.materials = R"({"m": {"specular_color": [1, 1, 1], "specular_texture": "s.png"}})"},
+                 {": materials.m.specular_texture: a specular texture needs \"specular_factor\""});
+    expect_error(Parts{.materials = R"({"m": {"specular_factor": 1, "specular_color_texture": "s.png"}})"},
+                 {": materials.m.specular_color_texture: a specular colour texture needs \"specular_color\""});
     expect_error(Parts{.materials = R"({"m": {"specular_factor": 2}})"},
                  {": materials.m.specular_factor: expected a number between 0 and 1, got 2"});
     expect_error(Parts{.materials = R"({"m": {"specular_color": [1, -1, 1]}})"},
