@@ -20,6 +20,8 @@
 #include "gpu/float_probe.hpp"
 #include "gpu/vulkan_backend.hpp"
 #include "image/compare.hpp"
+#include "image/error_image.hpp"
+#include "image/ssim.hpp"
 #include "image/error_metrics.hpp"
 #include "live/live_server.hpp"
 #include "live/pass_feed.hpp"
@@ -408,6 +410,23 @@ int run_compare(const CompareArgs& args) {
     const ImageDiff d = compare_images(a, b, args.threshold);
     fmt::print("RMSE {:.6g}, max abs {:.6g}, PSNR {:.2f} dB, {} of {} pixels ({:.4f}%) differ by more than {:g}\n",
                d.rmse, d.max_abs, d.psnr, d.pixels_over, d.pixels, d.fraction_over() * 100.0, args.threshold);
+    if (!args.metrics.empty()) {
+        const ErrorMetrics e = error_metrics(a, b);
+        for (const std::string& name : args.metrics) {
+            const double value = name == "mae"    ? e.mae
+                                 : name == "mse"  ? e.mse
+                                 : name == "rmse" ? e.rmse
+                                 : name == "relmse" ? e.relmse
+                                                    : ssim(a, b);
+            fmt::print("{} {:.6g}\n", name, value);
+        }
+    }
+    if (!args.difference.empty()) {
+        const double range = args.difference_range.value_or(largest_signed_difference(a, b));
+        // Identical images: any range draws them white.
+        write_difference_png(a, b, range > 0.0 ? range : 1.0, args.difference);
+        fmt::print("difference A - B from -{0:.6g} (blue) to {0:.6g} (red) in {1}\n", range, args.difference);
+    }
     bool over = false;
     if (args.max_rmse && d.rmse > *args.max_rmse) {
         fmt::print("over bound: RMSE {:.6g} > {:g}\n", d.rmse, *args.max_rmse);

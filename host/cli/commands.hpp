@@ -1,6 +1,7 @@
 #pragma once
 // The subcommands of the vkrt program. Each returns the process exit status and
 // throws for errors the caller reports as "error: <message>" (exit status 1).
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -49,7 +50,13 @@ struct CompareArgs {
     std::optional<double> max_rmse;
     std::optional<double> max_abs;
     double threshold = 1e-3;
+    std::vector<std::string> metrics;  // of kCompareMetrics, printed one a line
+    std::string difference;            // a .png of the signed difference a - b; empty: none
+    std::optional<double> difference_range;  // the difference at the colour map's ends; default the largest
 };
+
+// The names --metric takes: mae, mse, rmse, relmse (b the reference), ssim.
+inline constexpr std::array<const char*, 5> kCompareMetrics = {"mae", "mse", "rmse", "relmse", "ssim"};
 
 struct MergeArgs {
     std::vector<std::string> partials;

@@ -1,6 +1,8 @@
 // `vkrt merge` and `vkrt compare`: their options; the work is run_merge
 // (cli/merge.cpp) and run_compare (cli/commands.cpp).
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
@@ -46,6 +48,18 @@ Command add_compare_command(CLI::App& program) {
     c->add_option("--threshold", args->threshold, "Per-channel difference counted as a differing pixel")
         ->check(non_negative())
         ->capture_default_str();
+    c->add_option("--metric", args->metrics,
+                  "Also print these, comma-separated: mae, mse, rmse, relmse (B the reference), ssim")
+        ->delimiter(',')
+        ->check(CLI::IsMember(std::vector<std::string>(kCompareMetrics.begin(), kCompareMetrics.end())));
+    CLI::Option* difference = c->add_option(
+        "--difference", args->difference,
+        "Write the signed difference A - B of each pixel (its channels' mean) to this .png: blue below, red above, "
+        "white equal");
+    c->add_option("--difference-range", args->difference_range,
+                  "The difference drawn at the colour map's ends (default: the largest, printed)")
+        ->check(CLI::PositiveNumber)
+        ->needs(difference);
     // compare keeps 1 for "over the bound", so a script can tell the two apart.
     return {c, [args] { return run_compare(*args); }, 2};
 }

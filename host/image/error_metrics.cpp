@@ -28,10 +28,11 @@ ErrorMetrics error_metrics(const Image& image, const Image& reference) {
                                      reference.width, reference.height));
     }
     const std::size_t n = image.rgb.size();
-    double squared = 0.0, relative = 0.0, sum = 0.0, ref_sum = 0.0;
+    double absolute = 0.0, squared = 0.0, relative = 0.0, sum = 0.0, ref_sum = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
         const double x = image.rgb[i], r = reference.rgb[i];
         const double d2 = (x - r) * (x - r);
+        absolute += std::abs(x - r);
         squared += d2;
         relative += d2 / (r * r + 0.01);
         sum += x;
@@ -39,7 +40,9 @@ ErrorMetrics error_metrics(const Image& image, const Image& reference) {
     }
     ErrorMetrics m;
     if (n == 0) return m;
-    m.rmse = std::sqrt(squared / double(n));
+    m.mae = absolute / double(n);
+    m.mse = squared / double(n);
+    m.rmse = std::sqrt(m.mse);
     m.relmse = relative / double(n);
     m.mean = sum / double(n);
     m.mean_diff = m.mean - ref_sum / double(n);

@@ -9,6 +9,8 @@
 namespace vkrt {
 
 struct ErrorMetrics {
+    double mae = 0.0;        // mean over pixels and channels of |x - ref|
+    double mse = 0.0;        // mean over pixels and channels of (x - ref)^2
     double rmse = 0.0;       // sqrt of the mean over pixels and channels of (x - ref)^2
     double relmse = 0.0;     // mean over pixels and channels of (x - ref)^2 / (ref^2 + 0.01)
     double mean = 0.0;       // mean radiance of the image, over pixels and channels

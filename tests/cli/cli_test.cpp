@@ -9,6 +9,7 @@
 #include <iterator>
 
 #include "image/compare.hpp"
+#include "image/image.hpp"
 #include "test_support.hpp"
 #include "vkrt_version.h"
 
@@ -318,6 +319,42 @@ TEST(Cli, DisplayOptionsShapeEightBitOutputsOnly) {
     const test::ProgramRun curve = test::run_vkrt(render + out("x.png") + " --tonemap aces", dir);
     EXPECT_EQ(curve.code, 1);
     EXPECT_NE(curve.stderr_text.find("--tonemap"), std::string::npos) << curve.stderr_text;
+}
+
+// compare's --metric prints each metric named, --difference draws A - B; a metric it
+// does not know, a difference image that is not a PNG, and SSIM of images smaller
+// than its window are refused.
+TEST(Cli, CompareMetricsAndDifferenceImage) {
+    const fs::path dir = test::temp_dir("cli_compare_metrics");
+    Image a(12, 12), b(12, 12);
+    for (float& v : a.rgb) v = 0.5f;
+    for (float& v : b.rgb) v = 0.25f;
+    write_image(a, dir / "a.exr");
+    write_image(b, dir / "b.exr");
+    write_image(Image(4, 4), dir / "small.exr");
+    const std::string pair = test::shell_quote((dir / "a.exr").string()) + " " + test::shell_quote((dir / "b.exr").string());
+    const test::ProgramRun run = test::run_vkrt(
+        "compare " + pair + " --metric mae,relmse,ssim --difference " + test::shell_quote((dir / "d.png").string()), dir);
+    ASSERT_EQ(run.code, 0) << run.stderr_text;
+    const std::string out = read_file(dir / "stdout.txt");
+    EXPECT_NE(out.find("\nmae 0.25\n"), std::string::npos) << out;
+    EXPECT_NE(out.find("\nrelmse 0.862069\n"), std::string::npos) << out;  // 0.0625 / (0.25^2 + 0.01)
+    EXPECT_NE(out.find("\nssim 0.800"), std::string::npos) << out;  // (2 ab + 1e-4) / (a^2 + b^2 + 1e-4)
+    EXPECT_NE(out.find("difference A - B from -0.25 (blue) to 0.25 (red)"), std::string::npos) << out;
+    const Image d = read_image(dir / "d.png");
+    EXPECT_NEAR(d.pixel(3, 3)[0], 180.0 / 255.0, 1e-6) << "all red: A is above B by the whole range";
+
+    test::expect_one_error(test::run_vkrt("compare " + pair + " --metric psnr", dir), {"--metric", "psnr"});
+    test::expect_one_error(test::run_vkrt("compare " + pair + " --difference-range 1", dir), {"--difference-range", "--difference"});
+    const test::ProgramRun jpeg = test::run_vkrt("compare " + pair + " --difference " + test::shell_quote((dir / "d.jpg").string()), dir);
+    EXPECT_EQ(jpeg.code, 2);
+    EXPECT_NE(jpeg.stderr_text.find("name a .png file"), std::string::npos) << jpeg.stderr_text;
+    const test::ProgramRun small = test::run_vkrt(
+        "compare " + test::shell_quote((dir / "small.exr").string()) + " " + test::shell_quote((dir / "small.exr").string()) +
+            " --metric ssim",
+        dir);
+    EXPECT_EQ(small.code, 2);
+    EXPECT_NE(small.stderr_text.find("at least 11 x 11 pixels"), std::string::npos) << small.stderr_text;
 }
 
 }  // namespace
