@@ -19,6 +19,7 @@ def render_still(scene, path, spp, bounces, seed=0):
     scene.cycles.max_bounces = bounces
     scene.cycles.diffuse_bounces = bounces
     scene.cycles.glossy_bounces = bounces
+    scene.cycles.transmission_bounces = bounces
     scene.view_settings.view_transform = "Standard"
     scene.render.image_settings.file_format = "OPEN_EXR"
     scene.render.image_settings.color_depth = "32"

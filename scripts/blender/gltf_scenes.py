@@ -22,6 +22,7 @@ import sys
 import tempfile
 import zlib
 
+import bmesh
 import bpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -31,10 +32,12 @@ from cycles_still import render_still  # noqa: E402
 def arguments():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     p = argparse.ArgumentParser()
-    p.add_argument("--scene", default="still_life", choices=["still_life", "metals", "leaves", "glass", "layers"])
+    p.add_argument("--scene", default="still_life", choices=["still_life", "metals", "leaves", "glass", "layers",
+                                                                "water_glass"])
     p.add_argument("--out", required=True)
     p.add_argument("--render", help="also render with Cycles to this .exr")
     p.add_argument("--spp", type=int, default=256)
+    p.add_argument("--bounces", type=int, default=8, help="Cycles' bounces of every kind (vkrt's --bounces)")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--width", type=int, default=400)
     p.add_argument("--height", type=int, default=300)
@@ -83,15 +86,27 @@ def textured(name, png, roughness):
     return m
 
 
+def checker_floor(name="floor"):
+    # An 8 x 8 floor of roughness 0.8 textured with the grey checkerboard, its squares 1 m.
+    png = os.path.join(tempfile.mkdtemp(), "checker.png")
+    checker_png(png)
+    bpy.ops.mesh.primitive_plane_add(size=8, location=(0, 0, 0))
+    give(bpy.context.object, textured(name, png, roughness=0.8))
+
+
 def give(obj, material):
     obj.data.materials.clear()
     obj.data.materials.append(material)
 
 
-def lamp_and_camera():
+def lamp():
     # A square lamp facing down: an emissive mesh, exported with its strength.
     bpy.ops.mesh.primitive_plane_add(size=1.2, location=(0, 0, 3), rotation=(math.pi, 0, 0))
     give(bpy.context.object, principled("lamp", (0, 0, 0), emission=(1, 1, 1), strength=12.0))
+
+
+def lamp_and_camera():
+    lamp()
     aim_camera((0, -5, 2.4), (0, 5, -1.9), 38)
 
 
@@ -121,10 +136,7 @@ def still_life():
 def metals():
     # Gold, steel and red plastic spheres of three roughnesses on a rough floor
     # textured with a checkerboard of 1 m squares.
-    png = os.path.join(tempfile.mkdtemp(), "checker.png")
-    checker_png(png)
-    bpy.ops.mesh.primitive_plane_add(size=8, location=(0, 0, 0))
-    give(bpy.context.object, textured("floor", png, roughness=0.8))
+    checker_floor()
     for x, name, rgb, metallic, roughness in [(-1.3, "gold", (1.0, 0.78, 0.34), 1.0, 0.3),
                                               (0.0, "steel", (0.8, 0.8, 0.8), 1.0, 0.6),
                                               (1.3, "plastic", (0.7, 0.1, 0.1), 0.0, 0.4)]:
@@ -242,10 +254,7 @@ def glass(name, rgb, ior, thickness, roughness=0.0):
 def glasses():
     # A clear glass sphere and a green glass block on the checkerboard floor, under
     # the lamp: refraction, Fresnel reflection and the light they focus.
-    png = os.path.join(tempfile.mkdtemp(), "checker.png")
-    checker_png(png)
-    bpy.ops.mesh.primitive_plane_add(size=8, location=(0, 0, 0))
-    give(bpy.context.object, textured("floor", png, roughness=0.8))
+    checker_floor()
     bpy.ops.mesh.primitive_uv_sphere_add(segments=48, ring_count=24, radius=0.6, location=(-0.6, 0.2, 0.6))
     bpy.ops.object.shade_smooth()
     give(bpy.context.object, glass("clear", (1.0, 1.0, 1.0), 1.5, 1.2))
@@ -263,10 +272,7 @@ def layers():
     # (roughness 0.3: rough KHR_materials_transmission, solid), and a blue plastic
     # whose Specular 1 and Specular Tint 0.5 the exporter writes as
     # KHR_materials_specular (with KHR_materials_ior 1.45, Principled's default IOR).
-    png = os.path.join(tempfile.mkdtemp(), "checker.png")
-    checker_png(png)
-    bpy.ops.mesh.primitive_plane_add(size=8, location=(0, 0, 0))
-    give(bpy.context.object, textured("floor", png, roughness=0.8))
+    checker_floor()
     paint = principled("car_paint", (0.5, 0.02, 0.02), metallic=0.5, roughness=0.4)
     paint.node_tree.nodes["Principled BSDF"].inputs["Clearcoat"].default_value = 1.0
     paint.node_tree.nodes["Principled BSDF"].inputs["Clearcoat Roughness"].default_value = 0.05
@@ -281,6 +287,47 @@ def layers():
     lamp_and_camera()
 
 
+def cylinder(radius, depth, bottom, open_top=False):
+    # A smooth-shaded cylinder of 64 sides standing on z = bottom, its rims sharp
+    # (auto smooth: the exporter writes the split normals), its top face removed when
+    # open_top.
+    bpy.ops.mesh.primitive_cylinder_add(vertices=64, radius=radius, depth=depth,
+                                        location=(0, 0.2, bottom + depth / 2))
+    obj = bpy.context.object
+    if open_top:
+        bm = bmesh.new()
+        bm.from_mesh(obj.data)
+        top = max(bm.faces, key=lambda f: f.calc_center_median().z)
+        bmesh.ops.delete(bm, geom=[top], context="FACES_ONLY")
+        bm.to_mesh(obj.data)
+        bm.free()
+    bpy.ops.object.shade_smooth()
+    obj.data.use_auto_smooth = True
+    obj.data.auto_smooth_angle = math.radians(30)
+    return obj
+
+
+def water_glass():
+    # A glass of water on the checkerboard table under the lamp: a tumbler (an open
+    # cylinder that Blender's Solidify modifier gives walls and a bottom 0.04 thick,
+    # glass of ior 1.5) holding water (ior 1.33) to two thirds of its height. The
+    # water stands 0.002 clear of the glass on every side: glTF has no nesting of
+    # media, so each surface meets air in both renderers (a water-glass interface
+    # would need the ratio of the two indices on one surface).
+    checker_floor("table")
+    wall = 0.04
+    tumbler = cylinder(0.45, 1.0, 0.001, open_top=True)
+    solid = tumbler.modifiers.new("walls", "SOLIDIFY")
+    solid.thickness = wall
+    solid.offset = -1.0
+    solid.use_even_offset = True
+    give(tumbler, glass("tumbler", (1.0, 1.0, 1.0), 1.5, wall))
+    water = cylinder(0.45 - wall - 0.002, 0.6, 0.001 + wall + 0.002)
+    give(water, glass("water", (0.9, 0.96, 1.0), 1.33, 0.8))
+    lamp()
+    aim_camera((0, -3.0, 1.5), (0, 3.2, -1.05), 30)  # closer than the others': the glass fills more of it
+
+
 def main():
     args = arguments()
     bpy.ops.wm.read_factory_settings(use_empty=True)
@@ -292,12 +339,13 @@ def main():
     world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.05, 0.05, 0.05, 1)
     world.node_tree.nodes["Background"].inputs["Strength"].default_value = 1.0
     scene.world = world
-    {"still_life": still_life, "metals": metals, "leaves": leaves, "glass": glasses, "layers": layers}[args.scene]()
+    {"still_life": still_life, "metals": metals, "leaves": leaves, "glass": glasses, "layers": layers,
+     "water_glass": water_glass}[args.scene]()
     bpy.ops.export_scene.gltf(filepath=args.out, export_format="GLB", export_cameras=True, export_lights=True,
                               export_apply=True, export_yup=True)
     if args.render:
         threshold_alpha_for_cycles()
-        render_still(scene, args.render, args.spp, bounces=8, seed=args.seed)
+        render_still(scene, args.render, args.spp, bounces=args.bounces, seed=args.seed)
 
 
 main()
