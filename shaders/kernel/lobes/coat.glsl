@@ -55,6 +55,11 @@ float under_coat(CoatLobe l, float cos_o) {
     return kept;
 }
 
+// The ratio of cosines coat_eval scales by is bounded by taking the shading normal's
+// cosine as at least this: a direction that grazes the shading surface then gives a
+// hair less than its due, never an infinite value.
+const float MIN_COAT_SHADING_COSINE = 1.0e-6f;
+
 // The coat's value where the others' is taken on the shading normal n: the caller
 // weighs every lobe by cos(theta_i) to n, and the coat's cosine is to its own
 // normal, so where the two differ (a normal map bends one of them) its value is
@@ -63,7 +68,7 @@ vec3 coat_eval(CoatLobe l, vec3 n, vec3 wo, vec3 wi) {
     vec3 f = l.factor * ggx_eval(vec3(COAT_F0), 1.0f, l.alpha, l.normal, wo, wi);
     if (any(notEqual(l.normal, n))) {
         float ci = dot(n, wi);
-        f *= ci > 0.0f ? max(dot(l.normal, wi), 0.0f) / ci : 0.0f;
+        f *= ci > 0.0f ? max(dot(l.normal, wi), 0.0f) / max(ci, MIN_COAT_SHADING_COSINE) : 0.0f;
     }
     return f;
 }
