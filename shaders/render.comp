@@ -115,7 +115,7 @@ void store_pixel_texel(uint t, uvec4 value) {
 // A material from its texels, field by field (kernel/material_fields.glsl): each
 // texel fetched once into t<texel>, whichever fields it holds. Without a loop or an
 // array, so that the driver drops a texel no field of the pipeline reads without
-// having to unroll anything first. A field in a texel beyond t17 fails to compile
+// having to unroll anything first. A field in a texel beyond t19 fails to compile
 // here: add its fetch.
 Material material_from_texels(uint i) {
     uint first = MATERIAL_TEXELS * i;
@@ -127,7 +127,8 @@ Material material_from_texels(uint i) {
           t10 = fetch_texel(materials, first + 10u), t11 = fetch_texel(materials, first + 11u),
           t12 = fetch_texel(materials, first + 12u), t13 = fetch_texel(materials, first + 13u),
           t14 = fetch_texel(materials, first + 14u), t15 = fetch_texel(materials, first + 15u),
-          t16 = fetch_texel(materials, first + 16u), t17 = fetch_texel(materials, first + 17u);
+          t16 = fetch_texel(materials, first + 16u), t17 = fetch_texel(materials, first + 17u),
+          t18 = fetch_texel(materials, first + 18u), t19 = fetch_texel(materials, first + 19u);
     Material m;
 #define MATERIAL_FIELD(T, name, texel, lane) m.name = FROM_BITS_##T(t##texel.lane);
 #define MATERIAL_FIELD3(T, name, texel) m.name = FROM_BITS_##T(t##texel.xyz);

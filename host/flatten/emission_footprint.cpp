@@ -148,9 +148,9 @@ const EmissionFootprints::Table& EmissionFootprints::table(std::uint32_t texture
     return tables_.emplace(key, std::move(table)).first->second;
 }
 
-double EmissionFootprints::mean_emission(const Material& material, std::span<const glm::dvec2> uv) {
+double EmissionFootprints::mean_emission(const Material& material, std::span<const glm::dvec2> uv,
+                                         const std::array<double, 6>& a) {
     const TextureImage& t = scene_.textures[*material.emission_texture];
-    const auto& a = material.uv_transform;
     glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
     bool finite = true;
     for (const glm::dvec2& p : uv) {

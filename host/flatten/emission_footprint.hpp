@@ -30,10 +30,12 @@ public:
     explicit EmissionFootprints(const Scene& scene) : scene_(scene) {}
 
     // The mean over the footprint of the texture coordinates `uv` (3 for a triangle,
-    // 4 for a parallelogram's corners) of mean_c(emission_c * texel_c), with the
-    // texel as the kernel decodes it; 0 when every texel there is black. `material`
-    // must have an emission texture.
-    double mean_emission(const Material& material, std::span<const glm::dvec2> uv);
+    // 4 for a parallelogram's corners) taken through `transform` (as
+    // Material::uv_transform) of mean_c(emission_c * texel_c), with the texel as the
+    // kernel decodes it; 0 when every texel there is black. `material` must have an
+    // emission texture.
+    double mean_emission(const Material& material, std::span<const glm::dvec2> uv,
+                         const std::array<double, 6>& transform);
 
 private:
     // Sums of the emission over texels [0, x) x [0, y), (width + 1) x (height + 1),

@@ -102,6 +102,11 @@ void set_texture_fields(const Material& m, kernel::Material& out) {
     out.specular_color_map = map(m.specular_color_texture);
     out.uv_u = vec3(float(a[0]), float(a[1]), float(a[2]));
     out.uv_v = vec3(float(a[3]), float(a[4]), float(a[5]));
+    const auto& b = m.second_mapping.transform;
+    out.second_maps = m.second_mapping.maps;
+    out.second_coords = m.second_mapping.own_coordinates ? 1u : 0u;
+    out.uv2_u = vec3(float(b[0]), float(b[1]), float(b[2]));
+    out.uv2_v = vec3(float(b[3]), float(b[4]), float(b[5]));
 }
 
 kernel::Material flatten(const Material& m) {
@@ -250,6 +255,21 @@ std::uint32_t add_corner_words(const Scene& scene, Corners corners, FlatScene& g
     return first;
 }
 
+// The triangles' second texture coordinates (kernel/vertex_data.glsl, second_uv): the
+// float bits of u and v of each corner, a triangle's first coordinates where it has
+// no second ones. Returns where they start.
+std::uint32_t add_second_uv_words(const Scene& scene, FlatScene& g) {
+    const auto first = static_cast<std::uint32_t>(g.table_words.size());
+    g.table_words.reserve(g.table_words.size() + 6 * scene.triangles.size());
+    for (const Triangle& t : scene.triangles) {
+        for (const glm::dvec2& c : t.second_uvs ? *t.second_uvs : texture_corners(t)) {
+            g.table_words.push_back(std::bit_cast<std::uint32_t>(static_cast<float>(c.x)));
+            g.table_words.push_back(std::bit_cast<std::uint32_t>(static_cast<float>(c.y)));
+        }
+    }
+    return first;
+}
+
 // A light as the kernel reads it (kernel/layout.glsl, Light): a directional light as
 // the point at infinity toward it (w = 0), which no origin moves; a spot light's
 // axis and cone angles folded into the cone's linear ramp in the cosine, with the
@@ -298,9 +318,13 @@ void add_emitters(const Scene& scene, FlatScene& g) {
         const Triangle& t = scene.triangles[i];
         const Material& m = scene.materials[t.material];
         if (!is_nonzero(m.emission)) return;
-        const std::array<glm::dvec2, 3> uv = texture_corners(t);
+        // The emission texture's own mapping (kernel/texture.glsl).
+        const bool second = g.features.has(Feature::HAS_SECOND_MAPPING) && m.on_second_mapping(kernel::MAP_EMISSION);
+        const std::array<glm::dvec2, 3> uv =
+            second && m.second_mapping.own_coordinates && t.second_uvs ? *t.second_uvs : texture_corners(t);
         const std::array<glm::dvec2, 4> corners{uv[0], uv[1], uv[2], uv[0] + uv[2] - uv[1]};
-        const double weight = footprints.mean_emission(m, std::span(corners).first(t.parallelogram ? 4 : 3));
+        const double weight = footprints.mean_emission(m, std::span(corners).first(t.parallelogram ? 4 : 3),
+                                                       second ? m.second_mapping.transform : m.uv_transform);
         // The kernel reads the weight in float: one that would round to 0 is the
         // smallest normal float instead, so that an emitting footprint stays an emitter.
         const float bits = weight > 0.0 ? std::max(float(weight), std::numeric_limits<float>::min()) : 0.0f;
@@ -557,6 +581,9 @@ FlatScene flatten_scene(const Scene& scene, const AccelPolicy& policy) {
     if (g.features.has(Feature::HAS_MICROFACET)) add_ggx_tables(g);
     if (g.features.has(Feature::HAS_VERTEX_COLORS)) {
         kernel::set_vertex_color_first_word(p, add_corner_words(scene, [](const Triangle& t) -> const auto& { return t.colors; }, g));
+    }
+    if (g.features.has(Feature::HAS_SECOND_MAPPING)) {
+        kernel::set_second_uv_first_word(p, add_second_uv_words(scene, g));
     }
     if (g.features.has(Feature::HAS_TANGENTS)) {
         kernel::set_tangent_first_word(p, add_corner_words(scene, [](const Triangle& t) -> const auto& { return t.tangents; }, g));

@@ -209,21 +209,22 @@ private:
             }
             if (!read_specular_glossiness(g, element, m)) {
                 m.texture = textures_.texture(pbr.baseColorTexture, element + ".pbrMetallicRoughness.baseColorTexture",
-                                              Encoding::SrgbUnlessFloat, m);
+                                              Encoding::SrgbUnlessFloat, kernel::MAP_COLOR, m);
                 m.metallic_roughness_texture = textures_.texture(
                     pbr.metallicRoughnessTexture, element + ".pbrMetallicRoughness.metallicRoughnessTexture",
-                    Encoding::Linear, m);
+                    Encoding::Linear, kernel::MAP_METAL_ROUGH, m);
             }
             m.emission_texture =
-                textures_.texture(g.emissiveTexture, element + ".emissiveTexture", Encoding::SrgbUnlessFloat, m);
-            m.normal_map = textures_.normal_texture(g.normalTexture, element + ".normalTexture", m);
+                textures_.texture(g.emissiveTexture, element + ".emissiveTexture", Encoding::SrgbUnlessFloat,
+                                  kernel::MAP_EMISSION, m);
+            m.normal_map = textures_.normal_texture(g.normalTexture, element + ".normalTexture", kernel::MAP_NORMAL, m);
             if (g.occlusionTexture.index >= 0) note_unsupported("occlusion maps (not needed by a path tracer)");
             read_alpha_mode(g, element, m);
             read_glass(g, element, m);
             read_clearcoat(g, element, m);
             read_sheen(g, element, m);
             read_specular(g, element, m);
-            uv_sets_.push_back(m.textured() ? textures_.uv_set() : 0);
+            uv_sets_.push_back(m.textured() ? textures_.uv_sets() : std::pair{0, -1});
             materials_.push_back(static_cast<std::uint32_t>(scene_.materials.size()));
             scene_.materials.push_back(m);
         }
@@ -283,7 +284,8 @@ private:
                                    element + ".extensions.KHR_materials_transmission.transmissionFactor");
         }
         m.transmission_texture = extension_texture(e->second, "transmissionTexture",
-                                                   element + ".extensions.KHR_materials_transmission", Encoding::Linear, m);
+                                                   element + ".extensions.KHR_materials_transmission", Encoding::Linear,
+                                                   kernel::MAP_TRANSMISSION, m);
         mr.thin = true;
         const auto volume = g.extensions.find("KHR_materials_volume");
         if (volume == g.extensions.end()) return;
@@ -326,9 +328,11 @@ private:
         if (const tinygltf::Value& v = e->second.Get("clearcoatRoughnessFactor"); v.IsNumber()) {
             mr.clearcoat_roughness = unit(v.GetNumberAsDouble(), at + ".clearcoatRoughnessFactor");
         }
-        m.clearcoat_texture = extension_texture(e->second, "clearcoatTexture", at, Encoding::Linear, m);
-        m.clearcoat_roughness_texture = extension_texture(e->second, "clearcoatRoughnessTexture", at, Encoding::Linear, m);
-        m.clearcoat_normal_map = extension_normal_texture(e->second, "clearcoatNormalTexture", at, m);
+        m.clearcoat_texture = extension_texture(e->second, "clearcoatTexture", at, Encoding::Linear, kernel::MAP_COAT, m);
+        m.clearcoat_roughness_texture = extension_texture(e->second, "clearcoatRoughnessTexture", at, Encoding::Linear,
+                                                          kernel::MAP_COAT_ROUGH, m);
+        m.clearcoat_normal_map =
+            extension_normal_texture(e->second, "clearcoatNormalTexture", at, kernel::MAP_COAT_NORMAL, m);
     }
 
     // KHR_materials_sheen's factors and textures: sheen over the material, under its
@@ -344,8 +348,10 @@ private:
         if (const tinygltf::Value& v = e->second.Get("sheenRoughnessFactor"); v.IsNumber()) {
             mr.sheen_roughness = unit(v.GetNumberAsDouble(), at + ".sheenRoughnessFactor");
         }
-        m.sheen_color_texture = extension_texture(e->second, "sheenColorTexture", at, Encoding::SrgbUnlessFloat, m);
-        m.sheen_roughness_texture = extension_texture(e->second, "sheenRoughnessTexture", at, Encoding::Linear, m);
+        m.sheen_color_texture = extension_texture(e->second, "sheenColorTexture", at, Encoding::SrgbUnlessFloat,
+                                                  kernel::MAP_SHEEN, m);
+        m.sheen_roughness_texture = extension_texture(e->second, "sheenRoughnessTexture", at, Encoding::Linear,
+                                                      kernel::MAP_SHEEN_ROUGH, m);
     }
 
     // KHR_materials_specular's factors and textures: the dielectric's specular layer
@@ -365,8 +371,9 @@ private:
             for (int i = 0; i < 3; ++i) c[i] = v.Get(i).IsNumber() ? v.Get(i).GetNumberAsDouble() : -1.0;
             mr.specular_color = color(c, 1e6, at + ".specularColorFactor");
         }
-        m.specular_texture = extension_texture(e->second, "specularTexture", at, Encoding::Linear, m);
-        m.specular_color_texture = extension_texture(e->second, "specularColorTexture", at, Encoding::SrgbUnlessFloat, m);
+        m.specular_texture = extension_texture(e->second, "specularTexture", at, Encoding::Linear, kernel::MAP_SPECULAR, m);
+        m.specular_color_texture = extension_texture(e->second, "specularColorTexture", at, Encoding::SrgbUnlessFloat,
+                                                     kernel::MAP_SPECULAR_COLOR, m);
         if (mr.transmission > 0.0 && (mr.has_specular() || m.specular_texture || m.specular_color_texture)) {
             note_unsupported("KHR_materials_specular on glass (its glass reflects by its ior)");
         }
@@ -402,15 +409,17 @@ private:
     // KHR_texture_transform), read as the core material's textures are; none when the
     // extension has no such key.
     std::optional<std::uint32_t> extension_texture(const tinygltf::Value& extension, const char* key,
-                                                   const std::string& at_extension, Encoding encoding, Material& m) {
+                                                   const std::string& at_extension, Encoding encoding,
+                                                   std::uint32_t slot, Material& m) {
         if (!extension.Has(key)) return std::nullopt;
         const std::string at = at_extension + "." + key;
-        return textures_.texture(texture_info(extension.Get(key), at), at, encoding, m);
+        return textures_.texture(texture_info(extension.Get(key), at), at, encoding, slot, m);
     }
 
     // The same for a normalTextureInfo (its scale, 1 when absent).
     std::optional<std::uint32_t> extension_normal_texture(const tinygltf::Value& extension, const char* key,
-                                                          const std::string& at_extension, Material& m) {
+                                                          const std::string& at_extension, std::uint32_t slot,
+                                                          Material& m) {
         if (!extension.Has(key)) return std::nullopt;
         const std::string at = at_extension + "." + key;
         const tinygltf::Value& t = extension.Get(key);
@@ -423,7 +432,7 @@ private:
             if (!t.Get("scale").IsNumber()) fail_at(at + ".scale", "expected a number");
             info.scale = t.Get("scale").GetNumberAsDouble();
         }
-        return textures_.normal_texture(info, at, m);
+        return textures_.normal_texture(info, at, slot, m);
     }
 
     // A textureInfo object at `at`: its index, texCoord and KHR_texture_transform.
@@ -597,11 +606,16 @@ private:
         mesh.tangents = read_attribute(prim, element, "TANGENT", "tangents", n, [&](int a, const gltf::Origin& o) {
             return gltf::read_vec4(model_, a, o);
         });
-        // The texture coordinates its material's textures read (TEXCOORD_0 unless they say otherwise).
+        // The texture coordinates its material's textures read (TEXCOORD_0 unless they
+        // say otherwise), and those of its second mapping where that reads another set.
         const bool known = prim.material >= 0 && static_cast<std::size_t>(prim.material) < uv_sets_.size();
-        const std::string uv_set = fmt::format("TEXCOORD_{}", known ? uv_sets_[static_cast<std::size_t>(prim.material)] : 0);
-        mesh.uvs = read_attribute(prim, element, uv_set, "texture coordinates", n,
-                                  [&](int a, const gltf::Origin& o) { return gltf::read_vec2(model_, a, o, quantizable); });
+        const auto [first_set, second_set] = known ? uv_sets_[static_cast<std::size_t>(prim.material)] : std::pair{0, -1};
+        const auto read_uvs = [&](int a, const gltf::Origin& o) { return gltf::read_vec2(model_, a, o, quantizable); };
+        mesh.uvs = read_attribute(prim, element, fmt::format("TEXCOORD_{}", first_set), "texture coordinates", n, read_uvs);
+        if (second_set >= 0 && second_set != first_set) {
+            mesh.second_uvs =
+                read_attribute(prim, element, fmt::format("TEXCOORD_{}", second_set), "texture coordinates", n, read_uvs);
+        }
         mesh.colors = read_attribute(prim, element, "COLOR_0", "colours", n, [&](int a, const gltf::Origin& o) {
             return gltf::read_colors(model_, a, o);
         });
@@ -624,6 +638,7 @@ private:
             f.position = {indices[i], indices[i + 1], indices[i + 2]};
             if (smooth) f.normal = f.position;
             if (!mesh.uvs.empty()) f.uv = f.position;
+            if (!mesh.second_uvs.empty()) f.second_uv = f.position;
             if (!mesh.colors.empty()) f.color = f.position;
             if (!mesh.tangents.empty()) f.tangent = f.position;
             mesh.faces.push_back(f);
@@ -742,7 +757,7 @@ private:
     tinygltf::Model model_;
     Scene& scene_;
     std::vector<std::uint32_t> materials_;  // glTF material -> scene material
-    std::vector<int> uv_sets_;              // glTF material -> the TEXCOORD_<n> its textures read
+    std::vector<std::pair<int, int>> uv_sets_;  // glTF material -> the TEXCOORD_<n> of its mappings (-1: none)
     std::optional<std::uint32_t> default_material_;
     std::map<std::string, std::size_t> unsupported_;  // what the image will not show -> how many, said once
     std::size_t visits_ = 0;

@@ -45,12 +45,12 @@ void TextureReader::fail_at(const std::string& element, const std::string& what)
 }
 
 std::optional<std::uint32_t> TextureReader::texture(const tinygltf::TextureInfo& info, const std::string& element,
-                                                    Encoding encoding, Material& m) {
-    return request(info, element, encoding, 1.0, false, m);
+                                                    Encoding encoding, std::uint32_t slot, Material& m) {
+    return request(info, element, encoding, 1.0, false, slot, m);
 }
 
 std::optional<std::uint32_t> TextureReader::normal_texture(const tinygltf::NormalTextureInfo& info,
-                                                           const std::string& element, Material& m) {
+                                                           const std::string& element, std::uint32_t slot, Material& m) {
     if (!std::isfinite(info.scale) || std::abs(info.scale) > 1e6) {
         fail_at(element + ".scale", fmt::format("expected a number from -1e6 to 1e6, got {}", info.scale));
     }
@@ -58,11 +58,12 @@ std::optional<std::uint32_t> TextureReader::normal_texture(const tinygltf::Norma
     plain.index = info.index;
     plain.texCoord = info.texCoord;
     plain.extensions = info.extensions;
-    return request(plain, element, Encoding::Linear, info.scale, true, m);
+    return request(plain, element, Encoding::Linear, info.scale, true, slot, m);
 }
 
 std::optional<TextureReader::Source> TextureReader::source(const tinygltf::TextureInfo& info, const std::string& element,
-                                                          bool has_transform, Material& m) {
+                                                          std::optional<std::uint32_t> slot, bool after_first,
+                                                          Material& m) {
     if (info.index < 0) return std::nullopt;
     if (static_cast<std::size_t>(info.index) >= model_.textures.size()) {
         fail_at(element + ".index", fmt::format("texture {} does not exist (the file has {})", info.index,
@@ -70,8 +71,7 @@ std::optional<TextureReader::Source> TextureReader::source(const tinygltf::Textu
     }
     const tinygltf::Texture& texture = model_.textures[static_cast<std::size_t>(info.index)];
     const std::string where = fmt::format("textures[{}]", info.index);
-    int tex_coord = info.texCoord;
-    std::array<double, 6> transform{1.0, 0.0, 0.0, 0.0, 1.0, 0.0};
+    Mapping mapping{info.texCoord, {1.0, 0.0, 0.0, 0.0, 1.0, 0.0}};
     if (auto t = info.extensions.find("KHR_texture_transform"); t != info.extensions.end()) {
         const tinygltf::Value& v = t->second;
         const auto pair = [&](const char* key, double fallback) {
@@ -91,21 +91,12 @@ std::optional<TextureReader::Source> TextureReader::source(const tinygltf::Textu
         for (double x : {ou, ov, su, sv, rotation}) {
             if (!std::isfinite(x)) fail_at(element + ".extensions.KHR_texture_transform", "a value is not finite");
         }
-        transform = texture_transform(ou, ov, rotation, su, sv);
-        if (v.Get("texCoord").IsInt()) tex_coord = v.Get("texCoord").GetNumberAsInt();
+        mapping.transform = texture_transform(ou, ov, rotation, su, sv);
+        if (v.Get("texCoord").IsInt()) mapping.set = v.Get("texCoord").GetNumberAsInt();
     }
-    if (tex_coord < 0) fail_at(element + ".texCoord", fmt::format("expected an integer from 0, got {}", tex_coord));
-    if (has_transform && tex_coord != uv_set_) {
-        note_("a material's textures on different texture coordinate sets (TEXCOORD_n), rendered without the later "
-              "texture");
-        return std::nullopt;
+    if (mapping.set < 0) {
+        fail_at(element + ".texCoord", fmt::format("expected an integer from 0, got {}", mapping.set));
     }
-    if (has_transform && transform != m.uv_transform) {
-        note_("a material's textures with different KHR_texture_transforms, rendered without the later texture");
-        return std::nullopt;
-    }
-    m.uv_transform = transform;
-    uv_set_ = tex_coord;
     if (texture.source < 0 || static_cast<std::size_t>(texture.source) >= model_.images.size()) {
         if (texture.source < 0) {
             note_("textures without a source image (or with one of an extension's), rendered without the texture");
@@ -114,6 +105,7 @@ std::optional<TextureReader::Source> TextureReader::source(const tinygltf::Textu
         fail_at(where + ".source", fmt::format("image {} does not exist (the file has {})", texture.source,
                                                model_.images.size()));
     }
+    if (!place_on_mapping(mapping, slot, after_first, m)) return std::nullopt;
     Source out;
     out.image = texture.source;
     out.sampler = texture.sampler;
@@ -129,6 +121,39 @@ std::optional<TextureReader::Source> TextureReader::source(const tinygltf::Textu
     return out;
 }
 
+bool TextureReader::place_on_mapping(const Mapping& mapping, std::optional<std::uint32_t> slot, bool after_first,
+                                     Material& m) {
+    if (!after_first) {
+        m.uv_transform = mapping.transform;
+        m.second_mapping = Material::SecondMapping{};
+        sets_ = {mapping.set, -1};
+        return true;
+    }
+    if (mapping.set == sets_.first && mapping.transform == m.uv_transform) return true;
+    if (!slot) {
+        note_("KHR_materials_pbrSpecularGlossiness textures on different texture coordinates (TEXCOORD_n or "
+              "KHR_texture_transform), converted without the specular-glossiness texture");
+        return false;
+    }
+    if (*slot == kernel::MAP_COLOR) {
+        note_("a material's colour texture on other texture coordinates (TEXCOORD_n or KHR_texture_transform) than "
+              "its first texture, rendered without the colour texture");
+        return false;
+    }
+    Material::SecondMapping& second = m.second_mapping;
+    if (second.maps == 0) {
+        second.transform = mapping.transform;
+        second.own_coordinates = mapping.set != sets_.first;
+        sets_.second = mapping.set;
+    } else if (mapping.set != sets_.second || mapping.transform != second.transform) {
+        note_("a material's textures on more than two mappings of texture coordinates (TEXCOORD_n and "
+              "KHR_texture_transform), rendered without the later textures");
+        return false;
+    }
+    second.maps |= 1u << *slot;
+    return true;
+}
+
 std::size_t TextureReader::encoded_image(int index, Encoding encoding) {
     auto [at, added] = image_of_.try_emplace(index, images_.size());
     if (added) {
@@ -141,8 +166,9 @@ std::size_t TextureReader::encoded_image(int index, Encoding encoding) {
 }
 
 std::optional<std::uint32_t> TextureReader::request(const tinygltf::TextureInfo& info, const std::string& element,
-                                                    Encoding encoding, double normal_scale, bool normal, Material& m) {
-    const std::optional<Source> s = source(info, element, m.textured(), m);
+                                                    Encoding encoding, double normal_scale, bool normal,
+                                                    std::uint32_t slot, Material& m) {
+    const std::optional<Source> s = source(info, element, slot, m.textured(), m);
     if (!s) return std::nullopt;
     const auto key = std::tuple{s->image, s->sampler, encoding, normal, normal ? normal_scale : 1.0};
     if (auto it = ticket_of_.find(key); it != ticket_of_.end()) return it->second;
@@ -163,11 +189,11 @@ std::optional<TextureReader::Converted> TextureReader::specular_glossiness(const
                                                                           const std::string& element,
                                                                           const SpecularGlossiness& factors,
                                                                           double alpha, Material& m) {
-    const bool has_transform = m.textured();
+    // Converted texel by texel, both textures must read one mapping: the first.
     std::optional<Source> d, s;
-    if (diffuse) d = source(*diffuse, element + ".diffuseTexture", has_transform, m);
+    if (diffuse) d = source(*diffuse, element + ".diffuseTexture", std::nullopt, m.textured(), m);
     if (specular_glossiness) {
-        s = source(*specular_glossiness, element + ".specularGlossinessTexture", has_transform || d, m);
+            s = source(*specular_glossiness, element + ".specularGlossinessTexture", std::nullopt, m.textured() || d, m);
     }
     if (!d && !s) return std::nullopt;
     if (d && s && (d->wrap_s != s->wrap_s || d->wrap_t != s->wrap_t)) {

@@ -42,24 +42,29 @@ public:
     TextureReader(const tinygltf::Model& model, std::filesystem::path file, Scene& scene, Note note_unsupported)
         : model_(model), file_(std::move(file)), scene_(scene), note_(std::move(note_unsupported)) {}
 
-    // The ticket of the texture `info` names (one per image, sampler and encoding),
-    // its coordinate transform given to `m`: all of a material's textures share one,
-    // so a second, different one is named as ignored. None for an absent textureInfo
-    // or one vkrt cannot use (said in a warning). `element` is the textureInfo's
-    // place, e.g. "materials[0].pbrMetallicRoughness.baseColorTexture".
+    // The ticket of the texture `info` names (one per image, sampler and encoding), for
+    // the material's slot `slot` (kernel::MAP_<slot>), its mapping of texture
+    // coordinates (its TEXCOORD_<n> and KHR_texture_transform) given to `m`: the
+    // material's first texture makes the first mapping, a later one on another
+    // mapping makes the second (Material::SecondMapping), and one on a third, or a
+    // colour texture on another than the first, is left out and named as ignored.
+    // None for an absent textureInfo or one vkrt cannot use (said in a warning).
+    // `element` is the textureInfo's place, e.g.
+    // "materials[0].pbrMetallicRoughness.baseColorTexture".
     std::optional<std::uint32_t> texture(const tinygltf::TextureInfo& info, const std::string& element,
-                                         Encoding encoding, Material& m);
+                                         Encoding encoding, std::uint32_t slot, Material& m);
 
     // The same for a normalTexture: read linear, with its scale.
     std::optional<std::uint32_t> normal_texture(const tinygltf::NormalTextureInfo& info, const std::string& element,
-                                                Material& m);
+                                                std::uint32_t slot, Material& m);
 
     // A KHR_materials_pbrSpecularGlossiness material's diffuse and specular-glossiness
     // textures (either may be null), to be converted with its factors and diffuse
     // alpha into a base colour and a metallic-roughness texture
     // (gltf_spec_gloss_textures.hpp): their two tickets, or none when neither texture
-    // can be used. A texture left out (another transform, other texture coordinates)
-    // counts as absent: its factor alone is converted. The converted textures take the
+    // can be used. Converted texel by texel, both read the first mapping: a texture on
+    // another (another transform, other texture coordinates) is left out and counts as
+    // absent: its factor alone is converted. The converted textures take the
     // diffuse texture's wrap modes, else the other's; differing ones are named.
     // `element` is the extension object's place.
     struct Converted {
@@ -74,29 +79,37 @@ public:
     // Decodes the images the tickets need, converts what conversions ask for, and
     // returns, for each ticket, its texture's index in Scene::textures.
     std::vector<std::uint32_t> resolve();
-    // The texture coordinate set (TEXCOORD_<n>) of the textures the last material
-    // read uses, when it has any: like the transform, all of a material's textures
-    // share one, and a later texture on another set is left out, and said so.
-    int uv_set() const { return uv_set_; }
+    // The texture coordinate sets (TEXCOORD_<n>) of the last material's mappings, when
+    // it has textures: the first's, and the second's (-1 without one).
+    std::pair<int, int> uv_sets() const { return sets_; }
 
 private:
     [[noreturn]] void fail_at(const std::string& element, const std::string& what) const;
     std::optional<std::uint32_t> request(const tinygltf::TextureInfo& info, const std::string& element,
-                                         Encoding encoding, double normal_scale, bool normal, Material& m);
+                                         Encoding encoding, double normal_scale, bool normal, std::uint32_t slot,
+                                         Material& m);
 
-    // A textureInfo checked, its transform and coordinate set made the material's (or,
-    // when the material has them already and these differ, the texture left out, and
-    // said so): its image,
-    // sampler and wrap modes, or none when vkrt cannot use it.
+    // A texture's mapping of texture coordinates.
+    struct Mapping {
+        int set = 0;  // TEXCOORD_<set>
+        std::array<double, 6> transform;
+    };
+    // A textureInfo checked, and placed on a mapping of the material's
+    // (place_on_mapping; `after_first`: the material has a texture already): its
+    // image, sampler and wrap modes, or none when vkrt cannot use it. A texture
+    // without a slot of its own (a converted one) must read the first mapping.
     struct Source {
         int image = -1;
         int sampler = -1;
         Wrap wrap_s = Wrap::Repeat;
         Wrap wrap_t = Wrap::Repeat;
     };
-    std::optional<Source> source(const tinygltf::TextureInfo& info, const std::string& element, bool has_transform,
-                                 Material& m);
-    int uv_set_ = 0;
+    std::optional<Source> source(const tinygltf::TextureInfo& info, const std::string& element,
+                                 std::optional<std::uint32_t> slot, bool after_first, Material& m);
+    // Puts the texture in `slot` on the material's first mapping, or its second, which
+    // this may make; false, and said so, where it fits neither.
+    bool place_on_mapping(const Mapping& mapping, std::optional<std::uint32_t> slot, bool after_first, Material& m);
+    std::pair<int, int> sets_{0, -1};
     std::size_t encoded_image(int image, Encoding encoding);  // its place in images_, added once
 
     struct Ticket {

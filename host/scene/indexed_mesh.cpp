@@ -29,6 +29,7 @@ void transform_mesh(IndexedMesh& mesh, const Transform& t) {
             std::swap(f.position[1], f.position[2]);
             std::swap(f.normal[1], f.normal[2]);
             std::swap(f.uv[1], f.uv[2]);
+            std::swap(f.second_uv[1], f.second_uv[2]);
             std::swap(f.color[1], f.color[2]);
             std::swap(f.tangent[1], f.tangent[2]);
         }
@@ -151,6 +152,10 @@ std::size_t append_mesh(const IndexedMesh& mesh, const MeshOptions& options, Sce
         Triangle tri{{p[0], p[1], p[2]}, std::nullopt, material};
         if (options.smooth) tri.normals = corner_normals(mesh, f, computed, p);
         if (f.uv[0] != IndexedMesh::kNoUv) tri.uvs = {mesh.uvs[f.uv[0]], mesh.uvs[f.uv[1]], mesh.uvs[f.uv[2]]};
+        if (f.second_uv[0] != IndexedMesh::kNoUv) {
+            tri.second_uvs = {mesh.second_uvs[f.second_uv[0]], mesh.second_uvs[f.second_uv[1]],
+                              mesh.second_uvs[f.second_uv[2]]};
+        }
         if (f.tangent[0] != IndexedMesh::kNoTangent) tri.tangents = given_tangents(mesh, f);
         if (f.color[0] != IndexedMesh::kNoColor) {
             tri.colors = {mesh.colors[f.color[0]], mesh.colors[f.color[1]], mesh.colors[f.color[2]]};

@@ -32,6 +32,7 @@ struct IndexedMesh {
         std::array<std::uint32_t, 3> normal{kNoNormal, kNoNormal, kNoNormal};  // into normals
         std::uint32_t material = kNoMaterial;                             // into materials
         std::array<std::uint32_t, 3> uv{kNoUv, kNoUv, kNoUv};           // into uvs
+        std::array<std::uint32_t, 3> second_uv{kNoUv, kNoUv, kNoUv};    // into second_uvs
         std::array<std::uint32_t, 3> color{kNoColor, kNoColor, kNoColor};  // into colors
         std::array<std::uint32_t, 3> tangent{kNoTangent, kNoTangent, kNoTangent};  // into tangents
     };
@@ -39,6 +40,8 @@ struct IndexedMesh {
     std::vector<glm::dvec3> positions;
     std::vector<glm::dvec3> normals;  // given by the source (OBJ "vn"); may be empty
     std::vector<glm::dvec2> uvs;      // texture coordinates (OBJ "vt", glTF TEXCOORD_0); may be empty
+    // A second set (glTF's TEXCOORD_<n> of a material's second mapping); may be empty.
+    std::vector<glm::dvec2> second_uvs;
     std::vector<glm::vec4> colors;    // linear RGBA vertex colours (glTF COLOR_0); may be empty
     // Unit tangents along +u and, in w, the bitangent's sign (glTF TANGENT); may be empty.
     std::vector<glm::dvec4> tangents;

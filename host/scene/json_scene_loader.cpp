@@ -204,6 +204,11 @@ constexpr std::array<const char*, 11> kTextureFields = {
     "texture", "normal_map", "emission_texture", "transmission_texture", "clearcoat_texture",
     "clearcoat_roughness_texture", "sheen_color_texture", "sheen_roughness_texture", "clearcoat_normal_map",
     "specular_texture", "specular_color_texture"};
+// Their slots (kernel::MAP_<slot>), in the same order.
+constexpr std::array<std::uint32_t, 11> kTextureSlots = {
+    kernel::MAP_COLOR,     kernel::MAP_NORMAL,     kernel::MAP_EMISSION,   kernel::MAP_TRANSMISSION,
+    kernel::MAP_COAT,      kernel::MAP_COAT_ROUGH, kernel::MAP_SHEEN,      kernel::MAP_SHEEN_ROUGH,
+    kernel::MAP_COAT_NORMAL, kernel::MAP_SPECULAR, kernel::MAP_SPECULAR_COLOR};
 
 // The fields of glTF's metallic-roughness model (scene.hpp): base_color, metallic and
 // roughness, glass by transmission and thin (absorbing by attenuation_color and
@@ -274,6 +279,47 @@ std::optional<std::uint32_t> read_normal_map(const Node& n, const char* field, c
     return map;
 }
 
+// A texture transform's "offset", "rotation" (degrees) and "scale", as glTF's
+// KHR_texture_transform.
+std::array<double, 6> read_texture_transform(const Node& t) {
+    double offset[2] = {0.0, 0.0}, scale[2] = {1.0, 1.0}, rotation = 0.0;
+    for (const char* key : {"offset", "scale"}) {
+        if (auto v = t.find(key)) {
+            const std::vector<Node> pair = v->elements(2, "an array of 2 numbers");
+            double* out = std::string_view(key) == "offset" ? offset : scale;
+            out[0] = pair[0].number();
+            out[1] = pair[1].number();
+        }
+    }
+    if (auto v = t.find("rotation")) rotation = v->number() * (std::numbers::pi / 180.0);
+    return texture_transform(offset[0], offset[1], rotation, scale[0], scale[1]);
+}
+
+// A material's "second_texture_transform": a transform, as "texture_transform", for
+// the textures its "textures" names (fields of the material's, the colour texture
+// aside), which then read the coordinates through it instead (Material::SecondMapping).
+void read_second_mapping(const Node& n, Material& m) {
+    auto t = n.find("second_texture_transform");
+    if (!t) return;
+    t->allow_only({"offset", "rotation", "scale", "textures"});
+    auto names = t->find("textures");
+    if (!names) t->fail("a second texture transform needs \"textures\": the fields of the textures that read it");
+    for (const Node& name : names->elements()) {
+        const std::string field = name.string();
+        const auto slot = std::find(kTextureFields.begin(), kTextureFields.end(), field);
+        if (slot == kTextureFields.end()) {
+            name.fail(fmt::format("{} is not a texture field (expected one of {})", json::quote_user(field),
+                                  fmt::join(kTextureFields.begin() + 1, kTextureFields.end(), ", ")));
+        }
+        if (slot == kTextureFields.begin()) {
+            name.fail("the colour texture reads \"texture_transform\": a material's coverage needs it on the first");
+        }
+        if (!n.find(field)) name.fail(fmt::format("the material has no \"{}\"", field));
+        m.second_mapping.maps |= 1u << kTextureSlots[static_cast<std::size_t>(slot - kTextureFields.begin())];
+    }
+    m.second_mapping.transform = read_texture_transform(*t);
+}
+
 // A material's colour texture: the image file (relative to the scene file) and the
 // optional transform of its coordinates, as glTF's KHR_texture_transform (rotation
 // in degrees here, like every angle of the format).
@@ -284,18 +330,9 @@ void read_texture(const Node& n, Material& m, Scene& scene) {
                                               "\"emission_texture\" or a layer's texture");
         }
         t->allow_only({"offset", "rotation", "scale"});
-        double offset[2] = {0.0, 0.0}, scale[2] = {1.0, 1.0}, rotation = 0.0;
-        for (const char* key : {"offset", "scale"}) {
-            if (auto v = t->find(key)) {
-                const std::vector<Node> pair = v->elements(2, "an array of 2 numbers");
-                double* out = std::string_view(key) == "offset" ? offset : scale;
-                out[0] = pair[0].number();
-                out[1] = pair[1].number();
-            }
-        }
-        if (auto v = t->find("rotation")) rotation = v->number() * (std::numbers::pi / 180.0);
-        m.uv_transform = texture_transform(offset[0], offset[1], rotation, scale[0], scale[1]);
+        m.uv_transform = read_texture_transform(*t);
     }
+    read_second_mapping(n, m);
     if (auto file = n.find("texture")) {
         const std::string element = fmt::format("{}: {}", n.file(), file->path());
         m.texture = load_texture(scene, file->file_path(), Encoding::SrgbUnlessFloat, element);
@@ -363,7 +400,7 @@ void read_alpha(const Node& n, Material& m) {
 
 Material read_material(const std::string& name, const Node& n, Scene& scene) {
     std::vector<std::string_view> allowed = {"diffuse", "kd", "specular", "ks", "shininess", "reflect", "transmit",
-                                             "ior", "fresnel", "emission", "texture_transform", "normal_scale",
+                                             "ior", "fresnel", "emission", "texture_transform", "second_texture_transform", "normal_scale",
                                              "clearcoat_normal_scale", "alpha_mode", "alpha", "alpha_cutoff"};
     allowed.insert(allowed.end(), kMetallicRoughnessFields.begin(), kMetallicRoughnessFields.end());
     allowed.insert(allowed.end(), kTextureFields.begin(), kTextureFields.end());

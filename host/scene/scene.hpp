@@ -187,8 +187,9 @@ struct Material {
     // and a colour texture multiplying `specular_color` (specularColorTexture).
     std::optional<std::uint32_t> specular_texture;
     std::optional<std::uint32_t> specular_color_texture;
-    // Every texture slot above, for what treats them alike.
-    std::array<std::optional<std::uint32_t>*, 12> texture_slots() {
+    // Every texture slot above, for what treats them alike, in the order of the
+    // kernel's MAP_<slot> numbers (kernel/constants.glsl).
+    std::array<std::optional<std::uint32_t>*, kernel::MAP_SLOTS> texture_slots() {
         return {&texture, &metallic_roughness_texture, &normal_map, &emission_texture, &transmission_texture,
                 &clearcoat_texture, &clearcoat_roughness_texture, &sheen_color_texture, &sheen_roughness_texture,
                 &clearcoat_normal_map, &specular_texture, &specular_color_texture};
@@ -199,6 +200,20 @@ struct Material {
                clearcoat_normal_map || specular_texture || specular_color_texture;
     }
     std::array<double, 6> uv_transform{1.0, 0.0, 0.0, 0.0, 1.0, 0.0};
+    // A second mapping of texture coordinates (kernel/texture.glsl), for textures that
+    // glTF puts on another TEXCOORD_<n> or KHR_texture_transform than the first
+    // texture's: the textures whose bit 1 << kernel::MAP_<slot> `maps` has read the
+    // triangles' second coordinates (Triangle::second_uvs) where own_coordinates is
+    // set, else their first ones, through `transform` (as uv_transform). The colour
+    // texture always reads the first mapping.
+    struct SecondMapping {
+        std::uint32_t maps = 0;  // none: no texture reads it
+        bool own_coordinates = false;
+        std::array<double, 6> transform{1.0, 0.0, 0.0, 0.0, 1.0, 0.0};
+    };
+    SecondMapping second_mapping;
+    // Whether the texture in slot `slot` (kernel::MAP_<slot>) reads the second mapping.
+    bool on_second_mapping(std::uint32_t slot) const { return (second_mapping.maps >> slot & 1u) != 0u; }
     // Coverage (glTF's alphaMode; kernel/alpha.glsl): the opacity at a point is
     // `alpha` times the colour texture's alpha there. Mask: the surface is there
     // where the opacity reaches alpha_cutoff; blend: with probability the opacity.

@@ -105,6 +105,24 @@ const uint ALPHA_OPAQUE = 0u;
 const uint ALPHA_MASK = 1u;    // opaque where the opacity reaches the cutoff, absent elsewhere
 const uint ALPHA_BLEND = 2u;   // present with probability equal to the opacity
 
+// A material's texture slots, numbered for Material.second_maps (bit 1 << MAP_<slot>:
+// the texture reads the second mapping, texture.glsl) in the host's order
+// (Material::texture_slots). The colour texture always reads the first mapping, so
+// that coverage (alpha.glsl) needs one.
+const uint MAP_COLOR = 0u;
+const uint MAP_METAL_ROUGH = 1u;
+const uint MAP_NORMAL = 2u;
+const uint MAP_EMISSION = 3u;
+const uint MAP_TRANSMISSION = 4u;
+const uint MAP_COAT = 5u;
+const uint MAP_COAT_ROUGH = 6u;
+const uint MAP_SHEEN = 7u;
+const uint MAP_SHEEN_ROUGH = 8u;
+const uint MAP_COAT_NORMAL = 9u;
+const uint MAP_SPECULAR = 10u;
+const uint MAP_SPECULAR_COLOR = 11u;
+const uint MAP_SLOTS = 12u;
+
 // The narrowest GGX lobe (lobes/ggx.glsl): alpha = roughness^2 down to
 // this, so that a roughness of 0 (a polished metal) stays a lobe that next-event
 // estimation and MIS can weigh. Its peak, 1 / (pi alpha^2), is far inside float's range.

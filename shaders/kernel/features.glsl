@@ -76,6 +76,10 @@ FEATURE(29, HAS_ROUGH_GLASS)
 // (glTF's KHR_materials_specular): the GGX lobe's Fresnel rises to ggx_f90 at
 // grazing incidence instead of 1 (lobes/fresnel.glsl).
 FEATURE(30, HAS_DIELECTRIC_SPECULAR)
+// A material whose textures read two mappings of texture coordinates (glTF's
+// texCoord or KHR_texture_transform differing between them): texture.glsl's
+// second_maps, and the triangles' second coordinates (vertex_data.glsl).
+FEATURE(31, HAS_SECOND_MAPPING)
 // Three per kind of primitive (shapes/kinds.glsl), after the others: HAS_<NAMES>, the
 // scene has some; with HAS_GRID, GRID_<NAMES>, the grid's cells list some, and
 // LOOSE_<NAMES>, its loose primitives, which are tested once per ray instead, hold
@@ -83,5 +87,5 @@ FEATURE(30, HAS_DIELECTRIC_SPECULAR)
 // whose boxes would stretch the grid's (host/flatten/flat_scene.cpp,
 // host/accel/grid.cpp, docs/grid.md).
 #define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
-    FEATURE((31 + 3 * ID), HAS_##NAMES) FEATURE((31 + 3 * ID + 1), GRID_##NAMES) FEATURE((31 + 3 * ID + 2), LOOSE_##NAMES)
+    FEATURE((32 + 3 * ID), HAS_##NAMES) FEATURE((32 + 3 * ID + 1), GRID_##NAMES) FEATURE((32 + 3 * ID + 2), LOOSE_##NAMES)
 #include "shapes/kinds.glsl"

@@ -17,7 +17,7 @@
 // A material: the fields of kernel/material_fields.glsl, each named for what it
 // holds, MATERIAL_TEXELS texels in all. render.comp assembles one from its texels
 // (material_from_texels); the host writes it as it is (types.hpp checks the offsets).
-const uint MATERIAL_TEXELS = 18u;
+const uint MATERIAL_TEXELS = 20u;
 struct Material {
 #define MATERIAL_FIELD(T, name, texel, lane) T name;
 #define MATERIAL_FIELD3(T, name, texel) T name;

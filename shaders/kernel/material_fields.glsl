@@ -102,9 +102,18 @@ MATERIAL_FIELD(uint, coat_normal_map, 16, x)
 // index, 0 for none; and that colour, which dielectric_f0_rgb holds multiplied in.
 MATERIAL_FIELD(uint, specular_map, 16, y)
 MATERIAL_FIELD(uint, specular_color_map, 16, z)
-MATERIAL_PAD(16, w)
+
+// A second mapping of texture coordinates (texture.glsl, HAS_SECOND_MAPPING): the
+// textures whose bit 1 << MAP_<slot> second_maps has read at it (0: none), through
+// the transform uv2_u, uv2_v (as uv_u, uv_v), from the triangle's second coordinates
+// (vertex_data.glsl, second_uv) where second_coords is 1, else from its first.
+MATERIAL_FIELD(uint, second_maps, 16, w)
 MATERIAL_FIELD3(vec3, specular_color, 17)
-MATERIAL_PAD(17, w)
+MATERIAL_FIELD(uint, second_coords, 17, w)
+MATERIAL_FIELD3(vec3, uv2_u, 18)
+MATERIAL_PAD(18, w)
+MATERIAL_FIELD3(vec3, uv2_v, 19)
+MATERIAL_PAD(19, w)
 
 #undef MATERIAL_PAD
 #undef MATERIAL_FIELD3

@@ -14,7 +14,9 @@
 // triangle's texture coordinates (after the material's transform), made
 // perpendicular likewise; the bitangent is their cross product, its sign from the
 // handedness of the coordinates on the face, so that +y points up the image on
-// mirrored coordinates too.
+// mirrored coordinates too. Those coordinates are the map's own mapping's
+// (texture.glsl, slot_corner_uv); the file's tangents belong to TEXCOORD_0, as glTF
+// defines them, and orient a map on either mapping.
 
 // A mapped normal is kept at least this cosine toward the viewer (below).
 const float MIN_MAPPED_COSINE = 0.01f;
@@ -31,15 +33,17 @@ vec3 bent_toward_viewer(vec3 mapped, vec3 wo) {
     return mapped;
 }
 
-// hit.normal bent by the normal map `map` (1 + its texture's index) of material m,
-// the hit a triangle's or a quad's. wo: unit, toward the viewer. Only the shading
+// hit.normal bent by the normal map `map` (1 + its texture's index) in `slot`
+// (MAP_NORMAL or MAP_COAT_NORMAL) of material m, the hit a triangle's or a quad's,
+// the map read at its slot's mapping (texture.glsl) and the tangent frame derived
+// from it. wo: unit, toward the viewer. Only the shading
 // normal bends: the geometric one still offsets rays and decides the faces. A map
 // that points straight up (x = y = 0: a flat map, or scale 0) returns hit.normal
 // itself, bit for bit; so do coordinates of zero area (no tangent). A back face
 // takes the front face's mapped normal, negated.
-vec3 normal_from_map(Hit hit, Material m, uint map_index, vec3 wo) {
+vec3 normal_from_map(Hit hit, Material m, uint map_index, uint slot, vec3 wo) {
     Texture map = load_texture(map_index - 1u);
-    vec3 encoded = vec3(texture_bilinear(map, material_uv(m, hit.uv)));
+    vec3 encoded = vec3(texture_bilinear(map, slot_uv(m, hit_texture_coords(m, hit), slot)));
     float scale = map.decode.x;
     precise vec3 ts = vec3((2.0f * encoded.x - 1.0f) * scale, (2.0f * encoded.y - 1.0f) * scale,
                            2.0f * encoded.z - 1.0f);
@@ -60,9 +64,9 @@ vec3 normal_from_map(Hit hit, Material m, uint map_index, vec3 wo) {
         t = t / sqrt(tt);
         return bent_toward_viewer(sgn * unit_vector(ts.x * t + ts.y * (given.w * cross(n, t)) + ts.z * n), wo);
     }
-    vec2 t0 = material_uv(m, vec2(tri.p0.w, tri.p1.w));
-    vec2 t1 = material_uv(m, vec2(tri.p2.w, tri.n0.w));
-    vec2 t2 = material_uv(m, vec2(tri.n1.w, tri.n2.w));
+    vec2 t0 = slot_corner_uv(m, tri, index, 0u, slot);
+    vec2 t1 = slot_corner_uv(m, tri, index, 1u, slot);
+    vec2 t2 = slot_corner_uv(m, tri, index, 2u, slot);
     // Edges from the first corner; a parallelogram's second edge runs p1 to p2, as
     // its coordinates do (triangle_uv).
     bool quad = HAS_QUADS && tri.meta.z != SHAPE_TRIANGLE;
@@ -96,7 +100,7 @@ vec3 mapped_normal(Hit hit, vec3 wo) {
     if (HAS_NORMAL_MAPS && (hit.prim >> REF_KIND_SHIFT) == REF_TRIANGLE) {
         Material m = load_material(hit.material);
         if (m.normal_map != 0u) {
-            n = normal_from_map(hit, m, m.normal_map, wo);
+            n = normal_from_map(hit, m, m.normal_map, MAP_NORMAL, wo);
         }
     }
     return n;
@@ -112,7 +116,7 @@ vec3 coat_normal(Hit hit, vec3 wo) {
     if (HAS_COAT && HAS_NORMAL_MAPS && (hit.prim >> REF_KIND_SHIFT) == REF_TRIANGLE) {
         Material m = load_material(hit.material);
         if (m.coat_normal_map != 0u) {
-            n = normal_from_map(hit, m, m.coat_normal_map, wo);
+            n = normal_from_map(hit, m, m.coat_normal_map, MAP_COAT_NORMAL, wo);
         }
     }
     return n;

@@ -67,6 +67,8 @@ PARAM(uint, ggx_table_first_word, 16, x)    // where they start in table_words
 PARAM(uint, vertex_color_first_word, 16, y)  // where they start in table_words
 // Vertex tangents (kernel/vertex_data.glsl, HAS_TANGENTS): six words a triangle.
 PARAM(uint, tangent_first_word, 16, z)       // where they start in table_words
+// Second texture coordinates (kernel/vertex_data.glsl, HAS_SECOND_MAPPING): six words a triangle.
+PARAM(uint, second_uv_first_word, 16, w)     // where they start in table_words
 
 // Each kind of primitive's count (shapes/kinds.glsl), <name>_count(): four a texel
 // from PARAM_KIND_TEXEL on (layout.glsl), kind ID in lane ID % 4 (at most 7 kinds,

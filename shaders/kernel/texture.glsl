@@ -94,6 +94,66 @@ vec2 material_uv(Material m, vec2 uv) {
     return vec2(dot(vec2(m.uv_u), uv) + m.uv_u.z, dot(vec2(m.uv_v), uv) + m.uv_v.z);
 }
 
+// Texture coordinates through the material's second transform (Material.uv2_u, uv2_v).
+vec2 second_material_uv(Material m, vec2 uv) {
+    return vec2(dot(vec2(m.uv2_u), uv) + m.uv2_u.z, dot(vec2(m.uv2_v), uv) + m.uv2_v.z);
+}
+
+// Whether material m's texture in `slot` (MAP_<slot>, constants.glsl) reads the
+// second mapping.
+bool on_second_mapping(Material m, uint slot) {
+    return HAS_SECOND_MAPPING && (m.second_maps & (1u << slot)) != 0u;
+}
+
+// The coordinates a material's textures read at a point of a triangle or quad: the
+// first mapping's (the triangle's coordinates through the material's transform) and
+// the second's (the triangle's second coordinates, or where the material says so
+// its first, through the second transform; the first's without HAS_SECOND_MAPPING).
+// glTF gives each texture its own TEXCOORD_<n> and KHR_texture_transform; vkrt keeps
+// two mappings a material (docs/gltf.md).
+struct TextureCoords {
+    vec2 first;
+    vec2 second;
+};
+
+// The coordinates at the point of weights bary on triangle `index` of material m,
+// whose first coordinates there are uv (triangle_uv).
+TextureCoords texture_coords(Material m, uint index, vec2 bary, vec2 uv) {
+    TextureCoords c;
+    c.first = material_uv(m, uv);
+    c.second = c.first;
+    if (HAS_SECOND_MAPPING && m.second_maps != 0u) {
+        c.second = second_material_uv(m, m.second_coords != 0u ? second_uv(index, bary) : uv);
+    }
+    return c;
+}
+
+// The coordinates at a hit on any shape; only triangles and quads have second ones.
+TextureCoords hit_texture_coords(Material m, Hit hit) {
+    TextureCoords c;
+    c.first = material_uv(m, hit.uv);
+    c.second = c.first;
+    if (HAS_SECOND_MAPPING && m.second_maps != 0u && (hit.prim >> REF_KIND_SHIFT) == REF_TRIANGLE) {
+        c = texture_coords(m, hit.prim & REF_INDEX_MASK, hit.bary, hit.uv);
+    }
+    return c;
+}
+
+// The coordinates the texture in `slot` reads.
+vec2 slot_uv(Material m, TextureCoords c, uint slot) {
+    return on_second_mapping(m, slot) ? c.second : c.first;
+}
+
+// Corner k (0 to 2) of triangle `index` (record tri) as the texture in `slot` reads
+// it: through the mapping that texture reads.
+vec2 slot_corner_uv(Material m, Triangle tri, uint index, uint k, uint slot) {
+    vec2 uv = material_uv(m, triangle_uv_corner(tri, k));
+    if (on_second_mapping(m, slot)) {
+        uv = second_material_uv(m, m.second_coords != 0u ? second_uv_corner(index, k) : triangle_uv_corner(tri, k));
+    }
+    return uv;
+}
+
 // An emission texture's radiance at (u, v): the emission times the texture.
 vec3 textured_emission(Material m, vec2 uv) {
     return m.emission * vec3(texture_bilinear(load_texture(m.emission_map - 1u), uv));
@@ -125,43 +185,47 @@ void set_metallic_roughness(INOUT(Material) m, vec3 base, float metallic, float 
     m.transmit = glass * base;
 }
 
-// The layers' textures at texture coordinates uv (material_uv): the coat's factor
+// The layers' textures at texture coordinates c (texture_coords): the coat's factor
 // times the coat texture's red, its roughness times the coat roughness texture's
 // green; the sheen's colour times the sheen colour texture, its roughness times the
 // sheen roughness texture's alpha (glTF's packings). A width is the roughness
 // squared, floored: the floor times the texture's square is below the floor, so
 // scaling the stored width is scaling the roughness.
-void apply_layer_textures(INOUT(Material) m, vec2 uv) {
+void apply_layer_textures(INOUT(Material) m, TextureCoords c) {
     if (HAS_COAT && m.coat_map != 0u) {
-        m.coat = clamp(m.coat * texture_bilinear(load_texture(m.coat_map - 1u), uv).r, 0.0f, 1.0f);
+        m.coat = clamp(m.coat * texture_bilinear(load_texture(m.coat_map - 1u), slot_uv(m, c, MAP_COAT)).r, 0.0f, 1.0f);
     }
     if (HAS_COAT && m.coat_rough_map != 0u) {
-        float g = clamp(texture_bilinear(load_texture(m.coat_rough_map - 1u), uv).g, 0.0f, 1.0f);
+        float g = clamp(texture_bilinear(load_texture(m.coat_rough_map - 1u), slot_uv(m, c, MAP_COAT_ROUGH)).g, 0.0f,
+                        1.0f);
         m.coat_alpha = max(m.coat_alpha * (g * g), MIN_GGX_ALPHA);
     }
     if (HAS_SHEEN && m.sheen_map != 0u) {
-        m.sheen_color = clamp(m.sheen_color * vec3(texture_bilinear(load_texture(m.sheen_map - 1u), uv)), vec3(0.0f),
-                              vec3(1.0f));
+        m.sheen_color = clamp(m.sheen_color * vec3(texture_bilinear(load_texture(m.sheen_map - 1u), slot_uv(m, c, MAP_SHEEN))),
+                              vec3(0.0f), vec3(1.0f));
     }
     if (HAS_SHEEN && m.sheen_rough_map != 0u) {
-        float a = clamp(texture_bilinear(load_texture(m.sheen_rough_map - 1u), uv).a, 0.0f, 1.0f);
+        float a = clamp(texture_bilinear(load_texture(m.sheen_rough_map - 1u), slot_uv(m, c, MAP_SHEEN_ROUGH)).a, 0.0f,
+                        1.0f);
         m.sheen_alpha = max(m.sheen_alpha * (a * a), MIN_SHEEN_ALPHA);
     }
 }
 
-// The specular textures at texture coordinates uv (material_uv): the specular
+// The specular textures at texture coordinates c (texture_coords): the specular
 // factor (dielectric_f90) times the specular texture's alpha, the specular colour
 // times the colour texture, and the dielectric's reflectance at normal incidence
 // rebuilt from them as flat_scene.cpp builds it, min(f0 colour, 1) factor
 // (KHR_materials_specular). set_metallic_roughness then mixes them with the metal's.
-void apply_specular_textures(INOUT(Material) m, vec2 uv) {
+void apply_specular_textures(INOUT(Material) m, TextureCoords c) {
     float strength = m.dielectric_f90;
     vec3 color = m.specular_color;
     if (m.specular_map != 0u) {
-        strength = clamp(strength * texture_bilinear(load_texture(m.specular_map - 1u), uv).a, 0.0f, 1.0f);
+        strength = clamp(strength * texture_bilinear(load_texture(m.specular_map - 1u), slot_uv(m, c, MAP_SPECULAR)).a,
+                         0.0f, 1.0f);
     }
     if (m.specular_color_map != 0u) {
-        color = max(color * vec3(texture_bilinear(load_texture(m.specular_color_map - 1u), uv)), vec3(0.0f));
+        color = max(color * vec3(texture_bilinear(load_texture(m.specular_color_map - 1u), slot_uv(m, c, MAP_SPECULAR_COLOR))),
+                    vec3(0.0f));
     }
     m.dielectric_f0_rgb = min(vec3(m.dielectric_f0) * color, vec3(1.0f)) * strength;
     m.dielectric_f90 = strength;
@@ -180,20 +244,21 @@ void apply_specular_textures(INOUT(Material) m, vec2 uv) {
 Material surface_material(Hit hit) {
     Material m = load_material(hit.material);
     bool triangle = (hit.prim >> REF_KIND_SHIFT) == REF_TRIANGLE;
+    TextureCoords coords = hit_texture_coords(m, hit);
     if (HAS_TEXTURES && m.emission_map != 0u && triangle) {
-        m.emission = textured_emission(m, material_uv(m, hit.uv));
+        m.emission = textured_emission(m, slot_uv(m, coords, MAP_EMISSION));
     }
     if (HAS_TEXTURES && (HAS_COAT || HAS_SHEEN) && triangle &&
         (m.coat_map != 0u || m.coat_rough_map != 0u || m.sheen_map != 0u || m.sheen_rough_map != 0u)) {
-        apply_layer_textures(m, material_uv(m, hit.uv));
+        apply_layer_textures(m, coords);
     }
     bool specular_textured = HAS_DIELECTRIC_SPECULAR && (m.specular_map != 0u || m.specular_color_map != 0u);
     bool textured = HAS_TEXTURES && triangle &&
                     (m.color_map != 0u || m.metal_rough_map != 0u || m.transmission_map != 0u || specular_textured);
     bool tinted = HAS_VERTEX_COLORS && triangle && triangle_has_colors(hit.prim & REF_INDEX_MASK);
     if (textured || tinted) {
-        vec2 uv = material_uv(m, hit.uv);
-        vec3 c = HAS_TEXTURES && m.color_map != 0u ? vec3(texture_bilinear(load_texture(m.color_map - 1u), uv)) : vec3(1.0f);
+        vec3 c = HAS_TEXTURES && m.color_map != 0u ? vec3(texture_bilinear(load_texture(m.color_map - 1u), coords.first))
+                                                   : vec3(1.0f);
         if (tinted) {
             c = c * vec3(vertex_color(hit.prim & REF_INDEX_MASK, hit.bary));
         }
@@ -202,15 +267,16 @@ Material surface_material(Hit hit) {
             float metallic = m.metallic;
             float roughness = m.roughness;
             if (HAS_TEXTURES && m.metal_rough_map != 0u) {
-                vec4 mr = texture_bilinear(load_texture(m.metal_rough_map - 1u), uv);
+                vec4 mr = texture_bilinear(load_texture(m.metal_rough_map - 1u), slot_uv(m, coords, MAP_METAL_ROUGH));
                 metallic = clamp(metallic * mr.b, 0.0f, 1.0f);
                 roughness = clamp(roughness * mr.g, 0.0f, 1.0f);
             }
             if (HAS_TEXTURES && m.transmission_map != 0u) {
-                m.transmission = clamp(m.transmission * texture_bilinear(load_texture(m.transmission_map - 1u), uv).r, 0.0f, 1.0f);
+                vec4 t = texture_bilinear(load_texture(m.transmission_map - 1u), slot_uv(m, coords, MAP_TRANSMISSION));
+                m.transmission = clamp(m.transmission * t.r, 0.0f, 1.0f);
             }
             if (HAS_TEXTURES && specular_textured) {
-                apply_specular_textures(m, uv);
+                apply_specular_textures(m, coords);
             }
             set_metallic_roughness(m, base, metallic, roughness);
         } else {

@@ -83,7 +83,7 @@ TEST(EmissionFootprint, TheMeanIsOverTheTexelsTheFilterReaches) {
     EmissionFootprints footprints(scene);
     const Material& m = scene.materials.at(0);
     // Emission (2, 1, 3) has mean 2: texel (3, 3) weighs 2 * 0.75 = 1.5, (6, 1) 0.5.
-    const auto at = [&](std::vector<glm::dvec2> uv) { return footprints.mean_emission(m, uv); };
+    const auto at = [&](std::vector<glm::dvec2> uv) { return footprints.mean_emission(m, uv, m.uv_transform); };
     // A triangle in texel (0, 6)'s square: texel positions x = 8u - 0.5 from -0.42 to
     // -0.02, whose floors and the texels after them (-1, 0), widened by one each
     // side, repeat as 6, 7, 0, 1; rows 4 to 7 likewise. No lit texel: 0.
@@ -107,9 +107,9 @@ TEST(EmissionFootprint, TheMaterialsTransformMovesTheFootprint) {
     // A triangle in texel (6, 4)'s square reaches columns 4 to 7 and rows 2 to 5: no
     // lit texel. Offset by (-0.5, 0), it reads around (2, 4), which reaches (3, 3).
     const std::vector<glm::dvec2> uv{{0.76, 0.51}, {0.80, 0.51}, {0.76, 0.55}};
-    EXPECT_EQ(EmissionFootprints(scene).mean_emission(m, uv), 0.0);
+    EXPECT_EQ(EmissionFootprints(scene).mean_emission(m, uv, m.uv_transform), 0.0);
     m.uv_transform = texture_transform(-0.5, 0.0, 0.0, 1.0, 1.0);
-    EXPECT_NEAR(EmissionFootprints(scene).mean_emission(m, uv), 1.5 / 16.0, 1e-7);
+    EXPECT_NEAR(EmissionFootprints(scene).mean_emission(m, uv, m.uv_transform), 1.5 / 16.0, 1e-7);
 }
 
 // A quad of emission (1, 1, 1) times the texture `file`.
@@ -140,7 +140,7 @@ TEST(EmissionFootprint, LargeEightBitTexturesSumExactlyPieceByPiece) {
     ASSERT_EQ(scene.textures.at(0).format, TexelFormat::Rgba8);
     EmissionFootprints footprints(scene);
     const Material& m = scene.materials.at(0);
-    const auto at = [&](std::vector<glm::dvec2> uv) { return footprints.mean_emission(m, uv); };
+    const auto at = [&](std::vector<glm::dvec2> uv) { return footprints.mean_emission(m, uv, m.uv_transform); };
     const double white = double(w) * h - double(bw) * bh;
     EXPECT_DOUBLE_EQ(at({{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}}), white / (double(w) * h));
     // Well inside the black block (texels 100 to 400 across, 100 to 300 down).
@@ -173,7 +173,8 @@ TEST(EmissionFootprint, DimEightBitTexturesKeepTheirPrecision) {
     }
     ASSERT_GT(expected, 0.001);
     ASSERT_LT(expected, 0.01);
-    const double mean = EmissionFootprints(scene).mean_emission(scene.materials.at(0), {{{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}}});
+    const double mean = EmissionFootprints(scene).mean_emission(scene.materials.at(0), {{{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}}},
+                                                           scene.materials.at(0).uv_transform);
     EXPECT_GE(mean, expected);
     EXPECT_LT(mean, expected * (1.0 + 1.0 / 1024.0));
 }

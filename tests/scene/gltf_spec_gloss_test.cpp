@@ -431,9 +431,9 @@ TEST(SpecularGlossinessTextures, TexturesOfDifferentSizesConvertAtTheLarger) {
                           "with the diffuse texture's (1): ignored"));
 }
 
-// A material's textures share one transform: a specular-glossiness texture whose
-// transform differs from the diffuse texture's is left out, and its factors alone
-// converted. An image a plain texture uses as well is read from the scene's
+// Converted texel by texel, the two textures must share one mapping: a
+// specular-glossiness texture whose transform differs from the diffuse texture's is
+// left out, and its factors alone converted. An image a plain texture uses as well is read from the scene's
 // texels, not decoded again.
 TEST(SpecularGlossinessTextures, ADifferentTransformLeavesTheLaterTextureOut) {
     const std::string material = spec_gloss_material(
@@ -445,7 +445,8 @@ TEST(SpecularGlossinessTextures, ADifferentTransformLeavesTheLaterTextureOut) {
         s, 4, 4, [](std::uint32_t x, std::uint32_t y) { return linear_texel(kDiffuse.texels[y * 4 + x]); },
         [](std::uint32_t, std::uint32_t) { return glm::dvec4(1.0); });
     EXPECT_EQ(s.warnings.size(), 1u);
-    EXPECT_TRUE(warned(s, "different KHR_texture_transforms, rendered without the later texture (1): ignored"));
+    EXPECT_TRUE(warned(s, "KHR_materials_pbrSpecularGlossiness textures on different texture coordinates (TEXCOORD_n or "
+                          "KHR_texture_transform), converted without the specular-glossiness texture (1): ignored"));
     EXPECT_EQ(s.texels.size(), 16u + 2u * 16u) << "the diffuse image once, and the two converted textures";
 }
 

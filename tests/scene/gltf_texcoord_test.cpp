@@ -1,7 +1,7 @@
 // glTF's texture coordinate sets (glTF 2.0, 3.9.2 textureInfo.texCoord): a material's
-// textures read TEXCOORD_<texCoord> of the primitives that use it; all of them one
-// set, as they share one transform (a later texture on another set is left out and
-// named); a negative set is refused.
+// textures read TEXCOORD_<texCoord> of the primitives that use it, on two mappings at
+// most (a set and a transform each, Material::SecondMapping: a texture on a third is
+// left out and named); a negative set is refused.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -110,14 +110,66 @@ TEST(GltfTexCoord, TheTransformsSetOverrides) {
     EXPECT_EQ(*s.triangles[0].uvs, kSetOne);
 }
 
-TEST(GltfTexCoord, ALaterTextureOnAnotherSetIsLeftOutAndNamed) {
+// The first texture's set is the first mapping; a later texture on another set makes
+// the second, whose coordinates the triangles carry beside their first.
+TEST(GltfTexCoord, ALaterTextureOnAnotherSetReadsTheSecondMapping) {
     const Scene s = load_scene(two_set_quad("mixed", R"({"pbrMetallicRoughness": {"metallicFactor": 0,
         "baseColorTexture": {"index": 0, "texCoord": 1}}, "emissiveFactor": [1, 1, 1],
         "emissiveTexture": {"index": 0}})"));
-    EXPECT_TRUE(s.materials[0].texture.has_value());
-    EXPECT_FALSE(s.materials[0].emission_texture.has_value());
-    EXPECT_TRUE(warned(s, "different texture coordinate sets (TEXCOORD_n), rendered without the later texture"));
+    const Material& m = s.materials[0];
+    EXPECT_TRUE(m.texture.has_value());
+    EXPECT_TRUE(m.emission_texture.has_value());
+    EXPECT_EQ(m.second_mapping.maps, 1u << kernel::MAP_EMISSION);
+    EXPECT_TRUE(m.second_mapping.own_coordinates);
+    EXPECT_EQ(m.second_mapping.transform, (std::array<double, 6>{1, 0, 0, 0, 1, 0}));
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
     EXPECT_EQ(*s.triangles[0].uvs, kSetOne);
+    ASSERT_TRUE(s.triangles[0].second_uvs.has_value());
+    EXPECT_EQ(*s.triangles[0].second_uvs, kSetZero);
+}
+
+// A later texture on the first set through another transform makes a second mapping
+// of the same coordinates: the triangles carry no second set.
+TEST(GltfTexCoord, ALaterTransformReadsTheSecondMappingOfTheSameSet) {
+    const Scene s = load_scene(two_set_quad("retransformed", R"({"pbrMetallicRoughness": {"metallicFactor": 0,
+        "baseColorTexture": {"index": 0}, "metallicRoughnessTexture": {"index": 0,
+        "extensions": {"KHR_texture_transform": {"scale": [2, 4]}}}}, "normalTexture": {"index": 0,
+        "extensions": {"KHR_texture_transform": {"scale": [2, 4]}}}})"));
+    const Material& m = s.materials[0];
+    EXPECT_TRUE(m.texture && m.metallic_roughness_texture && m.normal_map);
+    EXPECT_EQ(m.second_mapping.maps, (1u << kernel::MAP_METAL_ROUGH) | (1u << kernel::MAP_NORMAL));
+    EXPECT_FALSE(m.second_mapping.own_coordinates);
+    EXPECT_EQ(m.second_mapping.transform, (std::array<double, 6>{2, 0, 0, 0, 4, 0}));
+    EXPECT_EQ(m.uv_transform, (std::array<double, 6>{1, 0, 0, 0, 1, 0}));
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+    EXPECT_EQ(*s.triangles[0].uvs, kSetZero);
+    EXPECT_FALSE(s.triangles[0].second_uvs.has_value());
+}
+
+// Extensions' textures take the second mapping as the core ones do.
+TEST(GltfTexCoord, AnExtensionsTextureReadsTheSecondMapping) {
+    const Scene s = load_scene(two_set_quad("extension", R"({"pbrMetallicRoughness": {"metallicFactor": 0,
+        "baseColorTexture": {"index": 0}},
+        "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1,
+                                                   "clearcoatNormalTexture": {"index": 0, "texCoord": 1}}}})"));
+    const Material& m = s.materials[0];
+    EXPECT_EQ(m.second_mapping.maps, 1u << kernel::MAP_COAT_NORMAL);
+    EXPECT_TRUE(m.second_mapping.own_coordinates);
+    EXPECT_EQ(*s.triangles[0].uvs, kSetZero);
+    EXPECT_EQ(*s.triangles[0].second_uvs, kSetOne);
+}
+
+TEST(GltfTexCoord, ATextureOnAThirdMappingIsLeftOutAndNamed) {
+    const Scene s = load_scene(two_set_quad("third", R"({"pbrMetallicRoughness": {"metallicFactor": 0,
+        "baseColorTexture": {"index": 0, "texCoord": 1}}, "emissiveFactor": [1, 1, 1],
+        "emissiveTexture": {"index": 0}, "normalTexture": {"index": 0,
+        "extensions": {"KHR_texture_transform": {"offset": [0.5, 0]}}}})"));
+    const Material& m = s.materials[0];
+    EXPECT_TRUE(m.texture && m.emission_texture);
+    EXPECT_FALSE(m.normal_map.has_value());
+    EXPECT_EQ(m.second_mapping.maps, 1u << kernel::MAP_EMISSION);
+    EXPECT_TRUE(warned(s, "a material's textures on more than two mappings of texture coordinates (TEXCOORD_n and "
+                          "KHR_texture_transform), rendered without the later textures"));
 }
 
 TEST(GltfTexCoord, ANegativeSetIsRefused) {

@@ -28,6 +28,10 @@ struct Triangle {
     // Texture coordinates of the three vertices; without them a triangle has (0, 0),
     // (1, 0), (0, 1) and a parallelogram (0, 0), (1, 0), (1, 1): its corners.
     std::optional<std::array<glm::dvec2, 3>> uvs{};
+    // Second texture coordinates of the three vertices, which the textures on its
+    // material's second mapping read where that mapping has coordinates of its own
+    // (Material::SecondMapping); without them such a triangle reads its first ones.
+    std::optional<std::array<glm::dvec2, 3>> second_uvs{};
     // Linear RGBA colours of the three vertices (glTF's COLOR_0), each in [0, 1]:
     // they multiply the material's colour and opacity (kernel/vertex_data.glsl).
     std::optional<std::array<glm::vec4, 3>> colors{};

@@ -198,17 +198,11 @@ vec3 interpolate_normal(vec3 n0, vec3 n1, vec3 n2, float u, float v, vec3 face_n
 
 // ---------------------------------------------------------------- traversal
 
-// The texture coordinates at a hit of weights u (of p1) and v (of p2). A
-// parallelogram's weights are half its coordinates along its edges
-// (intersect_quad), at which its corners' coordinates are extended.
+// The texture coordinates at a hit of weights u (of p1) and v (of p2), as
+// uv_at_weights (vertex_data.glsl) interpolates them.
 vec2 triangle_uv(Triangle tri, float u, float v) {
-    vec2 t0 = vec2(tri.p0.w, tri.p1.w);
-    vec2 t1 = vec2(tri.p2.w, tri.n0.w);
-    vec2 t2 = vec2(tri.n1.w, tri.n2.w);
-    if (HAS_QUADS && tri.meta.z != SHAPE_TRIANGLE) {
-        return t0 + (2.0f * u) * (t1 - t0) + (2.0f * v) * (t2 - t1);
-    }
-    return t0 + u * (t1 - t0) + v * (t2 - t0);
+    return uv_at_weights(triangle_uv_corner(tri, 0u), triangle_uv_corner(tri, 1u), triangle_uv_corner(tri, 2u),
+                         HAS_QUADS && tri.meta.z != SHAPE_TRIANGLE, u, v);
 }
 
 // A hit on a triangle whose material is not opaque counts only where the surface is
@@ -287,7 +281,7 @@ float triangle_pick_weight(uint index, Material m) {
 vec3 triangle_emission(Material m, Triangle tri, uint index, float u, float v) {
     vec3 emission = m.emission;
     if (HAS_TEXTURES && m.emission_map != 0u) {
-        emission = textured_emission(m, material_uv(m, triangle_uv(tri, u, v)));
+        emission = textured_emission(m, slot_uv(m, texture_coords(m, index, vec2(u, v), triangle_uv(tri, u, v)), MAP_EMISSION));
     }
     if (HAS_ALPHA && (tri.meta.y & TRIANGLE_ALPHA_TESTED) != 0u) {
         emission *= surface_coverage(m, triangle_uv(tri, u, v), vertex_alpha(tri, index, vec2(u, v)));
