@@ -27,7 +27,7 @@ try:
 except ImportError:
     sys.exit("gltf_corpus.py: needs numpy in Blender's Python: apt-get install python3-numpy")
 
-ASSETS = ["radio", "dining_set", "crates", "vase"]
+ASSETS = ["radio", "dining_set", "crates", "vase", "sign"]
 
 
 def arguments():
@@ -563,13 +563,75 @@ def vase(textures):
     bpy.context.scene.render.resolution_x, bpy.context.scene.render.resolution_y = 600, 800
 
 
+def sign(textures):
+    # A glowing shop sign on a brick wall at dusk, seen from a camera under a dim
+    # sun: one material whose textures read two mappings. The bricks (base colour and
+    # normal map) repeat four times through a Mapping node (KHR_texture_transform on
+    # TEXCOORD_0); the sign's glow, an emission texture black but for its tubes, lies
+    # on a second UV map, "decal", that frames the sign alone and runs past [0, 1]
+    # elsewhere, where the image's black edge is extended (TEXCOORD_1, clamped).
+    rng = np.random.default_rng(5)
+    n = 256
+    y, x = np.mgrid[0:n, 0:n]
+    offset = (y // 32 % 2) * 32
+    mortar = ((y % 32) < 3) | (((x + offset) % 64) < 3)
+    tone = smooth_noise(rng, n, n, (8, 4), octaves=3)
+    brick_base = mix((0.38, 0.14, 0.09), (0.58, 0.26, 0.16), tone)
+    brick_base[mortar] = (0.55, 0.53, 0.5)
+    height = np.where(mortar, 0.0, 1.0) + 0.15 * smooth_noise(rng, n, n, (32, 32), octaves=2)
+    h, w = 128, 512
+    gy, gx = np.mgrid[0:h, 0:w]
+    inner = (gx >= 14) & (gx < w - 14) & (gy >= 14) & (gy < h - 14)
+    outer = (gx >= 8) & (gx < w - 8) & (gy >= 8) & (gy < h - 8)
+    tubes = (outer & ~inner).astype(float)
+    for k in range(4):
+        cx = 96 + 107 * k
+        tubes = np.maximum(tubes, disc(h, w, 64, cx, 30) - disc(h, w, 64, cx, 23))
+    glow = tubes[..., None] * np.array([1.0, 0.32, 0.55])
+    wall = material("brick_wall", roughness=0.85, base_tex=write_image(brick_base, f"{textures}/bricks.jpg"),
+                    normal_tex=write_image(normal_map(height, 3.0), f"{textures}/bricks_normal.png", data=True),
+                    uv_scale=4.0)
+    tree = wall.node_tree
+    decal = tree.nodes.new("ShaderNodeUVMap")
+    decal.uv_map = "decal"
+    glow_node = tree.nodes.new("ShaderNodeTexImage")
+    glow_node.image = write_image(glow, f"{textures}/sign_glow.png")
+    glow_node.extension = "EXTEND"
+    tree.links.new(decal.outputs["UV"], glow_node.inputs["Vector"])
+    bsdf = tree.nodes["Principled BSDF"]
+    tree.links.new(glow_node.outputs["Color"], bsdf.inputs["Emission"])
+    bsdf.inputs["Emission Strength"].default_value = 8.0
+    pavement = material("pavement", base=(0.3, 0.3, 0.32), roughness=0.9)
+
+    # The wall stands in x, z (the grid's y turned up); the sign spans x from -1 to
+    # 1 and the grid's y from 0.35 to 0.85 (the image's 4:1).
+    mesh = grid("wall", (4, 2.5), (8, 5), [wall])
+    layer = mesh.uv_layers.new(name="decal")
+    for loop in mesh.loops:
+        co = mesh.vertices[loop.vertex_index].co
+        layer.data[loop.index].uv = ((co.x + 1.0) / 2.0, (co.y - 0.35) / 0.5)
+    place("wall", mesh, location=(0, 0, 1.25), rotation=(90, 0, 0))
+    place("pavement", grid("pavement", (6, 3), (6, 3), [pavement]), location=(0, -1.5, 0))
+
+    camera = bpy.data.cameras.new("camera")
+    camera.sensor_fit = "VERTICAL"
+    camera.angle_y = math.radians(40)
+    eye, target = Vector((1.2, -4.2, 1.3)), Vector((0, 0, 1.3))
+    cam = place("camera", camera, location=eye)
+    cam.rotation_euler = (target - eye).to_track_quat("-Z", "Y").to_euler()
+    bpy.context.scene.camera = cam
+    sun = bpy.data.lights.new("sun", "SUN")
+    sun.energy = 0.5
+    place("sun", sun, location=(0, 0, 5), rotation=(50, 0, -40))
+
+
 def main():
     args = arguments()
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     scene.render.resolution_x, scene.render.resolution_y = 800, 600
     textures = tempfile.mkdtemp(prefix="vkrt-gltf-corpus-")
-    {"radio": radio, "dining_set": dining_set, "crates": crates, "vase": vase}[args.asset](textures)
+    {"radio": radio, "dining_set": dining_set, "crates": crates, "vase": vase, "sign": sign}[args.asset](textures)
     out = os.path.abspath(args.out)
     os.makedirs(os.path.dirname(out), exist_ok=True)
     bpy.ops.export_scene.gltf(filepath=out, export_format="GLB" if out.endswith(".glb") else "GLTF_SEPARATE",
