@@ -273,6 +273,16 @@ def join(name, meshes, smooth_angle=35):
     return finish(bm, name, materials, smooth_angle=smooth_angle)
 
 
+def camera_at(eye, target, angle_y):
+    # The scene's camera at eye looking at target, of vertical field angle_y degrees.
+    camera = bpy.data.cameras.new("camera")
+    camera.sensor_fit = "VERTICAL"
+    camera.angle_y = math.radians(angle_y)
+    cam = place("camera", camera, location=eye)
+    cam.rotation_euler = (target - eye).to_track_quat("-Z", "Y").to_euler()
+    bpy.context.scene.camera = cam
+
+
 def place(name, mesh=None, parent=None, location=(0, 0, 0), rotation=(0, 0, 0), scale=(1, 1, 1)):
     # An object (an empty without mesh) in the scene, its transform relative to its parent.
     obj = bpy.data.objects.new(name, mesh)
@@ -475,13 +485,7 @@ def crates(textures):
         place(f"crate.{i}", mesh, stack, location=location, rotation=(0, 0, turn), scale=(scale,) * 3)
     place("barrel", cylinder("barrel", 0.28, 0.85, [paint], segments=32), location=(1.55, -0.5, 0))
 
-    camera = bpy.data.cameras.new("camera")
-    camera.sensor_fit = "VERTICAL"
-    camera.angle_y = math.radians(45)
-    eye, target = Vector((2.6, -3.6, 1.7)), Vector((0.25, 0.2, 0.45))
-    cam = place("camera", camera, location=eye)
-    cam.rotation_euler = (target - eye).to_track_quat("-Z", "Y").to_euler()
-    bpy.context.scene.camera = cam
+    camera_at(Vector((2.6, -3.6, 1.7)), Vector((0.25, 0.2, 0.45)), 45)
 
     sun = bpy.data.lights.new("sun", "SUN")
     sun.energy = 3.0
@@ -553,13 +557,7 @@ def vase(textures):
     pedestal = place("pedestal", box("pedestal", (0.32, 0.32, 0.6), [marble], bevel=0.01), root)
     place("vase", lathe("vase", profile, 72, [ceramic]), pedestal, location=(0, 0, 0.6), rotation=(0, 0, 30))
 
-    camera = bpy.data.cameras.new("camera")
-    camera.sensor_fit = "VERTICAL"
-    camera.angle_y = math.radians(35)
-    eye, target = Vector((0.9, -1.5, 1.25)), Vector((0, 0, 0.72))
-    cam = place("camera", camera, location=eye)
-    cam.rotation_euler = (target - eye).to_track_quat("-Z", "Y").to_euler()
-    bpy.context.scene.camera = cam
+    camera_at(Vector((0.9, -1.5, 1.25)), Vector((0, 0, 0.72)), 35)
     bpy.context.scene.render.resolution_x, bpy.context.scene.render.resolution_y = 600, 800
 
 
@@ -613,13 +611,7 @@ def sign(textures):
     place("wall", mesh, location=(0, 0, 1.25), rotation=(90, 0, 0))
     place("pavement", grid("pavement", (6, 3), (6, 3), [pavement]), location=(0, -1.5, 0))
 
-    camera = bpy.data.cameras.new("camera")
-    camera.sensor_fit = "VERTICAL"
-    camera.angle_y = math.radians(40)
-    eye, target = Vector((1.2, -4.2, 1.3)), Vector((0, 0, 1.3))
-    cam = place("camera", camera, location=eye)
-    cam.rotation_euler = (target - eye).to_track_quat("-Z", "Y").to_euler()
-    bpy.context.scene.camera = cam
+    camera_at(Vector((1.2, -4.2, 1.3)), Vector((0, 0, 1.3)), 40)
     sun = bpy.data.lights.new("sun", "SUN")
     sun.energy = 0.5
     place("sun", sun, location=(0, 0, 5), rotation=(50, 0, -40))
