@@ -78,7 +78,9 @@ TEST(SecondMapping, EachSlotReadsItsMappingExactly) {
     EXPECT_EQ(c.second, vec2(0.75f, 0.875f));
     EXPECT_EQ(t.k.slot_uv(m, c, kernel::MAP_EMISSION), c.second);
     for (std::uint32_t slot = 0; slot < kernel::MAP_SLOTS; ++slot) {
-        if (slot != kernel::MAP_EMISSION) EXPECT_EQ(t.k.slot_uv(m, c, slot), c.first) << "slot " << slot;
+        if (slot != kernel::MAP_EMISSION) {
+            EXPECT_EQ(t.k.slot_uv(m, c, slot), c.first) << "slot " << slot;
+        }
     }
     // The second mapping of the first coordinates: (0.25, 0.5 + 0.25).
     t.materials[0].second_coords = 0u;
