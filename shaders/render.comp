@@ -162,15 +162,28 @@ void main() {
         return;
     }
     uint first = ((py - pass.w) * image_width() + px) * PIXEL_TEXELS;
-    PixelSum sum = PixelSum(load_pixel_texel(first), load_pixel_texel(first + 1u), load_pixel_texel(first + 2u));
-    Counters counts = Counters(load_pixel_texel(first + 3u), load_pixel_texel(first + 4u),
-                               load_pixel_texel(first + 5u), load_pixel_texel(first + 6u));
+    // The squares' texels only where the render keeps them (HAS_SQUARES).
+    PixelSum sum = PixelSum(load_pixel_texel(first), load_pixel_texel(first + 1u), load_pixel_texel(first + 2u),
+                            uvec4(0u), uvec4(0u), uvec4(0u));
+    if (HAS_SQUARES) {
+        sum.red_squares = load_pixel_texel(first + 3u);
+        sum.green_squares = load_pixel_texel(first + 4u);
+        sum.blue_squares = load_pixel_texel(first + 5u);
+    }
+    uint c = first + PIXEL_SUM_TEXELS;
+    Counters counts = Counters(load_pixel_texel(c), load_pixel_texel(c + 1u), load_pixel_texel(c + 2u),
+                               load_pixel_texel(c + 3u));
     accumulate_sample(render_sample(px, py, pass.x), sum, counts);
     store_pixel_texel(first, sum.red);
     store_pixel_texel(first + 1u, sum.green);
     store_pixel_texel(first + 2u, sum.blue);
-    store_pixel_texel(first + 3u, counts.rays);
-    store_pixel_texel(first + 4u, counts.work);
-    store_pixel_texel(first + 5u, counts.tree);
-    store_pixel_texel(first + 6u, counts.paths);
+    if (HAS_SQUARES) {
+        store_pixel_texel(first + 3u, sum.red_squares);
+        store_pixel_texel(first + 4u, sum.green_squares);
+        store_pixel_texel(first + 5u, sum.blue_squares);
+    }
+    store_pixel_texel(c, counts.rays);
+    store_pixel_texel(c + 1u, counts.work);
+    store_pixel_texel(c + 2u, counts.tree);
+    store_pixel_texel(c + 3u, counts.paths);
 }

@@ -59,6 +59,11 @@ void apply_overrides(const RenderArgs& args, Scene& scene) {
         fmt::print(stderr, "warning: --spp is ignored: this scene traces one ray through every pixel corner "
                            "(render.corners, on for NFF scenes), which replaces aa and spp\n");
     }
+    if (args.variance && scene.render.corners) {
+        throw std::runtime_error("--variance: this scene traces one ray through every pixel corner (render.corners, "
+                                 "on for NFF scenes): its pixels average four rays, not samples, and have no variance");
+    }
+    scene.render.squares = args.variance || !args.samples.empty();
     if (args.seed) scene.render.seed = *args.seed;
     if (!args.sampler.empty()) scene.render.sampler = parse_sampler(args.sampler).value();  // checked by the parser
     if (args.bounces) scene.render.max_bounces = *args.bounces;
@@ -132,6 +137,9 @@ void write_output(const std::string& output, const RenderArgs& args, const Scene
                                       std::filesystem::path(args.scene).filename().string(), scene.render.seed,
                                       fingerprint, backend, corners},
                           file);
+        } else if (args.variance) {
+            write_layered_exr(resolved != nullptr ? *resolved : resolve_image(sums, corners), {variance_layer(sums)},
+                              file);
         } else {
             write_image(resolved != nullptr ? *resolved : resolve_image(sums, corners), file, scene.render.display);
         }
@@ -221,6 +229,13 @@ RenderTarget render_target(const RenderArgs& args) {
     if (target.samples && !app::is_exr(target.output)) {
         throw std::runtime_error(fmt::format(
             "{}: --samples writes a partial file, which is OpenEXR: give -o a name ending in .exr", target.output));
+    }
+    if (args.variance && (target.samples || !app::is_exr(target.output))) {
+        throw std::runtime_error(fmt::format(
+            "{}: {}", target.output,
+            target.samples ? "--variance writes the variance beside a whole image; a partial file (--samples) carries "
+                             "the sums of squares it is made from"
+                           : "--variance writes its layer into an OpenEXR file: give -o a name ending in .exr"));
     }
     if (!args.stats_file.empty()) app::check_writable_file(args.stats_file, "stats file");
     return target;

@@ -36,6 +36,7 @@ struct RenderArgs {
     std::string serve;           // "[ADDRESS:]PORT" of the live preview; empty: none
     std::string reference;       // linear image to report the error against; empty: none
     std::optional<double> checkpoint;  // seconds between writes of the image so far
+    bool variance = false;  // the image's file carries the variance of each pixel's mean
     bool validate = false;
     bool quiet = false;
 };

@@ -84,6 +84,9 @@ Command add_render_command(CLI::App& program) {
                   "Write the image so far (with --samples, the partial file of the samples so far) every this many "
                   "seconds, replacing the output atomically, so a render that is killed leaves a usable file")
         ->check(positive_seconds());
+    r->add_flag("--variance", args->variance,
+                "Write the variance of each pixel's mean radiance beside the image, as the layer variance.R, "
+                "variance.G, variance.B of the output (.exr), for telling noise from error (vkrt compare --test)");
     add_validate(r, args->validate);
     add_quiet(r, args->quiet);
     // A partial file is a fixed range of samples: a count or a time budget would

@@ -97,6 +97,7 @@ Image render_reference(const ConvergeArgs& args, Scene scene, Backend& backend, 
                        live::LiveFeed& feed) {
     EstimatorSpec{Estimator::Path, Hemisphere::Cosine, true}.apply(scene.render);
     scene.render.seed ^= kReferenceSeedXor;
+    scene.render.squares = true;  // a partial file, as `render --samples` writes one (and merges with it)
     fmt::print(stderr,
                "converge: no --reference given: rendering one on {} (path+nee:cosine, {} spp, seed {}) to {}; pass "
                "it as --reference next time\n",

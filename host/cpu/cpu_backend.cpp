@@ -52,7 +52,7 @@ public:
         // The clock starts after the output arrays exist, as the Vulkan backend's
         // timestamps start after its sums are cleared: render_seconds is the sample
         // loop (and starting the threads that run it). Fresh arrays fault their
-        // pages in as they are zeroed, 112 bytes a pixel, which timed here made the
+        // pages in as they are zeroed, 160 bytes a pixel, which timed here made the
         // reference look up to 2x slower whenever the allocator handed out fresh
         // pages (docs/bench.md has the measurement).
         const auto start = std::chrono::steady_clock::now();

@@ -90,6 +90,37 @@ void write_image(const Image& image, const std::filesystem::path& file, const Di
     if (!ok) throw ImageError(fmt::format("{}: {}", name, error));
 }
 
+void write_layered_exr(const Image& image, const std::vector<ImageLayer>& layers, const std::filesystem::path& file) {
+    const std::string name = file.string();
+    if (lower_extension(file) != ".exr") throw ImageError(fmt::format("{}: layers need an OpenEXR file (.exr)", name));
+    FileSpec spec;
+    spec.width = image.width;
+    spec.height = image.height;
+    spec.channels = {"R", "G", "B"};
+    for (const ImageLayer& layer : layers) {
+        for (const std::string& c : layer.channels) spec.channels.push_back(layer.name + "." + c);
+    }
+    spec.types.assign(spec.channels.size(), ChannelType::Float);
+    spec.strings["oiio:ColorSpace"] = "Linear";
+    const std::size_t pixels = std::size_t(image.width) * image.height;
+    const std::size_t stride = spec.channels.size();
+    std::vector<float> values(pixels * stride);
+    for (std::size_t p = 0; p < pixels; ++p) {
+        float* out = &values[p * stride];
+        for (int c = 0; c < 3; ++c) *out++ = image.rgb[p * 3 + std::size_t(c)];
+        for (const ImageLayer& layer : layers) {
+            const std::size_t n = layer.channels.size();
+            if (layer.values.size() != pixels * n) {
+                throw ImageError(fmt::format("{}: layer {} holds {} values for {} pixels of {} channels", name,
+                                             layer.name, layer.values.size(), pixels, n));
+            }
+            for (std::size_t c = 0; c < n; ++c) *out++ = layer.values[p * n + c];
+        }
+    }
+    std::string error;
+    if (!image_files().write(name, spec, values.data(), error)) throw ImageError(fmt::format("{}: {}", name, error));
+}
+
 Image read_image(const std::filesystem::path& file) {
     const std::string name = file.string();
     if (!std::filesystem::exists(file)) {

@@ -47,6 +47,18 @@ std::vector<std::uint8_t> to_srgb8(const Image& image, const Display& display = 
 // `display` applies to the 8-bit formats only.
 void write_image(const Image& image, const std::filesystem::path& file, const Display& display = {});
 
+// Further channels beside an image's R, G, B in one OpenEXR file: a layer named
+// `name` whose channels are `name.<channel>` (as OpenImageIO and Blender's
+// compositor name a layer's), `values` pixel after pixel, channel after channel.
+struct ImageLayer {
+    std::string name;
+    std::vector<std::string> channels;
+    std::vector<float> values;
+};
+
+// The image and its layers as a linear float OpenEXR file (`file` must end in .exr).
+void write_layered_exr(const Image& image, const std::vector<ImageLayer>& layers, const std::filesystem::path& file);
+
 // Reads the first three channels (one channel is repeated as grey) as stored: 8-bit
 // files give their encoded values scaled to [0, 1], float files their linear values.
 Image read_image(const std::filesystem::path& file);

@@ -16,7 +16,9 @@ using uint = std::uint32_t;
 // sums.glsl's functions take their in-out arguments by reference, as the Kernel's do.
 #define INOUT(T) T&
 #define HOST_INLINE inline
+#define precise
 #include "kernel/sums.glsl"
+#undef precise
 #undef HOST_INLINE
 #undef INOUT
 
@@ -48,7 +50,7 @@ static_assert(PRIMITIVE_KINDS < (REF_NONE >> REF_KIND_SHIFT), "shapes/kinds.glsl
 static_assert(sizeof(Emitter) == 32);
 static_assert(sizeof(Params) == 16 * PARAM_TEXELS);
 static_assert(sizeof(Counters) == 64);
-static_assert(sizeof(PixelSum) == 48);
+static_assert(sizeof(PixelSum) == 96);
 static_assert(sizeof(PixelSum) == 16 * PIXEL_SUM_TEXELS && sizeof(PixelSum) + sizeof(Counters) == 16 * PIXEL_TEXELS);
 
 // The host's accessors of the per-render constants (kernel/params.glsl): name(params)
@@ -100,7 +102,8 @@ inline bool operator==(const Counters& a, const Counters& b) {
     return a.rays == b.rays && a.work == b.work && a.tree == b.tree && a.paths == b.paths;
 }
 inline bool operator==(const PixelSum& a, const PixelSum& b) {
-    return a.red == b.red && a.green == b.green && a.blue == b.blue;
+    return a.red == b.red && a.green == b.green && a.blue == b.blue && a.red_squares == b.red_squares &&
+           a.green_squares == b.green_squares && a.blue_squares == b.blue_squares;
 }
 inline Counters operator+(const Counters& a, const Counters& b) {
     return {a.rays + b.rays, a.work + b.work, a.tree + b.tree, a.paths + b.paths};

@@ -21,14 +21,17 @@ namespace vkrt {
 namespace {
 
 // Bumped when the channels or attributes change meaning; a reader refuses others.
-// 2: vkrt:version and vkrt:checksum.
-constexpr int kFormatVersion = 2;
+// 2: vkrt:version and vkrt:checksum. 3: the sums of squares (vkrt.sq.*).
+constexpr int kFormatVersion = 3;
 
 // The words of a PixelSum and of Counters, in the order of their layout.
-constexpr std::array<const char*, 12> kSumChannels = {
+constexpr std::array<const char*, 24> kSumChannels = {
     "vkrt.sum.r0", "vkrt.sum.r1", "vkrt.sum.r2", "vkrt.sum.count",    // red words, samples summed
     "vkrt.sum.g0", "vkrt.sum.g1", "vkrt.sum.g2", "vkrt.sum.clamped",  // green words, samples clamped
-    "vkrt.sum.b0", "vkrt.sum.b1", "vkrt.sum.b2", "vkrt.sum.unused"};
+    "vkrt.sum.b0", "vkrt.sum.b1", "vkrt.sum.b2", "vkrt.sum.unused",
+    "vkrt.sq.r0",  "vkrt.sq.r1",  "vkrt.sq.r2",  "vkrt.sq.unused.r",  // the squares' sums
+    "vkrt.sq.g0",  "vkrt.sq.g1",  "vkrt.sq.g2",  "vkrt.sq.unused.g",
+    "vkrt.sq.b0",  "vkrt.sq.b1",  "vkrt.sq.b2",  "vkrt.sq.unused.b"};
 constexpr std::array<const char*, 16> kCounterChannels = {
     "vkrt.rays.0", "vkrt.rays.1", "vkrt.rays.2", "vkrt.rays.3", "vkrt.work.0",  "vkrt.work.1",
     "vkrt.work.2", "vkrt.work.3", "vkrt.tree.0", "vkrt.tree.1", "vkrt.tree.2",  "vkrt.tree.3",
@@ -36,8 +39,8 @@ constexpr std::array<const char*, 16> kCounterChannels = {
 constexpr int kChannels = 3 + int(kSumChannels.size()) + int(kCounterChannels.size());
 
 std::uint32_t& sum_word(kernel::PixelSum& s, std::size_t i) {
-    glm::uvec4& v = i < 4 ? s.red : i < 8 ? s.green : s.blue;
-    return v[glm::length_t(i % 4)];
+    glm::uvec4* lanes[] = {&s.red, &s.green, &s.blue, &s.red_squares, &s.green_squares, &s.blue_squares};
+    return (*lanes[i / 4])[glm::length_t(i % 4)];
 }
 std::uint32_t& counter_word(kernel::Counters& c, std::size_t i) {
     glm::uvec4& v = i < 4 ? c.rays : i < 8 ? c.work : i < 12 ? c.tree : c.paths;

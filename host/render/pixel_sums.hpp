@@ -1,8 +1,11 @@
 #pragma once
 // Reading a pixel's exact sums (shaders/kernel/sums.glsl) on the host: the 96-bit
-// fixed-point words back to radiance, and the mean the image shows.
+// fixed-point words back to radiance, the mean the image shows, and the variance of
+// that mean.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include <glm/vec3.hpp>
 
@@ -28,6 +31,24 @@ inline glm::dvec3 radiance_sum(const kernel::PixelSum& s) {
 inline glm::vec3 mean_radiance(const kernel::PixelSum& s) {
     const std::uint32_t n = samples_summed(s);
     return n != 0 ? glm::vec3(radiance_sum(s) / double(n)) : glm::vec3(0.0f);
+}
+
+inline glm::dvec3 squares_sum(const kernel::PixelSum& s) {
+    return {channel_sum(s.red_squares), channel_sum(s.green_squares), channel_sum(s.blue_squares)};
+}
+
+// The variance of the pixel's mean radiance, per channel: the samples' unbiased
+// variance, (sum of squares - sum^2 / n) / (n - 1), over n. Infinite (unknown) with
+// fewer than two samples. Each square was rounded once to a float before it was
+// summed (kernel/sums.glsl), which moves the sum of squares by a relative 2^-24 at
+// most: a pixel whose samples all agree may show a variance of that order, never a
+// negative one.
+inline glm::dvec3 variance_of_mean(const kernel::PixelSum& s) {
+    const std::uint32_t n = samples_summed(s);
+    if (n < 2) return glm::dvec3(std::numeric_limits<double>::infinity());
+    const glm::dvec3 sum = radiance_sum(s);
+    const glm::dvec3 spread = squares_sum(s) - sum * sum / double(n);
+    return glm::max(spread, glm::dvec3(0.0)) / (double(n) * double(n - 1));
 }
 
 }  // namespace vkrt

@@ -74,6 +74,15 @@ Image resolve_image(const RenderResult& result, bool corners) {
     return image;
 }
 
+ImageLayer variance_layer(const RenderResult& result) {
+    ImageLayer layer{"variance", {"R", "G", "B"}, std::vector<float>(result.sums.size() * 3)};
+    for (std::size_t p = 0; p < result.sums.size(); ++p) {
+        const glm::dvec3 v = variance_of_mean(result.sums[p]);
+        for (int c = 0; c < 3; ++c) layer.values[p * 3 + std::size_t(c)] = static_cast<float>(v[c]);
+    }
+    return layer;
+}
+
 std::uint64_t total_rays(const RenderResult& result) {
     std::uint64_t rays = 0;
     for (const kernel::Counters& c : result.counters) {

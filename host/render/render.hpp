@@ -120,6 +120,11 @@ std::uint64_t total_rays(const RenderResult& result);
 // rays (the result is one row and one column larger than the image).
 Image resolve_image(const RenderResult& result, bool corners = false);
 
+// The variance of each pixel's mean radiance (pixel_sums.hpp, variance_of_mean), as
+// the layer "variance" (channels R, G, B) of an OpenEXR file; infinite where a pixel
+// has fewer than two good samples. Not for corner rays.
+ImageLayer variance_layer(const RenderResult& result);
+
 RenderStats collect_stats(const FlatScene& scene, const Backend& backend, const RenderResult& result);
 
 // Renders the plan's samples in progressive passes through one backend session.

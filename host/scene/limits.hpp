@@ -7,8 +7,8 @@
 namespace vkrt::limits {
 
 // An image side beyond this is a typo, not a render. A pixel's sums and counters
-// take 112 bytes (kernel::PIXEL_TEXELS = 7 texels of 16 bytes: PixelSum 3, Counters
-// 4), so those of the largest allowed image take 3.5 GiB; a progressive render holds
+// take 160 bytes (kernel::PIXEL_TEXELS = 10 texels of 16 bytes: PixelSum 6, Counters
+// 4), so those of the largest allowed image take 5 GiB; a progressive render holds
 // two such sets on the host from its second pass on, the total and the pass's own.
 inline constexpr std::uint32_t kMaxImageSide = 32768;
 inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t(1) << 25;

@@ -90,6 +90,10 @@ struct RenderSettings {
     bool nee = true;                  // path: next-event estimation toward area lights, with MIS
     std::uint32_t max_bounces = 8;    // scattering events after the first hit
     Display display;                  // exposure and tone curve of 8-bit outputs
+    // Keep each pixel's sums of squares, from which the variance of its mean follows
+    // (HAS_SQUARES): `vkrt render --variance` and partial files ask for them; not a
+    // field of the scene file.
+    bool squares = false;
 
     // Global mode takes 16 samples when neither spp nor aa says otherwise.
     std::uint32_t samples_per_pixel() const {

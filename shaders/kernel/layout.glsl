@@ -91,11 +91,14 @@ struct Params {
 // Per-pixel sums of sample radiance (sums.glsl): each channel's exact sum as a 96-bit
 // fixed-point integer in xyz, least significant word first, in units of 2^-40.
 // red.w = samples summed, green.w = of those, samples clamped to SUM_SAMPLE_MAX,
-// blue.w unused (0).
+// blue.w unused (0). The squares' sums likewise, for the variance (w unused, 0).
 struct PixelSum {
     uvec4 red;
     uvec4 green;
     uvec4 blue;
+    uvec4 red_squares;
+    uvec4 green_squares;
+    uvec4 blue_squares;
 };
 
 // Per-pixel counters, lanes named in constants.glsl (RAYS_*, WORK_*).
@@ -107,5 +110,5 @@ struct Counters {
 };
 
 // On the device a pixel's output is its PixelSum's texels, then its Counters'.
-const uint PIXEL_SUM_TEXELS = 3u;
-const uint PIXEL_TEXELS = 7u;
+const uint PIXEL_SUM_TEXELS = 6u;
+const uint PIXEL_TEXELS = 10u;

@@ -180,6 +180,6 @@ void accumulate_sample(SampleResult s, INOUT(PixelSum) sum, INOUT(Counters) coun
     } else if (!is_finite_bits(total)) {
         counters.work[WORK_NONFINITE] += 1u;
     } else {
-        add_sample(sum, s.radiance);
+        add_sample(sum, s.radiance, HAS_SQUARES);
     }
 }

@@ -10,7 +10,9 @@
 //
 // Range: a channel of one sample is clamped to [0, SUM_SAMPLE_MAX], the largest float
 // below 2^40 (about 1.1e12); 65,536 samples (the most a pixel takes) of that sum to
-// less than 2^96. The step 2^-40 (about 9.1e-13) is far below anything an image
+// less than 2^96. The squares are summed alike (add_sample), for the variance of the
+// mean (host/render/pixel_sums.hpp): a square beyond SUM_SAMPLE_MAX (a radiance
+// beyond about 1e6) is clamped, which only an image of such radiance would notice. The step 2^-40 (about 9.1e-13) is far below anything an image
 // shows at the radiance of a scene; a radiance smaller than that is summed as 0.
 // Samples that had to be clamped are counted (PixelSum.green.w).
 //
@@ -50,18 +52,31 @@ HOST_INLINE uvec3 add_words(uvec3 a, uvec3 b) {
     return uvec3(lo, mid_carried, a.z + b.z + carry_mid);
 }
 
-// Adds one sample's radiance (finite; the caller has checked) to a pixel's sums.
-HOST_INLINE void add_sample(INOUT(PixelSum) sum, vec3 radiance) {
+// Adds one sample's radiance (finite; the caller has checked) to a pixel's sums, and
+// where `squares` (HAS_SQUARES) its square to the squares' sums: the float square of
+// the clamped channel (one correctly rounded product on either backend), itself
+// clamped to SUM_SAMPLE_MAX, so that squares add as exactly as the radiance does.
+HOST_INLINE void add_sample(INOUT(PixelSum) sum, vec3 radiance, bool squares) {
     bool clamped = any(greaterThan(radiance, vec3(SUM_SAMPLE_MAX)));
     vec3 r = clamp(radiance, vec3(0.0f), vec3(SUM_SAMPLE_MAX));
+    precise vec3 squared = r * r;
+    vec3 q = min(squared, vec3(SUM_SAMPLE_MAX));
     sum.red = uvec4(add_words(uvec3(sum.red), fixed_point(r.x)), sum.red.w + 1u);
     sum.green = uvec4(add_words(uvec3(sum.green), fixed_point(r.y)), sum.green.w + (clamped ? 1u : 0u));
     sum.blue = uvec4(add_words(uvec3(sum.blue), fixed_point(r.z)), sum.blue.w);
+    if (squares) {
+        sum.red_squares = uvec4(add_words(uvec3(sum.red_squares), fixed_point(q.x)), 0u);
+        sum.green_squares = uvec4(add_words(uvec3(sum.green_squares), fixed_point(q.y)), 0u);
+        sum.blue_squares = uvec4(add_words(uvec3(sum.blue_squares), fixed_point(q.z)), 0u);
+    }
 }
 
 // The sums of two disjoint sets of samples of one pixel: those of their union.
 HOST_INLINE PixelSum add_sums(PixelSum a, PixelSum b) {
     return PixelSum(uvec4(add_words(uvec3(a.red), uvec3(b.red)), a.red.w + b.red.w),
                     uvec4(add_words(uvec3(a.green), uvec3(b.green)), a.green.w + b.green.w),
-                    uvec4(add_words(uvec3(a.blue), uvec3(b.blue)), a.blue.w + b.blue.w));
+                    uvec4(add_words(uvec3(a.blue), uvec3(b.blue)), a.blue.w + b.blue.w),
+                    uvec4(add_words(uvec3(a.red_squares), uvec3(b.red_squares)), 0u),
+                    uvec4(add_words(uvec3(a.green_squares), uvec3(b.green_squares)), 0u),
+                    uvec4(add_words(uvec3(a.blue_squares), uvec3(b.blue_squares)), 0u));
 }

@@ -158,7 +158,7 @@ TEST(VulkanBackend, TheDeviceThatHoldsTheSceneIsPreferred) {
 // The sums of `n` samples of radiance `v`, as the kernel adds them.
 kernel::PixelSum repeated(glm::vec3 v, std::uint32_t n) {
     kernel::PixelSum s{};
-    for (std::uint32_t i = 0; i < n; ++i) kernel::add_sample(s, v);
+    for (std::uint32_t i = 0; i < n; ++i) kernel::add_sample(s, v, false);
     return s;
 }
 

@@ -396,7 +396,7 @@ TEST(Corners, EachPixelAveragesItsFourCornersLeavingOutLostOnes) {
     // Corner radiance sums over `n` samples; corner (2, 1) lost its sample.
     auto sums = [](glm::vec3 sum, std::uint32_t n) {
         kernel::PixelSum s{};
-        for (std::uint32_t i = 0; i < n; ++i) kernel::add_sample(s, sum / float(n));
+        for (std::uint32_t i = 0; i < n; ++i) kernel::add_sample(s, sum / float(n), false);
         return s;
     };
     r.sums = {sums({1, 2, 3}, 1), sums({2, 4, 6}, 2), sums({9, 9, 9}, 1),

@@ -644,8 +644,8 @@ TEST(AccumulateSample, GoodSamplesAddRadianceAndCount) {
     k.accumulate_sample(hit, accum, counters);
     k.accumulate_sample(miss, accum, counters);
     kernel::PixelSum want{};
-    kernel::add_sample(want, hit.radiance);
-    kernel::add_sample(want, miss.radiance);
+    kernel::add_sample(want, hit.radiance, k.HAS_SQUARES);
+    kernel::add_sample(want, miss.radiance, k.HAS_SQUARES);
     EXPECT_EQ(accum, want);
     EXPECT_EQ(samples_summed(accum), 2u);
     EXPECT_NEAR(radiance_sum(accum).r, double(hit.radiance.r) + double(miss.radiance.r), 1e-11);
@@ -706,7 +706,7 @@ Kernel::SampleResult sample_result(vec3 radiance, std::uint32_t shadow_rays, std
 TEST(AccumulateSample, NonFiniteSampleIsCountedNotSummed) {
     Kernel k;
     kernel::PixelSum accum{};
-    kernel::add_sample(accum, vec3(1.0f, 2.0f, 3.0f));
+    kernel::add_sample(accum, vec3(1.0f, 2.0f, 3.0f), false);
     const kernel::PixelSum before = accum;
     kernel::Counters counters{uvec4(1u, 0u, 0u, 0u), uvec4(0u), uvec4(0u), uvec4(0u)};
     const float nan = std::numeric_limits<float>::quiet_NaN();
