@@ -23,6 +23,7 @@
 #include "image/error_image.hpp"
 #include "image/ssim.hpp"
 #include "image/error_metrics.hpp"
+#include "image/z_test.hpp"
 #include "live/live_server.hpp"
 #include "live/pass_feed.hpp"
 #include "probe/cpu_float_probe.hpp"
@@ -415,6 +416,56 @@ int run_render(const RenderArgs& args) {
     return 0;
 }
 
+// The variance of each pixel's mean that an image file carries: its "variance"
+// layer (render --variance), or, for a partial file, from its sums of squares.
+std::optional<Image> carried_variance(const std::string& file) {
+    if (std::optional<Image> layer = read_layer(file, "variance")) return layer;
+    if (!app::is_exr(file)) return std::nullopt;
+    try {
+        read_partial_header(file);
+    } catch (const ImageError&) {
+        return std::nullopt;  // not a partial file
+    }
+    const PartialFile partial = read_partial(file);
+    if (partial.corners) throw ImageError(fmt::format("{}: corner rays (the SPD's) have no variance", file));
+    const ImageLayer v = variance_layer(partial.sums);
+    Image out(partial.sums.width, partial.sums.height);
+    out.rgb = v.values;
+    return out;
+}
+
+// compare --test: prints the verdict; true when it rejects.
+bool run_z_test(const CompareArgs& args, const Image& a, const Image& b) {
+    if (!args.p_values.empty() && !app::is_exr(args.p_values)) {
+        throw ImageError(fmt::format("{}: --p-values writes an OpenEXR file: give a name ending in .exr", args.p_values));
+    }
+    const std::optional<Image> var_a = carried_variance(args.a);
+    if (!var_a) {
+        throw ImageError(fmt::format("{}: --test needs the variance of A's pixel means: render it with --variance "
+                                     "(.exr), or give a partial file (render --samples)",
+                                     args.a));
+    }
+    const std::optional<Image> var_b = carried_variance(args.b);
+    Image p_values;
+    const ZTestResult t = z_test(a, *var_a, b, var_b ? &*var_b : nullptr, args.alpha,
+                                 args.p_values.empty() ? nullptr : &p_values);
+    fmt::print("test      {} of {} pixel channels tested ({}), each at {:.3g} (alpha {:g}, Sidak)\n", t.tests,
+               a.rgb.size(), var_b ? "both images' variances" : "B taken as exact", t.level, t.alpha);
+    fmt::print("          smallest p {:.3g}, z {:.3g} at pixel ({}, {}) channel {}\n", t.min_p, t.worst_z, t.worst_x,
+               t.worst_y, "RGB"[t.worst_channel]);
+    if (!args.p_values.empty()) {
+        write_layered_exr(p_values, {}, args.p_values);
+        fmt::print("          p-values in {}\n", args.p_values);
+    }
+    if (t.rejects()) {
+        fmt::print("rejected: {} pixel channel{} differ by more than their noise explains\n", t.rejected,
+                   t.rejected == 1 ? "" : "s");
+    } else {
+        fmt::print("consistent: the difference is within the images' noise\n");
+    }
+    return t.rejects();
+}
+
 int run_compare(const CompareArgs& args) {
     const Image a = read_image(args.a);
     const Image b = read_image(args.b);
@@ -442,7 +493,7 @@ int run_compare(const CompareArgs& args) {
         write_difference_png(a, b, range > 0.0 ? range : 1.0, args.difference);
         fmt::print("difference A - B from -{0:.6g} (blue) to {0:.6g} (red) in {1}\n", range, args.difference);
     }
-    bool over = false;
+    bool over = args.test && run_z_test(args, a, b);
     if (args.max_rmse && d.rmse > *args.max_rmse) {
         fmt::print("over bound: RMSE {:.6g} > {:g}\n", d.rmse, *args.max_rmse);
         over = true;

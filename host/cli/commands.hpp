@@ -54,6 +54,9 @@ struct CompareArgs {
     std::vector<std::string> metrics;  // of kCompareMetrics, printed one a line
     std::string difference;            // a .png of the signed difference a - b; empty: none
     std::optional<double> difference_range;  // the difference at the colour map's ends; default the largest
+    bool test = false;       // the Z-test of A (with variance) against B (image/z_test.hpp)
+    double alpha = 0.01;     // its familywise level
+    std::string p_values;    // an .exr of each pixel channel's p-value; empty: none
 };
 
 // The names --metric takes: mae, mse, rmse, relmse (b the reference), ssim.

@@ -60,6 +60,17 @@ Command add_compare_command(CLI::App& program) {
                   "The difference drawn at the colour map's ends (default: the largest, printed)")
         ->check(CLI::PositiveNumber)
         ->needs(difference);
+    CLI::Option* test = c->add_flag(
+        "--test", args->test,
+        "Test whether A - B is noise: A must carry the variance of its pixel means (render --variance, or a partial "
+        "file), B may (else it counts as exact). Per pixel channel a Z-score, Sidak-corrected; exit 1 when it "
+        "rejects");
+    c->add_option("--alpha", args->alpha, "--test's chance of rejecting two images that agree")
+        ->check(CLI::Range(1e-12, 0.5))
+        ->capture_default_str()
+        ->needs(test);
+    c->add_option("--p-values", args->p_values, "Write each pixel channel's p-value of --test to this .exr")
+        ->needs(test);
     // compare keeps 1 for "over the bound", so a script can tell the two apart.
     return {c, [args] { return run_compare(*args); }, 2};
 }

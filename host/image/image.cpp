@@ -121,6 +121,29 @@ void write_layered_exr(const Image& image, const std::vector<ImageLayer>& layers
     if (!image_files().write(name, spec, values.data(), error)) throw ImageError(fmt::format("{}: {}", name, error));
 }
 
+std::optional<Image> read_layer(const std::filesystem::path& file, const std::string& name) {
+    const std::string path = file.string();
+    std::string error;
+    const std::unique_ptr<ImageFileReader> in = image_files().open(path, error);
+    if (!in) throw ImageError(fmt::format("{}: cannot read image ({})", path, error));
+    const FileSpec& spec = in->spec();
+    std::size_t at[3];
+    for (int c = 0; c < 3; ++c) {
+        const std::string channel = name + "." + "RGB"[c];
+        const auto it = std::find(spec.channels.begin(), spec.channels.end(), channel);
+        if (it == spec.channels.end()) return std::nullopt;
+        at[c] = std::size_t(it - spec.channels.begin());
+    }
+    const std::size_t channels = spec.channels.size();
+    std::vector<float> all(std::size_t(spec.width) * spec.height * channels);
+    if (!in->read_floats(all.data())) throw ImageError(fmt::format("{}: reading failed: {}", path, in->error()));
+    Image layer(spec.width, spec.height);
+    for (std::size_t p = 0; p < std::size_t(spec.width) * spec.height; ++p) {
+        for (int c = 0; c < 3; ++c) layer.rgb[p * 3 + std::size_t(c)] = all[p * channels + at[c]];
+    }
+    return layer;
+}
+
 Image read_image(const std::filesystem::path& file) {
     const std::string name = file.string();
     if (!std::filesystem::exists(file)) {

@@ -6,7 +6,9 @@
 // to [0, 1]), is sRGB-encoded and stored in 8 bits.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "image/display.hpp"
@@ -58,6 +60,10 @@ struct ImageLayer {
 
 // The image and its layers as a linear float OpenEXR file (`file` must end in .exr).
 void write_layered_exr(const Image& image, const std::vector<ImageLayer>& layers, const std::filesystem::path& file);
+
+// The layer `name` of an image file (its channels name.R, name.G, name.B, as
+// write_layered_exr writes them) as an image; none when the file has no such layer.
+std::optional<Image> read_layer(const std::filesystem::path& file, const std::string& name);
 
 // Reads the first three channels (one channel is repeated as grey) as stored: 8-bit
 // files give their encoded values scaled to [0, 1], float files their linear values.

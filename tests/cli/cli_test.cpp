@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -355,6 +356,54 @@ TEST(Cli, CompareMetricsAndDifferenceImage) {
         dir);
     EXPECT_EQ(small.code, 2);
     EXPECT_NE(small.stderr_text.find("at least 11 x 11 pixels"), std::string::npos) << small.stderr_text;
+}
+
+// compare --test: 0 when A - B is within the noise A's variance layer states, 1 when
+// not, 2 when A carries no variance; a partial file carries its own; --p-values.
+TEST(Cli, CompareTestTellsNoiseFromDifference) {
+    const fs::path dir = test::temp_dir("cli_compare_test");
+    Image a(12, 12), near(12, 12), far(12, 12);
+    for (float& v : a.rgb) v = 0.5f;
+    for (float& v : near.rgb) v = 0.52f;  // z = -0.2
+    for (float& v : far.rgb) v = 1.0f;    // z = -5, p = 5.7e-7, below the level of 432 tests, 2.3e-5
+    ImageLayer variance{"variance", {"R", "G", "B"}, std::vector<float>(a.rgb.size(), 0.01f)};
+    write_layered_exr(a, {variance}, dir / "a.exr");
+    write_image(near, dir / "near.exr");
+    write_image(far, dir / "far.exr");
+    const auto quoted = [&](const char* name) { return test::shell_quote((dir / name).string()); };
+    const test::ProgramRun consistent =
+        test::run_vkrt("compare " + quoted("a.exr") + " " + quoted("near.exr") + " --test --p-values " + quoted("p.exr"), dir);
+    EXPECT_EQ(consistent.code, 0) << consistent.stderr_text;
+    std::string out = read_file(dir / "stdout.txt");
+    EXPECT_NE(out.find("432 of 432 pixel channels tested (B taken as exact)"), std::string::npos) << out;
+    EXPECT_NE(out.find("consistent: the difference is within the images' noise"), std::string::npos) << out;
+    EXPECT_NEAR(read_image(dir / "p.exr").rgb[0], std::erfc(0.2 / std::sqrt(2.0)), 1e-5);
+
+    const test::ProgramRun rejected = test::run_vkrt("compare " + quoted("a.exr") + " " + quoted("far.exr") + " --test", dir);
+    EXPECT_EQ(rejected.code, 1) << rejected.stderr_text;
+    out = read_file(dir / "stdout.txt");
+    EXPECT_NE(out.find("rejected: 432 pixel channels differ by more than their noise explains"), std::string::npos) << out;
+
+    const test::ProgramRun unusable = test::run_vkrt("compare " + quoted("near.exr") + " " + quoted("a.exr") + " --test", dir);
+    EXPECT_EQ(unusable.code, 2);
+    EXPECT_NE(unusable.stderr_text.find("--test needs the variance of A's pixel means"), std::string::npos)
+        << unusable.stderr_text;
+    test::expect_one_error(test::run_vkrt("compare " + quoted("a.exr") + " " + quoted("near.exr") + " --alpha 0.05", dir),
+                           {"--alpha", "--test"});
+
+    // A partial file's sums of squares give its variance.
+    std::ofstream(dir / "tiny.json") << R"({
+      "camera": { "eye": [0, 0, 3], "look_at": [0, 0, 0], "fov": 40, "width": 4, "height": 4 },
+      "render": { "mode": "global", "background": [0.5, 0.5, 0.5] },
+      "materials": { "m": { "diffuse": [0.5, 0.5, 0.5] } },
+      "objects": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m" } ] })";
+    const test::ProgramRun partial = test::run_vkrt(
+        "render " + quoted("tiny.json") + " --backend cpu --samples 0:16 -q -o " + quoted("part.exr"), dir);
+    ASSERT_EQ(partial.code, 0) << partial.stderr_text;
+    const test::ProgramRun self = test::run_vkrt("compare " + quoted("part.exr") + " " + quoted("part.exr") + " --test", dir);
+    EXPECT_EQ(self.code, 0) << self.stderr_text;
+    out = read_file(dir / "stdout.txt");
+    EXPECT_NE(out.find("(both images' variances)"), std::string::npos) << out;
 }
 
 }  // namespace

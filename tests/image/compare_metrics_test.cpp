@@ -11,15 +11,12 @@
 #include "image/error_image.hpp"
 #include "image/error_metrics.hpp"
 #include "image/ssim.hpp"
+#include "uniform_image.hpp"
 
 namespace vkrt {
 namespace {
 
-Image uniform(std::uint32_t w, std::uint32_t h, float v) {
-    Image image(w, h);
-    for (float& x : image.rgb) x = v;
-    return image;
-}
+using test::uniform_image;
 
 TEST(CompareMetrics, MaeMseRmseAndRelMseOfAKnownDifference) {
     // Two pixels: channels differ by 0.1 (reference 0.5) and by 0.3 (reference 0).
@@ -50,10 +47,10 @@ TEST(CompareMetrics, SsimOfAnImageWithItselfIsOne) {
 TEST(CompareMetrics, SsimOfUniformImagesIsTheLuminanceTerm) {
     for (const auto& [x, y] : {std::pair{0.5f, 0.25f}, std::pair{0.0f, 1.0f}, std::pair{0.8f, 0.8f}}) {
         const double a = x, b = y, c1 = 1e-4;
-        EXPECT_NEAR(ssim(uniform(12, 11, x), uniform(12, 11, y)), (2 * a * b + c1) / (a * a + b * b + c1), 1e-12);
+        EXPECT_NEAR(ssim(uniform_image(12, 11, x), uniform_image(12, 11, y)), (2 * a * b + c1) / (a * a + b * b + c1), 1e-12);
     }
     // Values beyond the display range count as its ends.
-    EXPECT_NEAR(ssim(uniform(11, 11, 7.0f), uniform(11, 11, 1.0f)), 1.0, 1e-12);
+    EXPECT_NEAR(ssim(uniform_image(11, 11, 7.0f), uniform_image(11, 11, 1.0f)), 1.0, 1e-12);
 }
 
 // Opposite structure: a pattern against its negation around the same mean gives a
@@ -76,7 +73,7 @@ TEST(CompareMetrics, SsimOfAPatternAndItsNegationIsNegative) {
 
 TEST(CompareMetrics, SsimRefusesImagesSmallerThanItsWindow) {
     try {
-        (void)ssim(uniform(10, 20, 0.5f), uniform(10, 20, 0.5f));
+        (void)ssim(uniform_image(10, 20, 0.5f), uniform_image(10, 20, 0.5f));
         FAIL() << "no error";
     } catch (const ImageError& e) {
         EXPECT_NE(std::string(e.what()).find("at least 11 x 11 pixels"), std::string::npos) << e.what();
@@ -86,7 +83,7 @@ TEST(CompareMetrics, SsimRefusesImagesSmallerThanItsWindow) {
 // The map's ends at -range and +range (and beyond), near-white where the images
 // agree, black for NaN; the difference is the mean of the channels.
 TEST(DifferenceImage, TheColourMapRunsFromBlueThroughWhiteToRed) {
-    Image a(5, 1), b = uniform(5, 1, 0.5f);
+    Image a(5, 1), b = uniform_image(5, 1, 0.5f);
     const float values[5] = {0.5f, 0.25f, 1.0f, 0.0f, std::numeric_limits<float>::quiet_NaN()};
     for (int p = 0; p < 5; ++p) {
         for (int c = 0; c < 3; ++c) a.rgb[3 * p + c] = values[p];
@@ -100,7 +97,7 @@ TEST(DifferenceImage, TheColourMapRunsFromBlueThroughWhiteToRed) {
     EXPECT_EQ(pixel(3), (std::vector<int>{59, 76, 192, 255})) << "beyond -range";
     EXPECT_EQ(pixel(4), (std::vector<int>{0, 0, 0, 255})) << "NaN";
     // Half way to +range: half way from white to red.
-    const std::vector<std::uint8_t> half = difference_rgba8(uniform(1, 1, 0.625f), uniform(1, 1, 0.5f), 0.25);
+    const std::vector<std::uint8_t> half = difference_rgba8(uniform_image(1, 1, 0.625f), uniform_image(1, 1, 0.5f), 0.25);
     EXPECT_EQ(int(half[0]), 211);  // 242 + (180 - 242) / 2
     EXPECT_EQ(int(half[1]), 123);  // 242 + (4 - 242) / 2
     EXPECT_EQ(int(half[2]), 140);  // 242 + (38 - 242) / 2
