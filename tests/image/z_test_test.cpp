@@ -1,9 +1,11 @@
 // compare --test's statistics (image/z_test.hpp): Z-scores and p-values of chosen
 // differences, the Šidák level, what is and is not tested, and its calibration: on
 // 200 pairs of independent renders of one scene it rejects at about its nominal 1%,
-// and its Z-scores are standard normal in the bulk.
+// its Z-scores are standard normal in the bulk, and a 1% bias is rejected from the
+// sample count a pilot render predicts.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -60,12 +62,16 @@ TEST(ZTest, UnknownVariancesAreNotTestedAndZeroVariancesExactly) {
 
 // A diffuse floor under a large area light, global mode with next-event estimation:
 // every sample's radiance varies continuously, so the means of 64 are near normal.
-Scene lit_floor(std::uint32_t seed) {
+// The lamp reflects nothing, so each pixel's radiance is linear in the floor's
+// colour, `albedo` times (0.7, 0.6, 0.5).
+Scene lit_floor(std::uint32_t seed, std::uint32_t spp = 64, double albedo = 1.0) {
+    const auto c = [&](double v) { return std::to_string(v * albedo); };
     Scene s = test::scene_from_text("lit_floor", R"({
       "camera": { "eye": [0, 2, 3], "look_at": [0, 0, 0], "fov": 40, "width": 8, "height": 8 },
-      "render": { "mode": "global", "spp": 64, "max_bounces": 2, "sampler": "hash", "seed": )" +
-                                                     std::to_string(seed) + R"(, "background": [0, 0, 0] },
-      "materials": { "floor": { "diffuse": [0.7, 0.6, 0.5] }, "lamp": { "emission": [4, 4, 4] } },
+      "render": { "mode": "global", "spp": )" + std::to_string(spp) + R"(, "max_bounces": 2, "sampler": "hash",
+                  "seed": )" + std::to_string(seed) + R"(, "background": [0, 0, 0] },
+      "materials": { "floor": { "diffuse": [)" + c(0.7) + ", " + c(0.6) + ", " + c(0.5) + R"(] },
+                     "lamp": { "diffuse": [0, 0, 0], "emission": [4, 4, 4] } },
       "objects": [ { "type": "quad", "corner": [-3, 0, -3], "edge1": [0, 0, 6], "edge2": [6, 0, 0], "material": "floor" },
                    { "type": "quad", "corner": [-1, 3, -1], "edge1": [2, 0, 0], "edge2": [0, 0, 2], "material": "lamp" } ]
     })");
@@ -73,12 +79,13 @@ Scene lit_floor(std::uint32_t seed) {
     return s;
 }
 
-std::pair<Image, Image> render_with_variance(std::uint32_t seed) {
-    const RenderOutcome r = test::render_cpu(lit_floor(seed));
+std::pair<Image, Image> render_with_variance(const Scene& scene) {
+    const RenderOutcome r = test::render_cpu(scene);
     Image var(r.image.width, r.image.height);
     var.rgb = variance_layer(r.sums).values;
     return {r.image, var};
 }
+std::pair<Image, Image> render_with_variance(std::uint32_t seed) { return render_with_variance(lit_floor(seed)); }
 
 TEST(ZTest, RejectsIndependentRendersAtItsNominalRate) {
     constexpr int kPairs = 200;
@@ -101,6 +108,50 @@ TEST(ZTest, RejectsIndependentRendersAtItsNominalRate) {
     // 5% of standard normal scores lie beyond 1.96 (the channels of a pixel are
     // correlated, which widens the spread of this fraction, not its mean).
     EXPECT_NEAR(rate, 0.05, 0.01);
+}
+
+// A floor 1% brighter (B's albedo times 1.01) shifts each pixel channel's mean by
+// 0.01 mu. Against an unbiased B of as many samples, the expected Z-score at n samples
+// is 0.01 mu sqrt(n) / (sigma sqrt(1.01^2 + 1)), sigma a sample's standard deviation;
+// the test starts to reject where the largest reaches the level's critical score c:
+// n50 = (1.01^2 + 1) (c sigma / (0.01 mu))^2, smallest over the channels, predicted
+// here from a pilot render (decision 0049). At n50 / 4 the largest expected score is
+// c / 2 and the test seldom rejects; at 4 n50 it is 2c and it always does.
+TEST(ZTest, RejectsAOnePercentBiasAtThePredictedSampleCount) {
+    constexpr std::uint32_t kPilot = 1024;
+    const auto [pilot, pilot_var] = render_with_variance(lit_floor(99, kPilot));
+    const std::size_t m = pilot.rgb.size();
+    const double level = -std::expm1(std::log1p(-0.01) / double(m));
+    // c from the level by bisection on erfc (the two-sided normal tail).
+    double lo = 0.0, hi = 40.0;
+    for (int i = 0; i < 200; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (std::erfc(mid / std::sqrt(2.0)) > level ? lo : hi) = mid;
+    }
+    const double c = lo;
+    double n50 = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < m; ++i) {
+        const double sigma = std::sqrt(double(pilot_var.rgb[i]) * kPilot);
+        const double mu = pilot.rgb[i];
+        if (mu > 0.0) n50 = std::min(n50, (1.01 * 1.01 + 1.0) * std::pow(c * sigma / (0.01 * mu), 2.0));
+    }
+    std::printf("c %.3f, predicted n50 %.0f samples\n", c, n50);
+    ASSERT_LT(n50, 16384.0) << "the scene is too noisy for this test's budget";
+    const auto rejections = [&](std::uint32_t spp, int seeds) {
+        int rejected = 0;
+        for (int i = 0; i < seeds; ++i) {
+            const auto [a, var_a] = render_with_variance(lit_floor(2u * std::uint32_t(i) + 1u, spp, 1.01));
+            const auto [b, var_b] = render_with_variance(lit_floor(2u * std::uint32_t(i) + 2u, spp));
+            rejected += z_test(a, var_a, b, &var_b, 0.01).rejects() ? 1 : 0;
+        }
+        return rejected;
+    };
+    const auto quarter = std::max<std::uint32_t>(16u, std::uint32_t(n50 / 4.0));
+    const auto four = std::uint32_t(std::ceil(n50 * 4.0));
+    const int low = rejections(quarter, 10), high = rejections(four, 10);
+    std::printf("1%% bias: %d of 10 rejected at %u samples, %d of 10 at %u\n", low, quarter, high, four);
+    EXPECT_LE(low, 3);
+    EXPECT_EQ(high, 10);
 }
 
 }  // namespace
