@@ -94,7 +94,7 @@ TEST(DataPaths, TexelBuffersWhileTheyHoldSceneAndImage) {
     const DataPaths p = gpu::plan_data_paths(minimum(), true, sizes(1000, 64, 48));
     EXPECT_FALSE(p.scene_in_storage);
     EXPECT_FALSE(p.params_in_uniform);   // a CPU device: decision 0001
-    EXPECT_EQ(p.slab_rows, 48u);         // 64 x 48 x 7 texels fit 65,536
+    EXPECT_EQ(p.slab_rows, 48u);         // 64 x 48 x 10 texels fit 65,536
 }
 
 TEST(DataPaths, ParamsFromAUniformBufferOnGpus) {
@@ -104,21 +104,21 @@ TEST(DataPaths, ParamsFromAUniformBufferOnGpus) {
 }
 
 TEST(DataPaths, LargeImagesAreRenderedInSlabsOfEightRows) {
-    // 65,536 texels hold 18 rows of 512 pixels of 7 texels: slabs of 16.
+    // 65,536 texels hold 12.8 rows of 512 pixels of 10 texels: slabs of 8.
     const DataPaths p = gpu::plan_data_paths(minimum(), true, sizes(1000, 512, 512));
     EXPECT_FALSE(p.scene_in_storage);
-    EXPECT_EQ(p.slab_rows, 16u);
+    EXPECT_EQ(p.slab_rows, 8u);
 }
 
 TEST(DataPaths, ASceneTooLargeForTexelBuffersGoesToStorageBuffers) {
     const DataPaths p = gpu::plan_data_paths(minimum(), true, sizes(70000, 512, 512));
     EXPECT_TRUE(p.scene_in_storage);
-    // 2^27 bytes hold 2,340 rows of 512 pixels of 112 bytes: the whole image.
+    // 2^27 bytes hold 1,638 rows of 512 pixels of 160 bytes: the whole image.
     EXPECT_EQ(p.slab_rows, 512u);
 }
 
 TEST(DataPaths, ImagesTooWideForTexelBuffersGoToStorageBuffers) {
-    // Eight rows of 1,200 pixels need 67,200 texels.
+    // Eight rows of 1,200 pixels need 96,000 texels.
     EXPECT_TRUE(gpu::plan_data_paths(minimum(), true, sizes(100, 1200, 100)).scene_in_storage);
 }
 
