@@ -390,6 +390,12 @@ TEST(Cli, CompareTestTellsNoiseFromDifference) {
         << unusable.stderr_text;
     test::expect_one_error(test::run_vkrt("compare " + quoted("a.exr") + " " + quoted("near.exr") + " --alpha 0.05", dir),
                            {"--alpha", "--test"});
+    const test::ProgramRun png =
+        test::run_vkrt("compare " + quoted("a.exr") + " " + quoted("near.exr") + " --test --p-values " + quoted("p.png"), dir);
+    EXPECT_EQ(png.code, 2);
+    EXPECT_NE(png.stderr_text.find("--p-values writes an OpenEXR file"), std::string::npos) << png.stderr_text;
+    test::expect_one_error(test::run_vkrt("compare " + quoted("a.exr") + " " + quoted("near.exr") + " --test --alpha 0.9", dir),
+                           {"--alpha"});
 
     // A partial file's sums of squares give its variance.
     std::ofstream(dir / "tiny.json") << R"({
