@@ -161,7 +161,9 @@ void main() {
     if (px >= image_width() || py >= image_height()) {
         return;
     }
-    uint first = ((py - pass.w) * image_width() + px) * PIXEL_TEXELS;
+    // A pixel's texels: its sums, its counters, and with HAS_PASSES its render passes.
+    uint stride = HAS_PASSES ? PIXEL_TEXELS + PASS_TEXELS : PIXEL_TEXELS;
+    uint first = ((py - pass.w) * image_width() + px) * stride;
     // The squares' texels only where the render keeps them (HAS_SQUARES).
     PixelSum sum = PixelSum(load_pixel_texel(first), load_pixel_texel(first + 1u), load_pixel_texel(first + 2u),
                             uvec4(0u), uvec4(0u), uvec4(0u));
@@ -173,7 +175,22 @@ void main() {
     uint c = first + PIXEL_SUM_TEXELS;
     Counters counts = Counters(load_pixel_texel(c), load_pixel_texel(c + 1u), load_pixel_texel(c + 2u),
                                load_pixel_texel(c + 3u));
-    accumulate_sample(render_sample(px, py, pass.x), sum, counts);
+    SampleResult result = render_sample(px, py, pass.x);
+    accumulate_sample(result, sum, counts);
+    if (HAS_PASSES) {
+        uint t = first + PIXEL_TEXELS;
+        PassSums passes = PassSums(load_pixel_texel(t), load_pixel_texel(t + 1u), load_pixel_texel(t + 2u),
+                                   load_pixel_texel(t + 3u), load_pixel_texel(t + 4u), load_pixel_texel(t + 5u),
+                                   load_pixel_texel(t + 6u));
+        accumulate_passes(result, passes);
+        store_pixel_texel(t, passes.albedo_red);
+        store_pixel_texel(t + 1u, passes.albedo_green);
+        store_pixel_texel(t + 2u, passes.albedo_blue);
+        store_pixel_texel(t + 3u, passes.normal_x);
+        store_pixel_texel(t + 4u, passes.normal_y);
+        store_pixel_texel(t + 5u, passes.normal_z);
+        store_pixel_texel(t + 6u, passes.depth);
+    }
     store_pixel_texel(first, sum.red);
     store_pixel_texel(first + 1u, sum.green);
     store_pixel_texel(first + 2u, sum.blue);

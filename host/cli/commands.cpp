@@ -1,5 +1,6 @@
 #include "cli/commands.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <future>
 #include <optional>
@@ -64,7 +65,12 @@ void apply_overrides(const RenderArgs& args, Scene& scene) {
         throw std::runtime_error("--variance: this scene traces one ray through every pixel corner (render.corners, "
                                  "on for NFF scenes): its pixels average four rays, not samples, and have no variance");
     }
+    if (!args.passes.empty() && scene.render.corners) {
+        throw std::runtime_error("--passes: this scene traces one ray through every pixel corner (render.corners, on "
+                                 "for NFF scenes), not through its pixels: it has no passes");
+    }
     scene.render.squares = args.variance || !args.samples.empty();
+    scene.render.passes = !args.passes.empty();
     if (args.seed) scene.render.seed = *args.seed;
     if (!args.sampler.empty()) scene.render.sampler = parse_sampler(args.sampler).value();  // checked by the parser
     if (args.bounces) scene.render.max_bounces = *args.bounces;
@@ -138,9 +144,13 @@ void write_output(const std::string& output, const RenderArgs& args, const Scene
                                       std::filesystem::path(args.scene).filename().string(), scene.render.seed,
                                       fingerprint, backend, corners},
                           file);
-        } else if (args.variance) {
-            write_layered_exr(resolved != nullptr ? *resolved : resolve_image(sums, corners), {variance_layer(sums)},
-                              file);
+        } else if (args.variance || !args.passes.empty()) {
+            std::vector<ImageLayer> layers;
+            if (args.variance) layers.push_back(variance_layer(sums));
+            if (!args.passes.empty()) {
+                for (ImageLayer& layer : pass_layers(sums, parse_passes(args.passes))) layers.push_back(std::move(layer));
+            }
+            write_layered_exr(resolved != nullptr ? *resolved : resolve_image(sums, corners), layers, file);
         } else {
             write_image(resolved != nullptr ? *resolved : resolve_image(sums, corners), file, scene.render.display);
         }
@@ -237,6 +247,13 @@ RenderTarget render_target(const RenderArgs& args) {
             target.samples ? "--variance writes the variance beside a whole image; a partial file (--samples) carries "
                              "the sums of squares it is made from"
                            : "--variance writes its layer into an OpenEXR file: give -o a name ending in .exr"));
+    }
+    if (!args.passes.empty() && (target.samples || !app::is_exr(target.output))) {
+        throw std::runtime_error(fmt::format(
+            "{}: {}", target.output,
+            target.samples ? "--passes writes its layers beside a whole image; a partial file (--samples) carries "
+                             "none"
+                           : "--passes writes its layers into an OpenEXR file: give -o a name ending in .exr"));
     }
     if (!args.stats_file.empty()) app::check_writable_file(args.stats_file, "stats file");
     return target;
@@ -336,6 +353,29 @@ void check_render_complete(const RenderStats& s, const std::string& output) {
 }
 
 }  // namespace
+
+std::vector<RenderPass> parse_passes(const std::string& text) {
+    static const std::array<std::pair<const char*, RenderPass>, 3> kNames = {
+        {{"albedo", RenderPass::Albedo}, {"normal", RenderPass::Normal}, {"depth", RenderPass::Depth}}};
+    std::vector<RenderPass> passes;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t comma = text.find(',', start);
+        const std::string name = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        const auto it = std::find_if(kNames.begin(), kNames.end(), [&](const auto& n) { return name == n.first; });
+        if (it == kNames.end()) {
+            throw std::invalid_argument(
+                fmt::format("expected albedo, normal or depth, separated by commas, got '{}' in '{}'", name, text));
+        }
+        if (std::find(passes.begin(), passes.end(), it->second) != passes.end()) {
+            throw std::invalid_argument(fmt::format("'{}' is named twice in '{}'", name, text));
+        }
+        passes.push_back(it->second);
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    return passes;
+}
 
 std::optional<GridSettings> parse_grid_option(const std::string& text) {
     if (text == "auto") return GridSettings{GridMode::Auto, {0, 0, 0}};

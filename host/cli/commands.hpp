@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli/options.hpp"
+#include "render/render.hpp"
 #include "scene/scene.hpp"
 
 namespace vkrt::cli {
@@ -37,6 +38,7 @@ struct RenderArgs {
     std::string reference;       // linear image to report the error against; empty: none
     std::optional<double> checkpoint;  // seconds between writes of the image so far
     bool variance = false;  // the image's file carries the variance of each pixel's mean
+    std::string passes;     // "albedo,normal,depth" or some of them: render passes as layers; empty: none
     bool validate = false;
     bool quiet = false;
 };
@@ -44,6 +46,10 @@ struct RenderArgs {
 // The --grid value: auto, on, off, or a resolution "NXxNYxNZ" (cells per axis,
 // each 1 to limits::kMaxGridAxisCells). Empty optional when the text is none of these.
 std::optional<GridSettings> parse_grid_option(const std::string& text);
+
+// The --passes value: names from albedo, normal and depth, separated by commas, each
+// once. Throws std::invalid_argument naming what was wrong.
+std::vector<RenderPass> parse_passes(const std::string& text);
 
 struct CompareArgs {
     std::string a;

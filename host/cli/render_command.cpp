@@ -87,6 +87,12 @@ Command add_render_command(CLI::App& program) {
     r->add_flag("--variance", args->variance,
                 "Write the variance of each pixel's mean radiance beside the image, as the layer variance.R, "
                 "variance.G, variance.B of the output (.exr), for telling noise from error (vkrt compare --test)");
+    r->add_option("--passes", args->passes,
+                  "Write render passes beside the image as layers of the output (.exr), each averaged over the "
+                  "pixel's samples: albedo (albedo.R/G/B: the first hit's base colour), normal (N.X/Y/Z: its shading "
+                  "normal, world space), depth (Z: its distance from the eye, over the samples that hit; infinite "
+                  "where none did); comma-separated, e.g. albedo,normal,depth")
+        ->check(accepted_by([](const std::string& text) { parse_passes(text); }, "albedo,normal,depth"));
     add_validate(r, args->validate);
     add_quiet(r, args->quiet);
     // A partial file is a fixed range of samples: a count or a time budget would

@@ -49,6 +49,8 @@ public:
         out.height = scene_.height();
         out.sums.assign(scene_.pixel_count(), kernel::PixelSum{});
         out.counters.assign(scene_.pixel_count(), kernel::Counters{});
+        const bool passes = scene_.features.has(Feature::HAS_PASSES);
+        if (passes) out.passes.assign(scene_.pixel_count(), kernel::PassSums{});
         // The clock starts after the output arrays exist, as the Vulkan backend's
         // timestamps start after its sums are cleared: render_seconds is the sample
         // loop (and starting the threads that run it). Fresh arrays fault their
@@ -75,7 +77,9 @@ public:
                     for (std::uint32_t x = x0; x < x1; ++x) {
                         const std::size_t index = std::size_t(y) * out.width + x;
                         for (std::uint32_t s = samples.first; s < samples.end(); ++s) {
-                            k.accumulate_sample(k.render_sample(x, y, s), out.sums[index], out.counters[index]);
+                            const auto result = k.render_sample(x, y, s);
+                            k.accumulate_sample(result, out.sums[index], out.counters[index]);
+                            if (passes) k.accumulate_passes(result, out.passes[index]);
                         }
                     }
                 }

@@ -121,6 +121,7 @@ FeatureSet analyze_features(const Scene& scene) {
     }
 
     f.set(Feature::HAS_SQUARES, scene.render.squares);
+    f.set(Feature::HAS_PASSES, scene.render.passes);
     // A second mapping matters to the triangles whose material's textures read it.
     f.set(Feature::HAS_SECOND_MAPPING, std::any_of(scene.triangles.begin(), scene.triangles.end(), [&](const Triangle& t) {
               return used[t.material] && scene.materials[t.material].second_mapping.maps != 0u;

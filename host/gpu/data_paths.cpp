@@ -11,12 +11,12 @@ namespace vkrt::gpu {
 namespace {
 
 constexpr std::uint64_t kTexelBytes = 16;
-constexpr std::uint64_t kPixelTexels = kernel::PIXEL_TEXELS;
 
-// Rows of `width` pixels that `texels` texels hold, as a multiple of 8 or the whole
-// image; 0 when not even 8 rows fit.
-std::uint32_t rows_fitting(std::uint64_t texels, std::uint32_t width, std::uint32_t height) {
-    const std::uint64_t rows = texels / (kPixelTexels * width);
+// Rows of `width` pixels of `pixel_texels` texels each that `texels` texels hold, as
+// a multiple of 8 or the whole image; 0 when not even 8 rows fit.
+std::uint32_t rows_fitting(std::uint64_t texels, std::uint32_t pixel_texels, std::uint32_t width,
+                           std::uint32_t height) {
+    const std::uint64_t rows = texels / (std::uint64_t(pixel_texels) * width);
     if (rows >= height) return height;
     return std::uint32_t(rows / kWorkgroupSide * kWorkgroupSide);
 }
@@ -37,8 +37,8 @@ DataPaths plan_data_paths(const DeviceLimits& l, bool cpu_device, const DataSize
         throw GpuError("params cannot be read by address; only the scene can");
     }
     const std::uint64_t scene_bytes = s.scene_texels * kTexelBytes;
-    const std::uint32_t texel_rows = rows_fitting(l.texel_elements, s.width, s.height);
-    const std::uint32_t storage_rows = rows_fitting(l.storage_range / kTexelBytes, s.width, s.height);
+    const std::uint32_t texel_rows = rows_fitting(l.texel_elements, s.pixel_texels, s.width, s.height);
+    const std::uint32_t storage_rows = rows_fitting(l.storage_range / kTexelBytes, s.pixel_texels, s.width, s.height);
     const bool texel_ok = scene_fits_texels(l, s) && texel_rows > 0;
     const bool storage_ok = scene_bytes <= l.storage_range && storage_rows > 0;
     const bool address_ok = l.buffer_device_address && scene_bytes <= max_addressed_bytes(l) && storage_rows > 0;
@@ -61,6 +61,7 @@ DataPaths plan_data_paths(const DeviceLimits& l, bool cpu_device, const DataSize
     paths.scene_in_storage = scene != PathChoice::Texel;
     paths.scene_by_address = scene == PathChoice::Address;
     paths.slab_rows = paths.scene_in_storage ? storage_rows : texel_rows;
+    paths.pixel_texels = s.pixel_texels;
     paths.params_in_uniform = params == PathChoice::Automatic ? !cpu_device : params == PathChoice::Buffer;
     return paths;
 }

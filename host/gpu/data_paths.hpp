@@ -7,6 +7,7 @@
 
 #include "gpu/device_limits.hpp"
 #include "gpu/gpu_error.hpp"
+#include "kernel/types.hpp"
 
 namespace vkrt::gpu {
 
@@ -30,6 +31,7 @@ struct DataPaths {
     // Rows of the image the pixel buffer holds at once (a slab): all of them when they
     // fit, else a multiple of 8; the image is rendered slab by slab.
     std::uint32_t slab_rows = 0;
+    std::uint32_t pixel_texels = 0;  // of one pixel's output (DataSizes)
 };
 
 struct DataSizes {
@@ -38,6 +40,9 @@ struct DataSizes {
     std::uint64_t word_count = 0;
     std::uint32_t width = 0;         // of the grid of rays the kernel traces
     std::uint32_t height = 0;
+    // Texels of one pixel's output: kernel::PIXEL_TEXELS, and PASS_TEXELS more with
+    // the render passes (kernel/layout.glsl).
+    std::uint32_t pixel_texels = kernel::PIXEL_TEXELS;
 };
 
 // The largest scene, in bytes, the device can read by address: one allocation, and

@@ -80,6 +80,14 @@ std::string describe(const DataPaths& paths) {
            (paths.params_in_uniform ? "uniform" : "texel") + " buffer";
 }
 
+// What the data paths are planned for: the packed scene, and the image's pixels of
+// as many texels as the scene's features ask.
+DataSizes data_sizes(const ScenePack& pack, const FlatScene& scene) {
+    const std::uint32_t pixel_texels =
+        kernel::PIXEL_TEXELS + (scene.features.has(Feature::HAS_PASSES) ? kernel::PASS_TEXELS : 0u);
+    return {pack.texel_count, pack.words_start, pack.word_count, scene.width(), scene.height(), pixel_texels};
+}
+
 // Everything a session makes on one device: lost with the device, made again on a
 // new one. It holds its context, so that replacing the backend's context after a
 // lost device leaves another session's objects a device to be destroyed on.
@@ -88,7 +96,7 @@ struct DeviceState {
         : context(std::move(context_)),
           pack(pack_scene(scene, std::max(context->limits().texel_offset_alignment / 16, 1u))),
           paths(plan_data_paths(context->limits(), context->cpu_device(),
-                                {pack.texel_count, pack.words_start, pack.word_count, scene.width(), scene.height()},
+                                data_sizes(pack, scene),
                                 context->options().scene_path, context->options().params_path)),
           pipeline(make_pipeline(*context, scene.features, paths)),
           params(*context, "params", sizeof(kernel::Params), kBindingUsage),
@@ -118,7 +126,7 @@ struct DeviceState {
     }
 
     VkDeviceSize slab_bytes(const FlatScene& scene) const {
-        return VkDeviceSize(paths.slab_rows) * scene.width() * kernel::PIXEL_TEXELS * 16;
+        return VkDeviceSize(paths.slab_rows) * scene.width() * paths.pixel_texels * 16;
     }
 
     // What each binding of render_bindings.glsl is bound to.
@@ -279,14 +287,17 @@ void queue_rest_of_work(SlabJob& job, const SlabWork& w, const Tiling& tiling, s
 }
 
 // The slab's sums into the result. Each pixel's texels: its PixelSum, then its
-// Counters (kernel/layout.glsl).
+// Counters, then where the result has them its PassSums (kernel/layout.glsl).
 void read_sums(const DeviceState& s, const SlabJob& job, std::uint32_t width, RenderResult& result) {
     const auto* texels = static_cast<const unsigned char*>(s.readback ? s.readback->data() : s.pixels.data());
     const std::size_t first = std::size_t(job.first_row) * width;
+    const std::size_t stride = std::size_t(s.paths.pixel_texels) * 16;
+    const bool passes = !result.passes.empty();
     for (std::size_t p = 0; p < std::size_t(job.rows) * width; ++p) {
-        const unsigned char* pixel = texels + p * kernel::PIXEL_TEXELS * 16;
+        const unsigned char* pixel = texels + p * stride;
         std::memcpy(&result.sums[first + p], pixel, sizeof(kernel::PixelSum));
         std::memcpy(&result.counters[first + p], pixel + sizeof(kernel::PixelSum), sizeof(kernel::Counters));
+        if (passes) std::memcpy(&result.passes[first + p], pixel + kernel::PIXEL_TEXELS * 16, sizeof(kernel::PassSums));
     }
 }
 
@@ -359,8 +370,7 @@ public:
             if (!options_.device.empty()) throw;
             // Aligned for any device: the largest alignment the specification allows.
             const ScenePack pack = pack_scene(scene, find_profile("minimum").limits.texel_offset_alignment / 16);
-            const PhysicalDevice* other = device_for_scene(
-                context_->devices(), {pack.texel_count, pack.words_start, pack.word_count, scene.width(), scene.height()});
+            const PhysicalDevice* other = device_for_scene(context_->devices(), data_sizes(pack, scene));
             if (!other || other->info.index == context_->device_index()) {
                 throw SceneDoesNotFit(std::string(e.what()) + ", and no other Vulkan device can hold it either");
             }
@@ -432,6 +442,7 @@ RenderResult VulkanSession::render_once(SampleRange samples, const ProgressCallb
     result.height = height_;
     result.sums.resize(std::size_t(width_) * height_);
     result.counters.resize(result.sums.size());
+    if (scene_.features.has(Feature::HAS_PASSES)) result.passes.resize(result.sums.size());
     result.data_paths = describe(state_->paths);
     const std::uint32_t slab_rows = state_->paths.slab_rows;
     const std::uint32_t slabs = (height_ + slab_rows - 1) / slab_rows;
@@ -474,7 +485,7 @@ void VulkanSession::render_slab(SampleRange samples, std::uint32_t slab, std::ui
     job.index = slab;
     job.rows = rows;
     job.first_row = slab * state_->paths.slab_rows;
-    job.bytes = VkDeviceSize(rows) * width_ * kernel::PIXEL_TEXELS * 16;
+    job.bytes = VkDeviceSize(rows) * width_ * state_->paths.pixel_texels * 16;
     job.whole = Region{0, 0, width_, rows};
     job.work = {{job.whole, samples.first, samples.count}};
     job.pixel_samples = double(width_) * rows * samples.count;

@@ -98,7 +98,7 @@ void write_layered_exr(const Image& image, const std::vector<ImageLayer>& layers
     spec.height = image.height;
     spec.channels = {"R", "G", "B"};
     for (const ImageLayer& layer : layers) {
-        for (const std::string& c : layer.channels) spec.channels.push_back(layer.name + "." + c);
+        for (const std::string& c : layer.channels) spec.channels.push_back(layer.name.empty() ? c : layer.name + "." + c);
     }
     spec.types.assign(spec.channels.size(), ChannelType::Float);
     spec.strings["oiio:ColorSpace"] = "Linear";

@@ -51,7 +51,8 @@ void write_image(const Image& image, const std::filesystem::path& file, const Di
 
 // Further channels beside an image's R, G, B in one OpenEXR file: a layer named
 // `name` whose channels are `name.<channel>` (as OpenImageIO and Blender's
-// compositor name a layer's), `values` pixel after pixel, channel after channel.
+// compositor name a layer's; a layer without a name has its channels bare, as the
+// depth channel Z), `values` pixel after pixel, channel after channel.
 struct ImageLayer {
     std::string name;
     std::vector<std::string> channels;

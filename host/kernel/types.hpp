@@ -52,6 +52,7 @@ static_assert(sizeof(Params) == 16 * PARAM_TEXELS);
 static_assert(sizeof(Counters) == 64);
 static_assert(sizeof(PixelSum) == 96);
 static_assert(sizeof(PixelSum) == 16 * PIXEL_SUM_TEXELS && sizeof(PixelSum) + sizeof(Counters) == 16 * PIXEL_TEXELS);
+static_assert(sizeof(PassSums) == 16 * PASS_TEXELS);
 
 // The host's accessors of the per-render constants (kernel/params.glsl): name(params)
 // reads a value, set_name(params, value) writes it.
@@ -104,6 +105,10 @@ inline bool operator==(const Counters& a, const Counters& b) {
 inline bool operator==(const PixelSum& a, const PixelSum& b) {
     return a.red == b.red && a.green == b.green && a.blue == b.blue && a.red_squares == b.red_squares &&
            a.green_squares == b.green_squares && a.blue_squares == b.blue_squares;
+}
+inline bool operator==(const PassSums& a, const PassSums& b) {
+    return a.albedo_red == b.albedo_red && a.albedo_green == b.albedo_green && a.albedo_blue == b.albedo_blue &&
+           a.normal_x == b.normal_x && a.normal_y == b.normal_y && a.normal_z == b.normal_z && a.depth == b.depth;
 }
 inline Counters operator+(const Counters& a, const Counters& b) {
     return {a.rays + b.rays, a.work + b.work, a.tree + b.tree, a.paths + b.paths};

@@ -17,14 +17,18 @@ inline void accumulate(RenderResult& total, const RenderResult& part) {
         total.height = part.height;
         total.sums.assign(part.sums.size(), kernel::PixelSum{});
         total.counters.assign(part.counters.size(), kernel::Counters{});
+        total.passes.assign(part.passes.size(), kernel::PassSums{});
     }
     if (total.width != part.width || total.height != part.height || total.sums.size() != part.sums.size() ||
-        total.counters.size() != part.counters.size()) {
+        total.counters.size() != part.counters.size() || total.passes.size() != part.passes.size()) {
         throw std::logic_error("accumulate: renders of different sizes");
     }
     for (std::size_t p = 0; p < total.sums.size(); ++p) {
         total.sums[p] = kernel::add_sums(total.sums[p], part.sums[p]);
         total.counters[p] = total.counters[p] + part.counters[p];
+    }
+    for (std::size_t p = 0; p < total.passes.size(); ++p) {
+        total.passes[p] = kernel::add_pass_sums(total.passes[p], part.passes[p]);
     }
     total.setup_seconds += part.setup_seconds;
     total.render_seconds += part.render_seconds;

@@ -35,6 +35,7 @@ struct RenderResult {
     std::uint32_t height = 0;
     std::vector<kernel::PixelSum> sums;      // exact radiance sums and sample counts (kernel/sums.glsl)
     std::vector<kernel::Counters> counters;  // lanes: kernel::RAYS_*, kernel::WORK_*
+    std::vector<kernel::PassSums> passes;    // with HAS_PASSES, the render passes' sums; else empty
     double setup_seconds = 0.0;        // building pipelines, uploading buffers
     double render_seconds = 0.0;       // the sample loop (GPU timestamps where available)
     double longest_submit_seconds = 0.0;  // Vulkan: the longest single queue submission (wall clock)

@@ -51,4 +51,24 @@ inline glm::dvec3 variance_of_mean(const kernel::PixelSum& s) {
     return glm::max(spread, glm::dvec3(0.0)) / (double(n) * double(n - 1));
 }
 
+// A pixel's render passes (kernel/layout.glsl's PassSums) as means: the first hits'
+// base colour and shading normal over all of the pixel's `samples` (a sample whose
+// eye ray missed adds black and a zero normal), their distance over the `hits`
+// alone (infinite where no sample hit). The normal's sums hold n + 1 per hit.
+struct PassMeans {
+    glm::dvec3 albedo{0.0};
+    glm::dvec3 normal{0.0};
+    double depth = std::numeric_limits<double>::infinity();
+};
+
+inline PassMeans pass_means(const kernel::PassSums& p, std::uint32_t samples, std::uint32_t hits) {
+    PassMeans m;
+    if (samples == 0 || hits == 0) return m;
+    const double n = double(samples);
+    m.albedo = glm::dvec3(channel_sum(p.albedo_red), channel_sum(p.albedo_green), channel_sum(p.albedo_blue)) / n;
+    m.normal = (glm::dvec3(channel_sum(p.normal_x), channel_sum(p.normal_y), channel_sum(p.normal_z)) - double(hits)) / n;
+    m.depth = channel_sum(p.depth) / double(hits);
+    return m;
+}
+
 }  // namespace vkrt

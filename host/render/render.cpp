@@ -3,6 +3,7 @@
 #include <chrono>
 #include <limits>
 #include <memory>
+#include <stdexcept>
 
 #include "render/fingerprint.hpp"
 #include "render/pixel_sums.hpp"
@@ -81,6 +82,32 @@ ImageLayer variance_layer(const RenderResult& result) {
         for (int c = 0; c < 3; ++c) layer.values[p * 3 + std::size_t(c)] = static_cast<float>(v[c]);
     }
     return layer;
+}
+
+std::vector<ImageLayer> pass_layers(const RenderResult& result, const std::vector<RenderPass>& passes) {
+    if (result.passes.size() != result.sums.size()) {
+        throw std::logic_error("pass_layers: the render kept no passes (HAS_PASSES)");
+    }
+    const std::size_t pixels = result.sums.size();
+    ImageLayer albedo{"albedo", {"R", "G", "B"}, std::vector<float>(pixels * 3)};
+    ImageLayer normal{"N", {"X", "Y", "Z"}, std::vector<float>(pixels * 3)};
+    ImageLayer depth{"", {"Z"}, std::vector<float>(pixels)};
+    for (std::size_t p = 0; p < pixels; ++p) {
+        const kernel::Counters& c = result.counters[p];
+        const PassMeans m = pass_means(result.passes[p], c.rays[kernel::RAYS_EYE], c.tree[kernel::TREE_EYE_HITS]);
+        for (std::size_t k = 0; k < 3; ++k) {
+            albedo.values[p * 3 + k] = static_cast<float>(m.albedo[glm::length_t(k)]);
+            normal.values[p * 3 + k] = static_cast<float>(m.normal[glm::length_t(k)]);
+        }
+        depth.values[p] = static_cast<float>(m.depth);
+    }
+    std::vector<ImageLayer> layers;
+    for (const RenderPass pass : passes) {
+        layers.push_back(pass == RenderPass::Albedo   ? albedo
+                         : pass == RenderPass::Normal ? normal
+                                                      : depth);
+    }
+    return layers;
 }
 
 std::uint64_t total_rays(const RenderResult& result) {

@@ -125,6 +125,14 @@ Image resolve_image(const RenderResult& result, bool corners = false);
 // has fewer than two good samples. Not for corner rays.
 ImageLayer variance_layer(const RenderResult& result);
 
+// The render passes `vkrt render --passes` writes beside the image.
+enum class RenderPass { Albedo, Normal, Depth };
+
+// The passes' layers of an OpenEXR file from a render with HAS_PASSES (pixel_sums.hpp,
+// pass_means), in the channel names compositors and denoisers read: "albedo" (R, G,
+// B), "N" (X, Y, Z) and the bare channel "Z". Not for corner rays.
+std::vector<ImageLayer> pass_layers(const RenderResult& result, const std::vector<RenderPass>& passes);
+
 RenderStats collect_stats(const FlatScene& scene, const Backend& backend, const RenderResult& result);
 
 // Renders the plan's samples in progressive passes through one backend session.

@@ -94,6 +94,10 @@ struct RenderSettings {
     // (HAS_SQUARES): `vkrt render --variance` and partial files ask for them; not a
     // field of the scene file.
     bool squares = false;
+    // Keep each pixel's render passes (HAS_PASSES: the first hit's base colour,
+    // normal and distance): `vkrt render --passes` asks for them; not a field of the
+    // scene file either.
+    bool passes = false;
 
     // Global mode takes 16 samples when neither spp nor aa says otherwise.
     std::uint32_t samples_per_pixel() const {

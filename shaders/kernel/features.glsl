@@ -83,6 +83,9 @@ FEATURE(31, HAS_SECOND_MAPPING)
 // Each pixel's sums of squares beside its sums (sums.glsl): the render's output asks
 // for the variance of the mean (vkrt render --variance, partial files).
 FEATURE(32, HAS_SQUARES)
+// Each pixel's render passes beside its sums (layout.glsl's PassSums): the first
+// hit's base colour, shading normal and distance (vkrt render --passes).
+FEATURE(33, HAS_PASSES)
 // Three per kind of primitive (shapes/kinds.glsl), after the others: HAS_<NAMES>, the
 // scene has some; with HAS_GRID, GRID_<NAMES>, the grid's cells list some, and
 // LOOSE_<NAMES>, its loose primitives, which are tested once per ray instead, hold
@@ -90,5 +93,5 @@ FEATURE(32, HAS_SQUARES)
 // whose boxes would stretch the grid's (host/flatten/flat_scene.cpp,
 // host/accel/grid.cpp, docs/grid.md).
 #define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
-    FEATURE((33 + 3 * ID), HAS_##NAMES) FEATURE((33 + 3 * ID + 1), GRID_##NAMES) FEATURE((33 + 3 * ID + 2), LOOSE_##NAMES)
+    FEATURE((34 + 3 * ID), HAS_##NAMES) FEATURE((34 + 3 * ID + 1), GRID_##NAMES) FEATURE((34 + 3 * ID + 2), LOOSE_##NAMES)
 #include "shapes/kinds.glsl"

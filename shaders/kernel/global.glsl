@@ -38,7 +38,8 @@ float power_heuristic(float pdf_this, float pdf_other) {
 // normal its clear coat lies on into coat_n, normal_map.glsl), and weighs
 // the path's throughput by what the medium it crossed let through (`media`, the
 // medium the ray travels in). When it leaves the scene, adds what the sky sends along
-// it weighed by that throughput and returns false; counts the eye ray's hit. pdf_prev is the density
+// it weighed by that throughput and returns false; notes the eye ray's hit
+// (note_first_hit). pdf_prev is the density
 // with which the ray was drawn by sampling the smooth lobes, 0 otherwise: such a
 // ray that finds the environment is weighed against next-event estimation's
 // drawing it (the power heuristic, as for emitters).
@@ -56,11 +57,11 @@ bool path_hit(Ray ray, uint bounce, uvec4 media, float pdf_prev, INOUT(vec3) bet
         s.radiance += beta * sky(ray.dir) * w;
         return false;
     }
-    if (bounce == 0u) {
-        s.eye_hits = 1u;
-    }
     coat_n = HAS_COAT ? coat_normal(hit, -ray.dir) : vec3(0.0f);
     hit.normal = mapped_normal(hit, -ray.dir);
+    if (bounce == 0u) {
+        note_first_hit(hit, s);
+    }
     return true;
 }
 

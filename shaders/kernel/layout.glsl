@@ -109,6 +109,24 @@ struct Counters {
     uvec4 paths;
 };
 
-// On the device a pixel's output is its PixelSum's texels, then its Counters'.
+// The render passes of a pixel (HAS_PASSES): over the samples whose eye ray hit a
+// surface, the sums of that first hit's base colour (albedo), of its shading normal
+// plus one in each component (so that every term is positive: the host subtracts the
+// hits again), and of its distance from the eye, each channel summed exactly as the
+// radiance is (sums.glsl). The lanes w are unused (0): the counts are the Counters'
+// (RAYS_EYE samples, TREE_EYE_HITS of them hits).
+struct PassSums {
+    uvec4 albedo_red;
+    uvec4 albedo_green;
+    uvec4 albedo_blue;
+    uvec4 normal_x;
+    uvec4 normal_y;
+    uvec4 normal_z;
+    uvec4 depth;
+};
+
+// On the device a pixel's output is its PixelSum's texels, then its Counters', then
+// with HAS_PASSES its PassSums' (pixel_texels(), render.comp).
 const uint PIXEL_SUM_TEXELS = 6u;
 const uint PIXEL_TEXELS = 10u;
+const uint PASS_TEXELS = 7u;

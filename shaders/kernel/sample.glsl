@@ -93,11 +93,11 @@ void spawn_children(PendingRay cur, Hit hit, INOUT(RayQueue) q, INOUT(SampleResu
 Hit trace_and_shade(PendingRay r, INOUT(Rng) rng, INOUT(SampleResult) s) {
     Hit hit = closest_hit(r.ray, INFINITY_T);
     if (hit.t < INFINITY_T) {
-        if (r.depth == 0u) {
-            s.eye_hits = 1u;
-        }
         // Shading, and the mirror and refraction rays it spawns, see the mapped normal.
         hit.normal = mapped_normal(hit, -r.ray.dir);
+        if (r.depth == 0u) {
+            note_first_hit(hit, s);
+        }
         s.radiance += r.weight * shade_local(r.ray, hit, rng, s.shadow_rays);
     } else {
         s.radiance += r.weight * sky(r.ray.dir);
@@ -131,7 +131,8 @@ void trace_ray_tree(PendingRay eye, INOUT(Rng) rng, INOUT(SampleResult) s) {
 
 SampleResult render_sample(uint px, uint py, uint sample_index) {
     work_reset();
-    SampleResult s = SampleResult(vec3(0.0f), 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, false, false);
+    SampleResult s = SampleResult(vec3(0.0f), 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, false, false, vec3(0.0f),
+                                  vec3(0.0f), 0.0f);
     Rng rng = rng_start(py * image_width() + px, sample_index, sample_seed());
     if (HAS_ALPHA) {
         alpha_start_sample(rng);
@@ -181,5 +182,13 @@ void accumulate_sample(SampleResult s, INOUT(PixelSum) sum, INOUT(Counters) coun
         counters.work[WORK_NONFINITE] += 1u;
     } else {
         add_sample(sum, s.radiance, HAS_SQUARES);
+    }
+}
+
+// Adds a sample's eye-ray hit to its pixel's render passes (HAS_PASSES): every
+// sample whose eye ray hit a surface, whatever became of its radiance.
+void accumulate_passes(SampleResult s, INOUT(PassSums) passes) {
+    if (s.eye_hits != 0u) {
+        add_first_hit(passes, s.first_albedo, s.first_normal, s.first_depth);
     }
 }

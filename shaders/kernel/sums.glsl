@@ -80,3 +80,30 @@ HOST_INLINE PixelSum add_sums(PixelSum a, PixelSum b) {
                     uvec4(add_words(uvec3(a.green_squares), uvec3(b.green_squares)), 0u),
                     uvec4(add_words(uvec3(a.blue_squares), uvec3(b.blue_squares)), 0u));
 }
+
+// Adds the eye ray's hit to a pixel's render passes (layout.glsl's PassSums): each
+// channel of the base colour, of the shading normal plus one and of the distance,
+// clamped to [0, SUM_SAMPLE_MAX], summed exactly as radiance is.
+HOST_INLINE void add_first_hit(INOUT(PassSums) p, vec3 albedo, vec3 normal, float depth) {
+    vec3 a = clamp(albedo, vec3(0.0f), vec3(SUM_SAMPLE_MAX));
+    vec3 n = clamp(normal + vec3(1.0f), vec3(0.0f), vec3(2.0f));
+    float d = clamp(depth, 0.0f, SUM_SAMPLE_MAX);
+    p.albedo_red = uvec4(add_words(uvec3(p.albedo_red), fixed_point(a.x)), 0u);
+    p.albedo_green = uvec4(add_words(uvec3(p.albedo_green), fixed_point(a.y)), 0u);
+    p.albedo_blue = uvec4(add_words(uvec3(p.albedo_blue), fixed_point(a.z)), 0u);
+    p.normal_x = uvec4(add_words(uvec3(p.normal_x), fixed_point(n.x)), 0u);
+    p.normal_y = uvec4(add_words(uvec3(p.normal_y), fixed_point(n.y)), 0u);
+    p.normal_z = uvec4(add_words(uvec3(p.normal_z), fixed_point(n.z)), 0u);
+    p.depth = uvec4(add_words(uvec3(p.depth), fixed_point(d)), 0u);
+}
+
+// The render passes of two disjoint sets of samples of one pixel: those of their union.
+HOST_INLINE PassSums add_pass_sums(PassSums a, PassSums b) {
+    return PassSums(uvec4(add_words(uvec3(a.albedo_red), uvec3(b.albedo_red)), 0u),
+                    uvec4(add_words(uvec3(a.albedo_green), uvec3(b.albedo_green)), 0u),
+                    uvec4(add_words(uvec3(a.albedo_blue), uvec3(b.albedo_blue)), 0u),
+                    uvec4(add_words(uvec3(a.normal_x), uvec3(b.normal_x)), 0u),
+                    uvec4(add_words(uvec3(a.normal_y), uvec3(b.normal_y)), 0u),
+                    uvec4(add_words(uvec3(a.normal_z), uvec3(b.normal_z)), 0u),
+                    uvec4(add_words(uvec3(a.depth), uvec3(b.depth)), 0u));
+}

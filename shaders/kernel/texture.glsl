@@ -231,6 +231,31 @@ void apply_specular_textures(INOUT(Material) m, TextureCoords c) {
     m.dielectric_f90 = strength;
 }
 
+// What multiplies a material's colour at a hit on a triangle: its colour texture
+// (white without one) times, where `tinted`, the triangle's vertex colour.
+vec3 surface_tint(Material m, Hit hit, TextureCoords coords, bool tinted) {
+    vec3 c = HAS_TEXTURES && m.color_map != 0u ? vec3(texture_bilinear(load_texture(m.color_map - 1u), coords.first))
+                                               : vec3(1.0f);
+    if (tinted) {
+        c = c * vec3(vertex_color(hit.prim & REF_INDEX_MASK, hit.bary));
+    }
+    return c;
+}
+
+// The base colour at a hit, for the albedo pass (HAS_PASSES): a metallic-roughness
+// material's base colour, the paper's material's diffuse colour, either times the
+// colour texture and vertex colours as surface_material applies them.
+vec3 surface_base_colour(Hit hit) {
+    Material m = load_material(hit.material);
+    vec3 base = m.ggx_alpha > 0.0f ? m.base_color : m.diffuse;
+    bool triangle = (hit.prim >> REF_KIND_SHIFT) == REF_TRIANGLE;
+    bool tinted = HAS_VERTEX_COLORS && triangle && triangle_has_colors(hit.prim & REF_INDEX_MASK);
+    if ((HAS_TEXTURES && triangle && m.color_map != 0u) || tinted) {
+        base = base * surface_tint(m, hit, hit_texture_coords(m, hit), tinted);
+    }
+    return base;
+}
+
 // The material at a hit, textured. A Phong material's diffuse colour times the
 // colour texture; a metallic-roughness material rebuilt from its factors (flat_scene.cpp)
 // times its textures: base colour times the colour texture, metallic times the
@@ -257,11 +282,7 @@ Material surface_material(Hit hit) {
                     (m.color_map != 0u || m.metal_rough_map != 0u || m.transmission_map != 0u || specular_textured);
     bool tinted = HAS_VERTEX_COLORS && triangle && triangle_has_colors(hit.prim & REF_INDEX_MASK);
     if (textured || tinted) {
-        vec3 c = HAS_TEXTURES && m.color_map != 0u ? vec3(texture_bilinear(load_texture(m.color_map - 1u), coords.first))
-                                                   : vec3(1.0f);
-        if (tinted) {
-            c = c * vec3(vertex_color(hit.prim & REF_INDEX_MASK, hit.bary));
-        }
+        vec3 c = surface_tint(m, hit, coords, tinted);
         if (m.ggx_alpha > 0.0f) {
             vec3 base = m.base_color * c;
             float metallic = m.metallic;
