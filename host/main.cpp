@@ -9,7 +9,8 @@ int main(int argc, char** argv) {
     program.require_subcommand(1);
     const std::vector<Command> commands = {
         add_render_command(program),  add_merge_command(program),           add_converge_command(program),
-        add_compare_command(program), add_bench_command(program, argc, argv), add_devices_command(program),
+        add_compare_command(program), add_stack_command(program),            add_bench_command(program, argc, argv),
+        add_devices_command(program),
     };
     return parse_and_run(program, commands, argc, argv);
 }

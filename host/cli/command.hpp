@@ -19,6 +19,7 @@ Command add_render_command(CLI::App& program);
 Command add_merge_command(CLI::App& program);
 Command add_converge_command(CLI::App& program);
 Command add_compare_command(CLI::App& program);
+Command add_stack_command(CLI::App& program);
 Command add_bench_command(CLI::App& program, int argc, char** argv);
 Command add_devices_command(CLI::App& program);
 

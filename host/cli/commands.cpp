@@ -1,6 +1,9 @@
 #include "cli/commands.hpp"
 
 #include <algorithm>
+#include <limits>
+#include <memory>
+#include <utility>
 #include <chrono>
 #include <future>
 #include <optional>
@@ -24,6 +27,8 @@
 #include "image/error_image.hpp"
 #include "image/ssim.hpp"
 #include "image/error_metrics.hpp"
+#include "image/image_files.hpp"
+#include "image/stack.hpp"
 #include "image/z_test.hpp"
 #include "live/live_server.hpp"
 #include "live/pass_feed.hpp"
@@ -457,9 +462,33 @@ int run_render(const RenderArgs& args) {
 }
 
 // The variance of each pixel's mean that an image file carries: its "variance"
-// layer (render --variance), or, for a partial file, from its sums of squares.
-std::optional<Image> carried_variance(const std::string& file) {
-    if (std::optional<Image> layer = read_layer(file, "variance")) return layer;
+// layer (render --variance, or vkrt stack with its degrees of freedom), or, for a
+// partial file, from its sums of squares.
+struct CarriedVariance {
+    Image image;
+    double dof = std::numeric_limits<double>::infinity();
+};
+
+std::optional<CarriedVariance> carried_variance(const std::string& file) {
+    if (std::optional<Image> layer = read_layer(file, "variance")) {
+        CarriedVariance v{std::move(*layer)};
+        std::string error;
+        const std::unique_ptr<ImageFileReader> in = image_files().open(file, error);
+        const std::string dof = in ? in->spec().string_or(kVarianceDofAttribute) : std::string();
+        if (!dof.empty()) {
+            std::size_t used = 0;
+            try {
+                v.dof = std::stod(dof, &used);
+            } catch (const std::exception&) {
+                used = 0;
+            }
+            if (used != dof.size() || !(v.dof > 0.0)) {
+                throw ImageError(fmt::format("{}: its {} attribute, '{}', is not a number above 0", file,
+                                             kVarianceDofAttribute, dof));
+            }
+        }
+        return v;
+    }
     if (!app::is_exr(file)) return std::nullopt;
     try {
         read_partial_header(file);
@@ -469,9 +498,15 @@ std::optional<Image> carried_variance(const std::string& file) {
     const PartialFile partial = read_partial(file);
     if (partial.corners) throw ImageError(fmt::format("{}: corner rays (the SPD's) have no variance", file));
     const ImageLayer v = variance_layer(partial.sums);
-    Image out(partial.sums.width, partial.sums.height);
-    out.rgb = v.values;
+    CarriedVariance out{Image(partial.sums.width, partial.sums.height)};
+    out.image.rgb = v.values;
     return out;
+}
+
+std::string describe_variance(const std::optional<CarriedVariance>& v) {
+    if (!v) return "taken as exact";
+    return v->dof < std::numeric_limits<double>::infinity() ? fmt::format("of {:g} degrees of freedom", v->dof)
+                                                            : std::string("its own");
 }
 
 // compare --test: prints the verdict; true when it rejects.
@@ -479,27 +514,40 @@ bool run_z_test(const CompareArgs& args, const Image& a, const Image& b) {
     if (!args.p_values.empty() && !app::is_exr(args.p_values)) {
         throw ImageError(fmt::format("{}: --p-values writes an OpenEXR file: give a name ending in .exr", args.p_values));
     }
-    const std::optional<Image> var_a = carried_variance(args.a);
+    const std::optional<CarriedVariance> var_a = carried_variance(args.a);
     if (!var_a) {
         throw ImageError(fmt::format("{}: --test needs the variance of A's pixel means: render it with --variance "
-                                     "(.exr), or give a partial file (render --samples)",
+                                     "(.exr), give a partial file (render --samples), or a stack of independent "
+                                     "images (vkrt stack)",
                                      args.a));
     }
-    const std::optional<Image> var_b = carried_variance(args.b);
+    const std::optional<CarriedVariance> var_b = carried_variance(args.b);
+    for (const auto& [name, v] : {std::pair{&args.a, &var_a}, std::pair{&args.b, &var_b}}) {
+        if (*v && ((*v)->image.width != a.width || (*v)->image.height != a.height)) {
+            throw ImageError(fmt::format("{}: its variance is {}x{}, the image {}x{}", *name, (*v)->image.width,
+                                         (*v)->image.height, a.width, a.height));
+        }
+    }
     Image p_values;
-    const ZTestResult t = z_test(a, *var_a, b, var_b ? &*var_b : nullptr, args.alpha,
+    const ZTestResult t = z_test(a, PixelVariance{&var_a->image, var_a->dof}, b,
+                                 var_b ? PixelVariance{&var_b->image, var_b->dof} : PixelVariance{}, args.alpha,
                                  args.p_values.empty() ? nullptr : &p_values);
-    fmt::print("test      {} of {} pixel channels tested ({}), each at {:.3g} (alpha {:g}, Sidak)\n", t.tests,
-               a.rgb.size(), var_b ? "both images' variances" : "B taken as exact", t.level, t.alpha);
-    fmt::print("          smallest p {:.3g}, z {:.3g} at pixel ({}, {}) channel {}\n", t.min_p, t.worst_z, t.worst_x,
-               t.worst_y, "RGB"[t.worst_channel]);
+    fmt::print("test      {} of {} pixel channels and the 3 image means tested (A's variance {}, B's {}), each at "
+               "{:.3g} (alpha {:g}, Sidak)\n",
+               t.tests, a.rgb.size(), describe_variance(var_a), describe_variance(var_b), t.level, t.alpha);
+    fmt::print("          pixels: smallest p {:.3g}, z {:.3g} at pixel ({}, {}) channel {}\n", t.min_p, t.worst_z,
+               t.worst_x, t.worst_y, "RGB"[t.worst_channel]);
+    fmt::print("          image means A - B: R {:.4g} (z {:.3g}, p {:.3g}), G {:.4g} (z {:.3g}, p {:.3g}), B {:.4g} "
+               "(z {:.3g}, p {:.3g})\n",
+               t.means[0].difference, t.means[0].z, t.means[0].p, t.means[1].difference, t.means[1].z, t.means[1].p,
+               t.means[2].difference, t.means[2].z, t.means[2].p);
     if (!args.p_values.empty()) {
         write_layered_exr(p_values, {}, args.p_values);
         fmt::print("          p-values in {}\n", args.p_values);
     }
     if (t.rejects()) {
-        fmt::print("rejected: {} pixel channel{} differ by more than their noise explains\n", t.rejected,
-                   t.rejected == 1 ? "" : "s");
+        fmt::print("rejected: {} pixel channel{} and {} image mean{} differ by more than their noise explains\n",
+                   t.rejected, t.rejected == 1 ? "" : "s", t.means_rejected, t.means_rejected == 1 ? "" : "s");
     } else {
         fmt::print("consistent: the difference is within the images' noise\n");
     }

@@ -62,9 +62,9 @@ Command add_compare_command(CLI::App& program) {
         ->needs(difference);
     CLI::Option* test = c->add_flag(
         "--test", args->test,
-        "Test whether A - B is noise: A must carry the variance of its pixel means (render --variance, or a partial "
-        "file), B may (else it counts as exact). Per pixel channel a Z-score, Sidak-corrected; exit 1 when it "
-        "rejects");
+        "Test whether A - B is noise: A must carry the variance of its pixel means (render --variance, a partial "
+        "file, or vkrt stack), B may (else it counts as exact). Per pixel channel and per image mean a Z-score (a "
+        "t-score where a variance comes from a stack), Sidak-corrected; exit 1 when it rejects");
     c->add_option("--alpha", args->alpha, "--test's chance of rejecting two images that agree")
         ->check(CLI::Range(1e-12, 0.5))
         ->capture_default_str()

@@ -90,7 +90,8 @@ void write_image(const Image& image, const std::filesystem::path& file, const Di
     if (!ok) throw ImageError(fmt::format("{}: {}", name, error));
 }
 
-void write_layered_exr(const Image& image, const std::vector<ImageLayer>& layers, const std::filesystem::path& file) {
+void write_layered_exr(const Image& image, const std::vector<ImageLayer>& layers, const std::filesystem::path& file,
+                       const std::map<std::string, std::string>& attributes) {
     const std::string name = file.string();
     if (lower_extension(file) != ".exr") throw ImageError(fmt::format("{}: layers need an OpenEXR file (.exr)", name));
     FileSpec spec;
@@ -102,6 +103,7 @@ void write_layered_exr(const Image& image, const std::vector<ImageLayer>& layers
     }
     spec.types.assign(spec.channels.size(), ChannelType::Float);
     spec.strings["oiio:ColorSpace"] = "Linear";
+    for (const auto& [key, value] : attributes) spec.strings[key] = value;
     const std::size_t pixels = std::size_t(image.width) * image.height;
     const std::size_t stride = spec.channels.size();
     std::vector<float> values(pixels * stride);

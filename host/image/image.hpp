@@ -6,6 +6,7 @@
 // to [0, 1]), is sRGB-encoded and stored in 8 bits.
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -59,8 +60,10 @@ struct ImageLayer {
     std::vector<float> values;
 };
 
-// The image and its layers as a linear float OpenEXR file (`file` must end in .exr).
-void write_layered_exr(const Image& image, const std::vector<ImageLayer>& layers, const std::filesystem::path& file);
+// The image and its layers as a linear float OpenEXR file (`file` must end in .exr),
+// with string `attributes` in its header.
+void write_layered_exr(const Image& image, const std::vector<ImageLayer>& layers, const std::filesystem::path& file,
+                       const std::map<std::string, std::string>& attributes = {});
 
 // The layer `name` of an image file (its channels name.R, name.G, name.B, as
 // write_layered_exr writes them) as an image; none when the file has no such layer.

@@ -375,14 +375,18 @@ TEST(Cli, CompareTestTellsNoiseFromDifference) {
         test::run_vkrt("compare " + quoted("a.exr") + " " + quoted("near.exr") + " --test --p-values " + quoted("p.exr"), dir);
     EXPECT_EQ(consistent.code, 0) << consistent.stderr_text;
     std::string out = read_file(dir / "stdout.txt");
-    EXPECT_NE(out.find("432 of 432 pixel channels tested (B taken as exact)"), std::string::npos) << out;
+    EXPECT_NE(out.find("432 of 432 pixel channels and the 3 image means tested (A's variance its own, B's taken as exact)"),
+              std::string::npos)
+        << out;
     EXPECT_NE(out.find("consistent: the difference is within the images' noise"), std::string::npos) << out;
     EXPECT_NEAR(read_image(dir / "p.exr").rgb[0], std::erfc(0.2 / std::sqrt(2.0)), 1e-5);
 
     const test::ProgramRun rejected = test::run_vkrt("compare " + quoted("a.exr") + " " + quoted("far.exr") + " --test", dir);
     EXPECT_EQ(rejected.code, 1) << rejected.stderr_text;
     out = read_file(dir / "stdout.txt");
-    EXPECT_NE(out.find("rejected: 432 pixel channels differ by more than their noise explains"), std::string::npos) << out;
+    EXPECT_NE(out.find("rejected: 432 pixel channels and 3 image means differ by more than their noise explains"),
+              std::string::npos)
+        << out;
 
     const test::ProgramRun unusable = test::run_vkrt("compare " + quoted("near.exr") + " " + quoted("a.exr") + " --test", dir);
     EXPECT_EQ(unusable.code, 2);
@@ -409,7 +413,7 @@ TEST(Cli, CompareTestTellsNoiseFromDifference) {
     const test::ProgramRun self = test::run_vkrt("compare " + quoted("part.exr") + " " + quoted("part.exr") + " --test", dir);
     EXPECT_EQ(self.code, 0) << self.stderr_text;
     out = read_file(dir / "stdout.txt");
-    EXPECT_NE(out.find("(both images' variances)"), std::string::npos) << out;
+    EXPECT_NE(out.find("(A's variance its own, B's its own)"), std::string::npos) << out;
 }
 
 }  // namespace

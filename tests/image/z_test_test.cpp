@@ -1,8 +1,10 @@
 // compare --test's statistics (image/z_test.hpp): Z-scores and p-values of chosen
-// differences, the Šidák level, what is and is not tested, and its calibration: on
-// 200 pairs of independent renders of one scene it rejects at about its nominal 1%,
-// its Z-scores are standard normal in the bulk, and a 1% bias is rejected from the
-// sample count a pilot render predicts.
+// differences and image means, the Šidák level, what is and is not tested, and its
+// calibration: on 200 pairs of independent renders of one scene it rejects at about
+// its nominal 1%, its Z-scores are standard normal in the bulk, a 1% bias is
+// rejected by the pixels and a 0.3% bias by the image means from the sample counts a
+// pilot render predicts, and against stacks of four images (vkrt stack) Welch's
+// t-scores keep the level that normal scores would lose.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,7 +13,9 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <vector>
 
+#include "image/stack.hpp"
 #include "image/z_test.hpp"
 #include "render/pixel_sums.hpp"
 #include "render/render.hpp"
@@ -32,14 +36,24 @@ TEST(ZTest, ScoresAndPValuesOfChosenDifferences) {
     Image p;
     const ZTestResult r = z_test(a, var_a, b, &var_b, 0.01, &p);
     EXPECT_EQ(r.tests, 6u);
-    EXPECT_NEAR(r.level, 1.0 - std::pow(0.99, 1.0 / 6.0), 1e-15);
+    // Six pixel channels and three image means in the family.
+    EXPECT_NEAR(r.level, 1.0 - std::pow(0.99, 1.0 / 9.0), 1e-15);
     EXPECT_FLOAT_EQ(p.rgb[0], float(std::erfc(2.0 / std::sqrt(2.0))));  // 0.0455
     EXPECT_FLOAT_EQ(p.rgb[4], float(std::erfc(1.0 / std::sqrt(2.0))));  // 0.317
     EXPECT_EQ(p.rgb[1], 1.0f);
     EXPECT_DOUBLE_EQ(r.worst_z, 2.0);
     EXPECT_EQ(r.worst_x, 0u);
     EXPECT_EQ(r.worst_channel, 0u);
-    EXPECT_FALSE(r.rejects()) << "0.0455 is above the level, 0.00167";
+    EXPECT_FALSE(r.rejects()) << "0.0455 is above the level, 0.00112";
+    // The red mean: (2 + 0) / 2 = 1 over sqrt(1 + 1) / 2, z = 1.414; green
+    // (0 - 1) / 2 over the same, z = -0.707; blue 0.
+    EXPECT_DOUBLE_EQ(r.means[0].difference, 1.0);
+    EXPECT_DOUBLE_EQ(r.means[0].standard_error, std::sqrt(2.0) / 2.0);
+    EXPECT_DOUBLE_EQ(r.means[0].z, std::sqrt(2.0));
+    EXPECT_DOUBLE_EQ(r.means[0].p, std::erfc(1.0));
+    EXPECT_DOUBLE_EQ(r.means[1].z, -std::sqrt(0.5));
+    EXPECT_EQ(r.means[2].z, 0.0);
+    EXPECT_EQ(r.means_rejected, 0u);
     // B exact: only A's variance, so z = 2 / 0.5 = 4, p = 6.3e-5: rejected.
     const ZTestResult exact = z_test(a, var_a, b, nullptr, 0.01);
     EXPECT_DOUBLE_EQ(exact.worst_z, 4.0);
@@ -110,6 +124,16 @@ TEST(ZTest, RejectsIndependentRendersAtItsNominalRate) {
     EXPECT_NEAR(rate, 0.05, 0.01);
 }
 
+// The critical score of a two-sided normal test at `level`, by bisection on erfc.
+double critical_score(double level) {
+    double lo = 0.0, hi = 40.0;
+    for (int i = 0; i < 200; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (std::erfc(mid / std::sqrt(2.0)) > level ? lo : hi) = mid;
+    }
+    return lo;
+}
+
 // A floor 1% brighter (B's albedo times 1.01) shifts each pixel channel's mean by
 // 0.01 mu. Against an unbiased B of as many samples, the expected Z-score at n samples
 // is 0.01 mu sqrt(n) / (sigma sqrt(1.01^2 + 1)), sigma a sample's standard deviation;
@@ -121,14 +145,7 @@ TEST(ZTest, RejectsAOnePercentBiasAtThePredictedSampleCount) {
     constexpr std::uint32_t kPilot = 1024;
     const auto [pilot, pilot_var] = render_with_variance(lit_floor(99, kPilot));
     const std::size_t m = pilot.rgb.size();
-    const double level = -std::expm1(std::log1p(-0.01) / double(m));
-    // c from the level by bisection on erfc (the two-sided normal tail).
-    double lo = 0.0, hi = 40.0;
-    for (int i = 0; i < 200; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (std::erfc(mid / std::sqrt(2.0)) > level ? lo : hi) = mid;
-    }
-    const double c = lo;
+    const double c = critical_score(-std::expm1(std::log1p(-0.01) / double(m + 3)));
     double n50 = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < m; ++i) {
         const double sigma = std::sqrt(double(pilot_var.rgb[i]) * kPilot);
@@ -142,7 +159,7 @@ TEST(ZTest, RejectsAOnePercentBiasAtThePredictedSampleCount) {
         for (int i = 0; i < seeds; ++i) {
             const auto [a, var_a] = render_with_variance(lit_floor(2u * std::uint32_t(i) + 1u, spp, 1.01));
             const auto [b, var_b] = render_with_variance(lit_floor(2u * std::uint32_t(i) + 2u, spp));
-            rejected += z_test(a, var_a, b, &var_b, 0.01).rejects() ? 1 : 0;
+            rejected += z_test(a, var_a, b, &var_b, 0.01).rejected > 0 ? 1 : 0;  // by its pixels alone
         }
         return rejected;
     };
@@ -152,6 +169,73 @@ TEST(ZTest, RejectsAOnePercentBiasAtThePredictedSampleCount) {
     std::printf("1%% bias: %d of 10 rejected at %u samples, %d of 10 at %u\n", low, quarter, high, four);
     EXPECT_LE(low, 3);
     EXPECT_EQ(high, 10);
+}
+
+// The image means see a bias spread over the whole image long before any pixel
+// does. A floor 0.3% brighter shifts channel c's image mean by 0.003 mu_c (mu_c its
+// mean over the P pixels); the mean's variance at n samples a side is
+// (1.003^2 + 1) sbar_c^2 / (n P), sbar_c^2 the pixels' mean variance of one sample, so
+// the test starts to reject at n50 = (1.003^2 + 1) (c sbar_c / (0.003 mu_c))^2 / P,
+// the smallest over the channels; at n50 / 4 it seldom does, at 4 n50 always.
+TEST(ZTest, ImageMeansRejectAThirdOfAPercentBiasAtThePredictedSampleCount) {
+    constexpr std::uint32_t kPilot = 1024;
+    const auto [pilot, pilot_var] = render_with_variance(lit_floor(98, kPilot));
+    const std::size_t m = pilot.rgb.size();
+    const double pixels = double(m / 3);
+    const double c = critical_score(-std::expm1(std::log1p(-0.01) / double(m + 3)));
+    double n50 = std::numeric_limits<double>::infinity();
+    for (std::size_t channel = 0; channel < 3; ++channel) {
+        double mu = 0.0, sigma2 = 0.0;
+        for (std::size_t i = channel; i < m; i += 3) {
+            mu += pilot.rgb[i] / pixels;
+            sigma2 += double(pilot_var.rgb[i]) * kPilot / pixels;
+        }
+        n50 = std::min(n50, (1.003 * 1.003 + 1.0) * c * c * sigma2 / (0.003 * mu * 0.003 * mu) / pixels);
+    }
+    std::printf("c %.3f, predicted n50 of the image means %.0f samples\n", c, n50);
+    ASSERT_GT(n50, 64.0) << "too few samples for means near normal";
+    ASSERT_LT(n50, 16384.0) << "the scene is too noisy for this test's budget";
+    const auto rejections = [&](std::uint32_t spp, int seeds) {
+        int rejected = 0;
+        for (int i = 0; i < seeds; ++i) {
+            const auto [a, var_a] = render_with_variance(lit_floor(2u * std::uint32_t(i) + 301u, spp, 1.003));
+            const auto [b, var_b] = render_with_variance(lit_floor(2u * std::uint32_t(i) + 302u, spp));
+            rejected += z_test(a, var_a, b, &var_b, 0.01).means_rejected > 0 ? 1 : 0;
+        }
+        return rejected;
+    };
+    const auto quarter = std::uint32_t(n50 / 4.0);
+    const auto four = std::uint32_t(std::ceil(n50 * 4.0));
+    const int low = rejections(quarter, 10), high = rejections(four, 10);
+    std::printf("0.3%% bias: %d of 10 rejected by the means at %u samples, %d of 10 at %u\n", low, quarter, high, four);
+    EXPECT_LE(low, 3);
+    EXPECT_EQ(high, 10);
+}
+
+// B the mean of K = 4 independent renders whose variance is their spread (vkrt
+// stack): 3 degrees of freedom. Scored with Student's t of those degrees of freedom
+// the test keeps its level over 200 pairs (conservatively: A's own variance, of
+// many more, is half of the sum); had the stack's variances been taken as exact, as
+// normal scores take them, more pairs would be rejected than a 1% level allows.
+TEST(ZTest, AStackOfFourKeepsTheLevelWithStudentsT) {
+    constexpr int kPairs = 200;
+    constexpr std::uint32_t kImages = 4;
+    int rejected = 0, rejected_as_normal = 0;
+    for (int i = 0; i < kPairs; ++i) {
+        const std::uint32_t seed = 1000u + 10u * std::uint32_t(i);
+        const auto [a, var_a] = render_with_variance(lit_floor(seed, 64));
+        std::vector<Image> runs;
+        for (std::uint32_t k = 0; k < kImages; ++k) runs.push_back(render_with_variance(lit_floor(seed + 1u + k, 16)).first);
+        const StackedImage b = stack_images(runs);
+        ASSERT_EQ(b.dof, 3.0);
+        rejected += z_test(a, PixelVariance{&var_a}, b.mean, PixelVariance{&b.variance, b.dof}, 0.01).rejects() ? 1 : 0;
+        rejected_as_normal += z_test(a, var_a, b.mean, &b.variance, 0.01).rejects() ? 1 : 0;
+    }
+    std::printf("stacks of %u: %d of %d pairs rejected with Student's t, %d with normal scores\n", kImages, rejected,
+                kPairs, rejected_as_normal);
+    // Binomial(200, 0.01): 2 expected; 8 or more has a chance of 5e-4.
+    EXPECT_LE(rejected, 7);
+    EXPECT_GT(rejected_as_normal, 7);
 }
 
 }  // namespace
