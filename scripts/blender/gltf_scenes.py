@@ -4,7 +4,7 @@
 # docs/measured/gltf_cycles.md.
 #
 #   blender -b --factory-startup --python-exit-code 1 -P scripts/blender/gltf_scenes.py -- \
-#       --scene still_life --out scenes/gltf/still_life.glb [--render cycles.exr --spp 1024]
+#       --scene still_life --out scenes/gltf/still_life.glb [--render cycles.exr --spp 1024 [--runs 16]]
 #
 # Materials are Principled BSDFs set only through what glTF carries (base colour,
 # metallic, roughness, emission, transmission, clear coat; Specular stays 0.5,
@@ -39,6 +39,9 @@ def arguments():
     p.add_argument("--spp", type=int, default=256)
     p.add_argument("--bounces", type=int, default=8, help="Cycles' bounces of every kind (vkrt's --bounces)")
     p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--runs", type=int, default=1,
+                   help="render RUNS independent images of SPP / RUNS samples each, seeds SEED to SEED + RUNS - 1, "
+                        "to RENDER with _0, _1, ... before its extension (for vkrt stack)")
     p.add_argument("--width", type=int, default=400)
     p.add_argument("--height", type=int, default=300)
     return p.parse_args(argv)
@@ -345,7 +348,13 @@ def main():
                               export_apply=True, export_yup=True)
     if args.render:
         threshold_alpha_for_cycles()
-        render_still(scene, args.render, args.spp, bounces=args.bounces, seed=args.seed)
+        if args.runs == 1:
+            render_still(scene, args.render, args.spp, bounces=args.bounces, seed=args.seed)
+        else:
+            stem, extension = os.path.splitext(args.render)
+            for k in range(args.runs):
+                render_still(scene, f"{stem}_{k}{extension}", args.spp // args.runs, bounces=args.bounces,
+                             seed=args.seed + k)
 
 
 main()
