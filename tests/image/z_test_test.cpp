@@ -134,6 +134,31 @@ double critical_score(double level) {
     return lo;
 }
 
+// How often the test rejects 10 pairs of renders, A of a floor brighter by the factor
+// `bias`, B of the plain floor (seeds from `first_seed`), at n50 / 4 and at 4 n50
+// samples (n50 / 4 at least `min_spp`), as `rejects` counts a rejection. Prints the
+// counts under `label`.
+struct BiasRejections {
+    int low = 0, high = 0;  // of 10, at n50 / 4 and at 4 n50
+};
+BiasRejections rejections_around(double n50, double bias, std::uint32_t first_seed, std::uint32_t min_spp,
+                                 bool (*rejects)(const ZTestResult&), const char* label) {
+    const auto rejections = [&](std::uint32_t spp) {
+        int rejected = 0;
+        for (std::uint32_t i = 0; i < 10; ++i) {
+            const auto [a, var_a] = render_with_variance(lit_floor(first_seed + 2u * i, spp, bias));
+            const auto [b, var_b] = render_with_variance(lit_floor(first_seed + 2u * i + 1u, spp));
+            rejected += rejects(z_test(a, var_a, b, &var_b, 0.01)) ? 1 : 0;
+        }
+        return rejected;
+    };
+    const auto quarter = std::max<std::uint32_t>(min_spp, std::uint32_t(n50 / 4.0));
+    const auto four = std::uint32_t(std::ceil(n50 * 4.0));
+    const BiasRejections r{rejections(quarter), rejections(four)};
+    std::printf("%s: %d of 10 rejected at %u samples, %d of 10 at %u\n", label, r.low, quarter, r.high, four);
+    return r;
+}
+
 // A floor 1% brighter (B's albedo times 1.01) shifts each pixel channel's mean by
 // 0.01 mu. Against an unbiased B of as many samples, the expected Z-score at n samples
 // is 0.01 mu sqrt(n) / (sigma sqrt(1.01^2 + 1)), sigma a sample's standard deviation;
@@ -154,21 +179,11 @@ TEST(ZTest, RejectsAOnePercentBiasAtThePredictedSampleCount) {
     }
     std::printf("c %.3f, predicted n50 %.0f samples\n", c, n50);
     ASSERT_LT(n50, 16384.0) << "the scene is too noisy for this test's budget";
-    const auto rejections = [&](std::uint32_t spp, int seeds) {
-        int rejected = 0;
-        for (int i = 0; i < seeds; ++i) {
-            const auto [a, var_a] = render_with_variance(lit_floor(2u * std::uint32_t(i) + 1u, spp, 1.01));
-            const auto [b, var_b] = render_with_variance(lit_floor(2u * std::uint32_t(i) + 2u, spp));
-            rejected += z_test(a, var_a, b, &var_b, 0.01).rejected > 0 ? 1 : 0;  // by its pixels alone
-        }
-        return rejected;
-    };
-    const auto quarter = std::max<std::uint32_t>(16u, std::uint32_t(n50 / 4.0));
-    const auto four = std::uint32_t(std::ceil(n50 * 4.0));
-    const int low = rejections(quarter, 10), high = rejections(four, 10);
-    std::printf("1%% bias: %d of 10 rejected at %u samples, %d of 10 at %u\n", low, quarter, high, four);
-    EXPECT_LE(low, 3);
-    EXPECT_EQ(high, 10);
+    // By its pixels alone.
+    const BiasRejections r = rejections_around(
+        n50, 1.01, 1u, 16u, [](const ZTestResult& t) { return t.rejected > 0; }, "1% bias, pixels");
+    EXPECT_LE(r.low, 3);
+    EXPECT_EQ(r.high, 10);
 }
 
 // The image means see a bias spread over the whole image long before any pixel
@@ -195,21 +210,10 @@ TEST(ZTest, ImageMeansRejectAThirdOfAPercentBiasAtThePredictedSampleCount) {
     std::printf("c %.3f, predicted n50 of the image means %.0f samples\n", c, n50);
     ASSERT_GT(n50, 64.0) << "too few samples for means near normal";
     ASSERT_LT(n50, 16384.0) << "the scene is too noisy for this test's budget";
-    const auto rejections = [&](std::uint32_t spp, int seeds) {
-        int rejected = 0;
-        for (int i = 0; i < seeds; ++i) {
-            const auto [a, var_a] = render_with_variance(lit_floor(2u * std::uint32_t(i) + 301u, spp, 1.003));
-            const auto [b, var_b] = render_with_variance(lit_floor(2u * std::uint32_t(i) + 302u, spp));
-            rejected += z_test(a, var_a, b, &var_b, 0.01).means_rejected > 0 ? 1 : 0;
-        }
-        return rejected;
-    };
-    const auto quarter = std::uint32_t(n50 / 4.0);
-    const auto four = std::uint32_t(std::ceil(n50 * 4.0));
-    const int low = rejections(quarter, 10), high = rejections(four, 10);
-    std::printf("0.3%% bias: %d of 10 rejected by the means at %u samples, %d of 10 at %u\n", low, quarter, high, four);
-    EXPECT_LE(low, 3);
-    EXPECT_EQ(high, 10);
+    const BiasRejections r = rejections_around(
+        n50, 1.003, 301u, 1u, [](const ZTestResult& t) { return t.means_rejected > 0; }, "0.3% bias, image means");
+    EXPECT_LE(r.low, 3);
+    EXPECT_EQ(r.high, 10);
 }
 
 // B the mean of K = 4 independent renders whose variance is their spread (vkrt
