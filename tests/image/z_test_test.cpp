@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "image/stack.hpp"
@@ -134,15 +135,15 @@ double critical_score(double level) {
     return lo;
 }
 
-// How often the test rejects 10 pairs of renders, A of a floor brighter by the factor
-// `bias`, B of the plain floor (seeds from `first_seed`), at n50 / 4 and at 4 n50
-// samples (n50 / 4 at least `min_spp`), as `rejects` counts a rejection. Prints the
-// counts under `label`.
-struct BiasRejections {
-    int low = 0, high = 0;  // of 10, at n50 / 4 and at 4 n50
-};
-BiasRejections rejections_around(double n50, double bias, std::uint32_t first_seed, std::uint32_t min_spp,
-                                 bool (*rejects)(const ZTestResult&), const char* label) {
+// Renders 10 pairs, A of a floor brighter by the factor `bias`, B of the plain floor
+// (seeds from `first_seed`), at n50 / 4 and at 4 n50 samples (n50 / 4 at least
+// `min_spp`), and expects the test, as `rejects` counts a rejection, to reject at
+// most 3 pairs at the first count and all 10 at the second. Prints the counts under
+// `label`.
+void expect_rejections_around(double n50, double bias, std::uint32_t first_seed, std::uint32_t min_spp,
+                              bool (*rejects)(const ZTestResult&), const char* label) {
+    std::printf("%s: predicted n50 %.0f samples\n", label, n50);
+    ASSERT_LT(n50, 16384.0) << "the scene is too noisy for this test's budget";
     const auto rejections = [&](std::uint32_t spp) {
         int rejected = 0;
         for (std::uint32_t i = 0; i < 10; ++i) {
@@ -154,9 +155,25 @@ BiasRejections rejections_around(double n50, double bias, std::uint32_t first_se
     };
     const auto quarter = std::max<std::uint32_t>(min_spp, std::uint32_t(n50 / 4.0));
     const auto four = std::uint32_t(std::ceil(n50 * 4.0));
-    const BiasRejections r{rejections(quarter), rejections(four)};
-    std::printf("%s: %d of 10 rejected at %u samples, %d of 10 at %u\n", label, r.low, quarter, r.high, four);
-    return r;
+    const int low = rejections(quarter), high = rejections(four);
+    std::printf("%s: %d of 10 rejected at %u samples, %d of 10 at %u\n", label, low, quarter, high, four);
+    EXPECT_LE(low, 3);
+    EXPECT_EQ(high, 10);
+}
+
+// A pilot render of the plain floor, 1024 samples with its variance, from which a
+// test predicts its sample counts; and the critical score c of the level for its
+// pixel channels and image means at alpha 0.01.
+struct Pilot {
+    static constexpr std::uint32_t kSamples = 1024;
+    Image image, variance;
+    double c = 0.0;
+};
+Pilot pilot_render(std::uint32_t seed) {
+    Pilot p;
+    std::tie(p.image, p.variance) = render_with_variance(lit_floor(seed, Pilot::kSamples));
+    p.c = critical_score(-std::expm1(std::log1p(-0.01) / double(p.image.rgb.size() + 3)));
+    return p;
 }
 
 // A floor 1% brighter (B's albedo times 1.01) shifts each pixel channel's mean by
@@ -167,23 +184,16 @@ BiasRejections rejections_around(double n50, double bias, std::uint32_t first_se
 // here from a pilot render (decision 0049). At n50 / 4 the largest expected score is
 // c / 2 and the test seldom rejects; at 4 n50 it is 2c and it always does.
 TEST(ZTest, RejectsAOnePercentBiasAtThePredictedSampleCount) {
-    constexpr std::uint32_t kPilot = 1024;
-    const auto [pilot, pilot_var] = render_with_variance(lit_floor(99, kPilot));
-    const std::size_t m = pilot.rgb.size();
-    const double c = critical_score(-std::expm1(std::log1p(-0.01) / double(m + 3)));
+    const Pilot pilot = pilot_render(99);
     double n50 = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < m; ++i) {
-        const double sigma = std::sqrt(double(pilot_var.rgb[i]) * kPilot);
-        const double mu = pilot.rgb[i];
-        if (mu > 0.0) n50 = std::min(n50, (1.01 * 1.01 + 1.0) * std::pow(c * sigma / (0.01 * mu), 2.0));
+    for (std::size_t i = 0; i < pilot.image.rgb.size(); ++i) {
+        const double sigma = std::sqrt(double(pilot.variance.rgb[i]) * Pilot::kSamples);
+        const double mu = pilot.image.rgb[i];
+        if (mu > 0.0) n50 = std::min(n50, (1.01 * 1.01 + 1.0) * std::pow(pilot.c * sigma / (0.01 * mu), 2.0));
     }
-    std::printf("c %.3f, predicted n50 %.0f samples\n", c, n50);
-    ASSERT_LT(n50, 16384.0) << "the scene is too noisy for this test's budget";
     // By its pixels alone.
-    const BiasRejections r = rejections_around(
-        n50, 1.01, 1u, 16u, [](const ZTestResult& t) { return t.rejected > 0; }, "1% bias, pixels");
-    EXPECT_LE(r.low, 3);
-    EXPECT_EQ(r.high, 10);
+    expect_rejections_around(n50, 1.01, 1u, 16u, [](const ZTestResult& t) { return t.rejected > 0; },
+                             "1% bias, pixels");
 }
 
 // The image means see a bias spread over the whole image long before any pixel
@@ -193,27 +203,21 @@ TEST(ZTest, RejectsAOnePercentBiasAtThePredictedSampleCount) {
 // the test starts to reject at n50 = (1.003^2 + 1) (c sbar_c / (0.003 mu_c))^2 / P,
 // the smallest over the channels; at n50 / 4 it seldom does, at 4 n50 always.
 TEST(ZTest, ImageMeansRejectAThirdOfAPercentBiasAtThePredictedSampleCount) {
-    constexpr std::uint32_t kPilot = 1024;
-    const auto [pilot, pilot_var] = render_with_variance(lit_floor(98, kPilot));
-    const std::size_t m = pilot.rgb.size();
+    const Pilot pilot = pilot_render(98);
+    const std::size_t m = pilot.image.rgb.size();
     const double pixels = double(m / 3);
-    const double c = critical_score(-std::expm1(std::log1p(-0.01) / double(m + 3)));
     double n50 = std::numeric_limits<double>::infinity();
     for (std::size_t channel = 0; channel < 3; ++channel) {
         double mu = 0.0, sigma2 = 0.0;
         for (std::size_t i = channel; i < m; i += 3) {
-            mu += pilot.rgb[i] / pixels;
-            sigma2 += double(pilot_var.rgb[i]) * kPilot / pixels;
+            mu += pilot.image.rgb[i] / pixels;
+            sigma2 += double(pilot.variance.rgb[i]) * Pilot::kSamples / pixels;
         }
-        n50 = std::min(n50, (1.003 * 1.003 + 1.0) * c * c * sigma2 / (0.003 * mu * 0.003 * mu) / pixels);
+        n50 = std::min(n50, (1.003 * 1.003 + 1.0) * pilot.c * pilot.c * sigma2 / (0.003 * mu * 0.003 * mu) / pixels);
     }
-    std::printf("c %.3f, predicted n50 of the image means %.0f samples\n", c, n50);
     ASSERT_GT(n50, 64.0) << "too few samples for means near normal";
-    ASSERT_LT(n50, 16384.0) << "the scene is too noisy for this test's budget";
-    const BiasRejections r = rejections_around(
-        n50, 1.003, 301u, 1u, [](const ZTestResult& t) { return t.means_rejected > 0; }, "0.3% bias, image means");
-    EXPECT_LE(r.low, 3);
-    EXPECT_EQ(r.high, 10);
+    expect_rejections_around(n50, 1.003, 301u, 1u, [](const ZTestResult& t) { return t.means_rejected > 0; },
+                             "0.3% bias, image means");
 }
 
 // B the mean of K = 4 independent renders whose variance is their spread (vkrt
