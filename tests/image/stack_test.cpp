@@ -79,6 +79,18 @@ TEST(Stack, CommandWritesWhatCompareTestReads) {
     const std::string text((std::istreambuf_iterator<char>(out)), std::istreambuf_iterator<char>());
     EXPECT_NE(text.find("A's variance its own, B's of 2 degrees of freedom"), std::string::npos) << text;
 
+    // A variance whose degrees of freedom are not a number above 0 is unusable: exit 2.
+    for (const char* dof : {"abc", "0", "-3"}) {
+        write_layered_exr(candidate, {ImageLayer{"variance", {"R", "G", "B"}, std::vector<float>(108, 1e-4f)}},
+                          dir / "bad_dof.exr", {{kVarianceDofAttribute, dof}});
+        const test::ProgramRun bad =
+            test::run_vkrt("compare " + quoted("bad_dof.exr") + " " + quoted("stack.exr") + " --test", dir);
+        EXPECT_EQ(bad.code, 2) << dof;
+        EXPECT_NE(bad.stderr_text.find(std::string("vkrt:variance_dof attribute, '") + dof + "', is not a number above 0"),
+                  std::string::npos)
+            << bad.stderr_text;
+    }
+
     test::expect_one_error(test::run_vkrt("stack " + quoted("run0.exr") + " -o " + quoted("one.exr"), dir),
                            {"two images or more"});
     test::expect_one_error(test::run_vkrt("stack " + quoted("run0.exr") + " " + quoted("run1.exr") + " -o " + quoted("s.png"), dir),

@@ -3,7 +3,7 @@
 // calibration: on 200 pairs of independent renders of one scene it rejects at about
 // its nominal 1%, its Z-scores are standard normal in the bulk, a 1% bias is
 // rejected by the pixels and a 0.3% bias by the image means from the sample counts a
-// pilot render predicts, and against stacks of four images (vkrt stack) Welch's
+// pilot render predicts, and against stacks of four images (vkrt stack) Student's
 // t-scores keep the level that normal scores would lose.
 #include <gtest/gtest.h>
 
