@@ -33,7 +33,7 @@ mkdir -p /run/sshd   # sshd's privilege separation directory
 cleanups+=('stop_daemon "$scratch/ssh/sshd.pid"')
 ssh_command="ssh -p $port -i $scratch/ssh/client_key -o BatchMode=yes -o StrictHostKeyChecking=no -o UserKnownHostsFile=/dev/null -o LogLevel=ERROR"
 ssh_ready() { $ssh_command "$(id -un)@127.0.0.1" true; }
-wait_for 30 ssh_ready || fail "cannot ssh to 127.0.0.1:$port: $(cat "$scratch/ssh/sshd.log")"
+wait_for 120 ssh_ready || fail "cannot ssh to 127.0.0.1:$port: $(cat "$scratch/ssh/sshd.log")"
 printf '1/%s %s@127.0.0.1\n1/%s %s@localhost\n' "$ssh_command" "$(id -un)" "$ssh_command" "$(id -un)" >"$scratch/hosts"
 
 # vkrt, but the first try of samples 2:4 fails, as a machine might; every try is logged.

@@ -51,7 +51,7 @@ cleanups+=('stop_daemon "$scratch/slurmctld.pid"')
 slurmd -f "$SLURM_CONF" -N "$node"
 cleanups+=('stop_daemon "$scratch/slurmd.pid"')
 node_idle() { [ "$(sinfo -h -o %t)" = idle ]; }
-wait_for 60 node_idle || fail "the node never became idle: $(sinfo 2>&1); $(tail -5 "$scratch/slurmctld.log")"
+wait_for 180 node_idle || fail "the node never became idle: $(sinfo 2>&1); $(tail -5 "$scratch/slurmctld.log")"
 
 slurm_render() {
   "$scripts/slurm-render" "$scene" --spp "$spp" --tasks 4 --vkrt "$vkrt" "$@" -- "${render_options[@]}"
@@ -71,7 +71,7 @@ merge_job=$(sed -n 's/^merge job \([0-9]*\).*/\1/p' <<<"$out")
 scancel "${render_job}_3"
 scontrol release "$render_job" "$merge_job" 2>/dev/null || scontrol release "$render_job"
 jobs_gone() { [ -z "$(squeue -h -j "$render_job,$merge_job" 2>/dev/null)" ]; }
-wait_for 120 jobs_gone || fail "the jobs did not end: $(squeue)"
+wait_for 600 jobs_gone || fail "the jobs did not end: $(squeue)"
 [ ! -e "$scratch/gap.exr" ] || fail "the merge job ran although a task was cancelled"
 if "$vkrt" merge --samples "0:$spp" "$scratch/gap"/samples-*.exr -o "$scratch/gap.exr" 2>"$scratch/merge.err"; then
   fail "merge accepted partials with a gap"

@@ -69,8 +69,9 @@ std::string shell_quote(const std::string& s) {
 
 ProgramRun run_vkrt(const std::string& args, const std::filesystem::path& dir) {
     const auto err = dir / "stderr.txt";
-    // -k: even a program that ignores SIGTERM goes away.
-    const std::string command = "timeout -k 5 60 " + shell_quote(VKRT_EXE) + " " + args + " > " +
+    // A hang guard, not a speed limit: 300 s is far beyond any run here even on a
+    // machine loaded by other work. -k: even a program that ignores SIGTERM goes away.
+    const std::string command = "timeout -k 5 300 " + shell_quote(VKRT_EXE) + " " + args + " > " +
                                 shell_quote((dir / "stdout.txt").string()) + " 2> " + shell_quote(err.string());
     const int status = std::system(command.c_str());
     std::ifstream in(err);
