@@ -65,11 +65,15 @@ echo "without lib/libfmt.so.9 it refuses to start, naming it"
 
 "$bundle/bin/gpu-check" --smoke "$scratch/check" 2>"$scratch/check.log" || { cat "$scratch/check.log"; fail "gpu-check --smoke"; }
 report="$scratch/check/report.md"
-for part in devices crosscheck spd sweep; do
+for part in devices crosscheck spd sweep convergence largest submission; do
   grep -q "^| $part | ok |" "$report" || { cat "$report"; fail "gpu-check's part $part did not finish"; }
 done
 line=$(grep '^## Cross-check: ' "$report")
 agreed=$(echo "$line" | sed -n 's/^## Cross-check: \([0-9]*\) of \([0-9]*\) scenes agree.*/\1/p')
 total=$(echo "$line" | sed -n 's/^## Cross-check: \([0-9]*\) of \([0-9]*\) scenes agree.*/\2/p')
 [ -n "$total" ] && [ "$total" -gt 40 ] && [ "$agreed" = "$total" ] || { cat "$report"; fail "gpu-check: $line"; }
+grep -qE '^The device (reaches|did not reach) it' "$report" || { cat "$report"; fail "gpu-check: no error-against-time verdict"; }
+grep -qE '^Largest rendered: [0-9]+ spheres' "$report" || { cat "$report"; fail "gpu-check: no largest scene"; }
+timed=$(grep -cE '^\| (k_room|i_sphereflake|f_temple|j_torus_knot) \| [0-9]+ x [0-9]+ \|.* \| [0-9.]+ \|$' "$report" || true)
+[ "$timed" = 4 ] || { cat "$report"; fail "gpu-check: $timed of 4 scenes with a longest submission"; }
 echo "gpu-check --smoke: every part done; $line"
