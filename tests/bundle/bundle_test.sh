@@ -77,3 +77,11 @@ grep -qE '^Largest rendered: [0-9]+ spheres' "$report" || { cat "$report"; fail 
 timed=$(grep -cE '^\| (k_room|i_sphereflake|f_temple|j_torus_knot) \| [0-9]+ x [0-9]+ \|.* \| [0-9.]+ \|$' "$report" || true)
 [ "$timed" = 4 ] || { cat "$report"; fail "gpu-check: $timed of 4 scenes with a longest submission"; }
 echo "gpu-check --smoke: every part done; $line"
+
+# --only runs the parts named, alone; a part that does not exist is refused by name.
+"$bundle/bin/gpu-check" --smoke --only devices,submission "$scratch/only" 2>/dev/null || fail "gpu-check --only"
+parts=$(sed -n 's/^| \([a-z]*\) | ok |.*/\1/p' "$scratch/only/report.md" | tr '\n' ' ')
+[ "$parts" = "devices submission " ] || { cat "$scratch/only/report.md"; fail "gpu-check --only ran: $parts"; }
+if "$bundle/bin/gpu-check" --only devices,nosuch "$scratch/bad" 2>"$scratch/bad.log"; then fail "gpu-check took a part 'nosuch'"; fi
+grep -q "no part 'nosuch'" "$scratch/bad.log" || { cat "$scratch/bad.log"; fail "gpu-check's refusal does not name the part"; }
+echo "gpu-check --only: the parts named alone; an unknown part refused by name"
