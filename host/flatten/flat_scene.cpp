@@ -219,10 +219,20 @@ void add_environment(const Scene& scene, FlatScene& g) {
     kernel::set_environment_choice(g.params, choice);
 }
 
+// Whether a material's glass may carry a specular layer (kernel/lobes/glass.glsl
+// glass_lobe's `layered`, or a specular texture that makes it so per hit).
+bool has_layered_glass(const FlatScene& g) {
+    return std::ranges::any_of(g.materials, [](const kernel::Material& m) {
+        return m.transmission > 0.0f && (m.dielectric_f90 != 1.0f || m.dielectric_f0_rgb != vec3(m.dielectric_f0) ||
+                                         m.specular_map != 0u || m.specular_color_map != 0u);
+    });
+}
+
 // The rough lobe's albedo tables, which its multiple-scattering lobe reads
 // (kernel/lobes/ggx_multiple.glsl), after what table_words holds already, and with
 // HAS_SHEEN the sheen's right after them (kernel/lobes/sheen.glsl), then with
-// HAS_ROUGH_GLASS rough glass's (kernel/lobes/rough_glass.glsl).
+// HAS_ROUGH_GLASS rough glass's (kernel/lobes/rough_glass.glsl), and those of its
+// specular layer where glass has one.
 void add_ggx_tables(FlatScene& g) {
     const std::vector<std::uint32_t>& table = ggx_albedo_table();
     kernel::set_ggx_table_first_word(g.params, static_cast<std::uint32_t>(g.table_words.size()));
@@ -234,6 +244,10 @@ void add_ggx_tables(FlatScene& g) {
     if (g.features.has(Feature::HAS_ROUGH_GLASS)) {
         const std::vector<std::uint32_t>& glass = rough_glass_albedo_table();
         g.table_words.insert(g.table_words.end(), glass.begin(), glass.end());
+        if (g.features.has(Feature::HAS_DIELECTRIC_SPECULAR) && has_layered_glass(g)) {
+            const std::vector<std::uint32_t>& layer = rough_glass_layer_tables();
+            g.table_words.insert(g.table_words.end(), layer.begin(), layer.end());
+        }
     }
 }
 

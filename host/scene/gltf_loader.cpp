@@ -355,8 +355,8 @@ private:
     }
 
     // KHR_materials_specular's factors and textures: the dielectric's specular layer
-    // (scene.hpp; kernel/lobes/fresnel.glsl). The extension on glass is named as not
-    // read: glass reflects by its ior's exact Fresnel reflectance.
+    // (scene.hpp; kernel/lobes/fresnel.glsl), and on glass its layer
+    // (kernel/lobes/glass.glsl glass_split).
     void read_specular(const tinygltf::Material& g, const std::string& element, Material& m) {
         const auto e = g.extensions.find("KHR_materials_specular");
         if (e == g.extensions.end() || !m.metallic_roughness) return;
@@ -374,9 +374,6 @@ private:
         m.specular_texture = extension_texture(e->second, "specularTexture", at, Encoding::Linear, kernel::MAP_SPECULAR, m);
         m.specular_color_texture = extension_texture(e->second, "specularColorTexture", at, Encoding::SrgbUnlessFloat,
                                                      kernel::MAP_SPECULAR_COLOR, m);
-        if (mr.transmission > 0.0 && (mr.has_specular() || m.specular_texture || m.specular_color_texture)) {
-            note_unsupported("KHR_materials_specular on glass (its glass reflects by its ior)");
-        }
     }
 
     // KHR_materials_pbrSpecularGlossiness, which takes the place of

@@ -145,9 +145,10 @@ vec3 next_event(Hit hit, vec3 p, vec3 wo, Lobes lobes, Basis frame, float p_smoo
 
 // The ray leaving a mirror or glass hit, and the factor the path's throughput takes:
 // mirror: reflect / P(mirror); glass: its colour / P(glass), reflected with the
-// Fresnel reflectance's probability (which cancels it from the weight) and refracted
-// otherwise, or through a thin wall sent on straight; with "fresnel": false always
-// refracted (total internal reflection reflects). `pick` (uniform in [0, total)) chose the group, u.x decides within
+// Fresnel reflectance's probability (which cancels it from the weight; with a
+// specular layer, the layer's, lobes/glass.glsl glass_split) and refracted otherwise,
+// or through a thin wall sent on straight; with "fresnel": false always refracted
+// (total internal reflection reflects). `pick` (uniform in [0, total)) chose the group, u.x decides within
 // smooth glass; rough glass (lobes/rough_glass.glsl) draws its microfacet by u and decides by where pick fell in
 // the glass's share. A refraction updates the media the path is in (lobes/glass.glsl).
 Ray scatter_delta(Ray ray, Hit hit, vec3 p, Lobes lobes, float total, float pick, vec2 u, INOUT(vec3) beta,
@@ -170,10 +171,10 @@ Ray scatter_delta(Ray ray, Hit hit, vec3 p, Lobes lobes, float total, float pick
                                    total / lobes.glass.weight, beta, media);
     }
     Refraction r = refract_fresnel(ray.dir, hit.normal, eta);
-    float p_reflect = r.total ? 1.0f : (lobes.glass.fresnel ? r.reflectance : 0.0f);
-    bool reflects = u.x < p_reflect;
+    GlassSplit crossing = glass_split(lobes.glass, r.total ? 1.0f : (lobes.glass.fresnel ? r.reflectance : 0.0f), eta);
+    bool reflects = u.x < crossing.p_reflect;
     note_decision(reflects ? DECISION_GLASS_REFLECTS : DECISION_GLASS_REFRACTS);
-    beta *= (reflects ? lobes.glass.reflected : lobes.glass.color) * (total / lobes.glass.weight);
+    beta *= (reflects ? lobes.glass.reflected * crossing.tint : lobes.glass.color) * (total / lobes.glass.weight);
     if (reflects) {
         return mirrored;
     }

@@ -4,7 +4,8 @@
 // F + (1 - F) base, and a slab of the same glass F + (1 - F) base^2 (its light is
 // tinted going in and coming out, and reflected inside as often as it likes); a
 // clear slab that absorbs (KHR_materials_volume) lets through what Beer and Lambert's
-// law says, channel by channel; both backends.
+// law says, channel by channel; a specular layer (KHR_materials_specular) sets what
+// the glass reflects; both backends.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -108,6 +109,23 @@ TEST(Transmission, AnAbsorbingSlabFollowsBeerAndLambert) {
     ASSERT_TRUE(flat.features.has(Feature::HAS_ABSORPTION));
     EXPECT_EQ(flat.materials.at(0).attenuation, vec3(float(std::log(2.0) / 0.1), float(std::log(16.0) / 0.1), 0.0f));
     expect_image_mean(scene, glm::dvec3(seen(0.25), seen(1.0 / 256.0), 1.0));
+}
+
+// glTF's specular layer on glass (KHR_materials_specular; glass.glsl glass_split): at
+// normal incidence the glass reflects F0 = min(0.04 colour, 1) factor per channel and
+// lets 1 - max(F0) through, tinted by the base colour b. A thin wall then shows
+// F0 + (1 - max F0) b; a slab, whose faces reflect F0 = R and pass T = 1 - max R
+// from either side, R + T^2 b^2 / (1 - R), the sum over the light's passes inside.
+TEST(Transmission, TheSpecularLayerSetsTheGlassesReflectance) {
+    const glm::dvec3 wall_f0(0.08, 0.02, 0.005);  // factor 0.5, colour (4, 1, 0.25)
+    expect_image_mean(sheet("layered_wall", R"({ "base_color": [0.5, 0.5, 0.5], "roughness": 0, "transmission": 1,
+        "thin": true, "specular_factor": 0.5, "specular_color": [4, 1, 0.25] })"),
+                      wall_f0 + (1.0 - 0.08) * 0.5);
+    const glm::dvec3 r(0.16, 0.04, 0.01);  // factor 1, colour (4, 1, 0.25)
+    const double t = 1.0 - 0.16, b = 0.8;
+    expect_image_mean(sheet("layered_slab", R"({ "base_color": [0.8, 0.8, 0.8], "roughness": 0, "transmission": 1,
+        "specular_color": [4, 1, 0.25] })", kSlabBack),
+                      r + t * t * b * b / (1.0 - r));
 }
 
 // A transmission texture multiplies the transmission by its red channel (glTF's

@@ -11,6 +11,9 @@ struct GlassLobe {
     bool thin;       // a thin wall: the refracted light goes on straight, in the same medium
     float weight;    // the lobe's selection weight: the mean of its colour, or its share
     float alpha;     // GGX width of rough glass (rough_glass.glsl); 0: smooth
+    bool layered;      // glTF's specular layer changes the reflectance (glass_split below)
+    vec3 layer_tint;   // its colour: its reflectance at normal incidence over the ior's
+    float layer_f90;   // its factor: its reflectance at grazing incidence
 };
 
 // The paper's glass tints what it reflects and refracts alike by `transmit`. A
@@ -27,14 +30,59 @@ GlassLobe glass_lobe(Material m) {
     l.thin = false;
     l.weight = mean3(l.color);
     l.alpha = 0.0f;
+    l.layered = false;
+    l.layer_tint = vec3(1.0f);
+    l.layer_f90 = 1.0f;
     float share = glass_share(m);
     if (share > 0.0f) {
         l.reflected = vec3(share);
         l.thin = m.thin_walled != 0u;
         l.weight = share;
         l.alpha = HAS_ROUGH_GLASS && m.ggx_alpha > MIN_GGX_ALPHA ? m.ggx_alpha : 0.0f;
+        if (HAS_DIELECTRIC_SPECULAR) {
+            float f0 = m.dielectric_f90 * m.dielectric_f0;
+            l.layer_tint = f0 > 0.0f ? m.dielectric_f0_rgb / f0 : vec3(1.0f);
+            l.layer_f90 = m.dielectric_f90;
+            l.layered = m.dielectric_f90 != 1.0f || m.dielectric_f0_rgb != vec3(m.dielectric_f0);
+        }
     }
     return l;
+}
+
+// How the glass splits light at an interface (or microfacet) of index ratio eta whose
+// exact Fresnel reflectance is `reflectance`: reflected with probability p_reflect,
+// the throughput then taking `tint` besides the glass's reflected colour, transmitted
+// otherwise with nothing more.
+struct GlassSplit {
+    float p_reflect;
+    vec3 tint;
+};
+
+// glTF's specular layer on glass (KHR_materials_specular over _transmission;
+// HAS_DIELECTRIC_SPECULAR, decision 0052). The extension writes the reflectance as
+// F0 + (F90 - F0) w per channel, with F0 = min(f0 colour, 1) factor, F90 the factor
+// and Schlick's w = (1 - cos)^5, and lets 1 - max(reflectance) through. vkrt's glass
+// reflects by the exact Fresnel equations, so the layer here scales the interface's
+// exact reflectance R: factor (R + (tint - 1) f0 (1 - R) / (1 - f0)), with f0 the
+// interface's own reflectance at normal incidence, ((1 - eta) / (1 + eta))^2, and the
+// tint min(f0 colour, 1) / f0 of the material's. That is the extension's form with w
+// = (R - f0) / (1 - f0), how far R has risen from f0 toward 1: F0 at normal
+// incidence, F90 at grazing, the exact glass for factor 1 and a white colour, and
+// no reflection where there is no interface (nested glass of one ior). Reflecting
+// with the largest channel's probability leaves the reflected way the tint
+// layer / max and the transmitted way 1. Total internal reflection keeps all the
+// light: there is no way through to give the rest to.
+GlassSplit glass_split(GlassLobe glass, float reflectance, float eta) {
+    GlassSplit s = GlassSplit(reflectance, vec3(1.0f));
+    if (HAS_DIELECTRIC_SPECULAR && glass.layered && reflectance < 1.0f) {
+        float r0 = (1.0f - eta) / (1.0f + eta);
+        float f0 = r0 * r0;
+        vec3 layer = glass.layer_f90 * (reflectance + (glass.layer_tint - 1.0f) * (f0 * (1.0f - reflectance) / (1.0f - f0)));
+        layer = clamp(layer, vec3(0.0f), vec3(1.0f));
+        s.p_reflect = max3(layer);
+        s.tint = s.p_reflect > 0.0f ? layer / s.p_reflect : vec3(0.0f);
+    }
+    return s;
 }
 
 struct Refraction {

@@ -2,7 +2,8 @@
 // surface of GGX microfacets, each a smooth interface (Walter et al., "Microfacet
 // Models for Refraction through Rough Surfaces", 2007). A scattering event draws a
 // microfacet normal m visible from wo (ggx.glsl), splits there by the exact Fresnel
-// reflectance as the smooth glass does (refract_fresnel), and the drawn direction
+// reflectance as the smooth glass does (refract_fresnel; with a specular layer, by
+// the layer's, glass.glsl glass_split), and the drawn direction
 // wi takes G2(wo, wi) / G1(wo), what single scattering keeps of it, with Smith's
 // height-correlated G2 = 1 / (1 + Lambda(wo) + Lambda(wi)) (for transmission too,
 // the common approximation of Heitz 2014's form).
@@ -60,22 +61,43 @@ float rough_glass_eta_coordinate(float eta) {
     return 0.5f + 0.5f * log(eta) / log(ROUGH_GLASS_ETA_MAX);
 }
 
-// E(mu_o, alpha, eta): linear in log(eta) between the tables of two knots. A thin
-// wall's E is the GGX lobe's with a Fresnel of 1: its two directions have the same
-// weight and lie on opposite sides together, so the Fresnel split drops out of the
-// mean, which is then the reflection's alone, as ggx_albedo.cpp integrates it.
+// The value at (mu_o, alpha, eta) of the set of knot tables starting at `first`:
+// linear in log(eta) between the tables of two knots.
+float rough_glass_lookup(uint first, float mu, float alpha, float eta) {
+    float s = clamp(rough_glass_eta_coordinate(eta), 0.0f, 1.0f) * float(ROUGH_GLASS_ETA_KNOTS - 1u);
+    uint k = min(uint(s), ROUGH_GLASS_ETA_KNOTS - 2u);
+    uint table = first + k * ROUGH_GLASS_KNOT_WORDS;
+    return mix(ggx_table_lookup(table, mu, alpha), ggx_table_lookup(table + ROUGH_GLASS_KNOT_WORDS, mu, alpha),
+               s - float(k));
+}
+
+// E(mu_o, alpha, eta) from its table. A thin wall's E is the GGX lobe's with a
+// Fresnel of 1: its two directions have the same weight and lie on opposite sides
+// together, so the Fresnel split drops out of the mean, which is then the
+// reflection's alone, as ggx_albedo.cpp integrates it (a specular layer changes
+// nothing there).
 float rough_glass_albedo(float mu, float alpha, float eta, bool thin) {
-    float e = 0.0f;
-    if (thin) {
-        e = ggx_albedo(mu, alpha);
-    } else {
-        float s = clamp(rough_glass_eta_coordinate(eta), 0.0f, 1.0f) * float(ROUGH_GLASS_ETA_KNOTS - 1u);
-        uint k = min(uint(s), ROUGH_GLASS_ETA_KNOTS - 2u);
-        uint table = rough_glass_table() + k * ROUGH_GLASS_KNOT_WORDS;
-        e = mix(ggx_table_lookup(table, mu, alpha), ggx_table_lookup(table + ROUGH_GLASS_KNOT_WORDS, mu, alpha),
-                s - float(k));
-    }
-    return e;
+    return thin ? ggx_albedo(mu, alpha) : rough_glass_lookup(rough_glass_table(), mu, alpha, eta);
+}
+
+// A solid interface's E under a specular layer (glass.glsl glass_split). Off total
+// internal reflection the layer reflects with p = a + b R instead of R, its largest
+// channel written out: with g = f0 / (1 - f0) and T the largest channel of its tint,
+// a = factor (T - 1) g and b = factor (1 - (T - 1) g). Its mean over the microfacets
+// is then E + a D1 + (b - 1) DR, with D1 the mean of the two ways' difference
+// G2/G1(reflected) - G2/G1(transmitted) and DR that times R: two more sets of tables
+// after E's, which the host appends for a scene whose glass has a layer
+// (rough_glass_albedo.cpp). (Where the layer is clamped to 1, p is not linear; E is
+// then only near.)
+float rough_glass_layered_albedo(float e, GlassLobe glass, float mu, float eta) {
+    float r0 = (1.0f - eta) / (1.0f + eta);
+    float f0 = r0 * r0;
+    float lift = (max3(glass.layer_tint) - 1.0f) * (f0 / (1.0f - f0));
+    float a = glass.layer_f90 * lift;
+    float b = glass.layer_f90 * (1.0f - lift);
+    uint d1 = rough_glass_table() + ROUGH_GLASS_ETA_KNOTS * ROUGH_GLASS_KNOT_WORDS;
+    return e + a * rough_glass_lookup(d1, mu, glass.alpha, eta) +
+           (b - 1.0f) * rough_glass_lookup(d1 + ROUGH_GLASS_ETA_KNOTS * ROUGH_GLASS_KNOT_WORDS, mu, glass.alpha, eta);
 }
 
 // E is floored here: a weight of 1 / E stays bounded where a view along the surface
@@ -97,13 +119,18 @@ Ray rough_glass_scatter(Ray ray, Hit hit, vec3 p, GlassLobe glass, float eta, fl
     // A shading normal may turn from the view; the interface is then seen edge-on.
     vec3 local = vec3(dot(wo, frame.t), dot(wo, frame.b), max(dot(wo, frame.n), 1e-6f));
     RoughCrossing c = rough_crossing(glass.alpha, eta, glass.thin, local, u.x, u.y);
-    bool reflects = split < c.reflectance;
+    GlassSplit layer = glass_split(glass, c.reflectance, eta);
+    bool reflects = split < layer.p_reflect;
     note_decision(reflects ? DECISION_GLASS_REFLECTS : DECISION_GLASS_REFRACTS);
     vec3 dir = unit_vector(from_basis(frame, reflects ? c.reflected : c.refracted));
     float side = reflects ? dot(dir, hit.geo_normal) : -dot(dir, hit.geo_normal);
     float kept = side > 0.0f ? (reflects ? c.reflect_weight : c.refract_weight) : 0.0f;
-    float e = max(rough_glass_albedo(local.z, glass.alpha, eta, glass.thin), MIN_ROUGH_GLASS_ALBEDO);
-    beta *= (reflects ? glass.reflected : glass.color) * (scale * kept / e);
+    float e = rough_glass_albedo(local.z, glass.alpha, eta, glass.thin);
+    if (HAS_DIELECTRIC_SPECULAR && glass.layered && !glass.thin) {
+        e = rough_glass_layered_albedo(e, glass, local.z, eta);
+    }
+    e = max(e, MIN_ROUGH_GLASS_ALBEDO);
+    beta *= (reflects ? glass.reflected * layer.tint : glass.color) * (scale * kept / e);
     if (!reflects && !glass.thin) {
         media = media_after_refraction(media, hit.material, hit.front_face);
     }
