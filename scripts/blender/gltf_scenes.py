@@ -33,7 +33,7 @@ def arguments():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     p = argparse.ArgumentParser()
     p.add_argument("--scene", default="still_life", choices=["still_life", "metals", "leaves", "glass", "layers",
-                                                                "water_glass"])
+                                                                "water_glass", "velvet"])
     p.add_argument("--out", required=True)
     p.add_argument("--render", help="also render with Cycles to this .exr")
     p.add_argument("--spp", type=int, default=256)
@@ -42,6 +42,10 @@ def arguments():
     p.add_argument("--runs", type=int, default=1,
                    help="render RUNS independent images of SPP / RUNS samples each, seeds SEED to SEED + RUNS - 1, "
                         "to RENDER with _0, _1, ... before its extension (for vkrt stack)")
+    p.add_argument("--no-specular", action="store_true",
+                   help="set every opaque dielectric's Specular to 0 before export and render (the exporter then "
+                        "writes specularFactor 0): both renderers' dielectrics are then their diffuse lobes alone, "
+                        "without Principled's specular layer added on top (docs/decisions/0040-ggx-multiple-scattering.md)")
     p.add_argument("--width", type=int, default=400)
     p.add_argument("--height", type=int, default=300)
     return p.parse_args(argv)
@@ -290,6 +294,48 @@ def layers():
     lamp_and_camera()
 
 
+def velvet(name, base, sheen, sigma):
+    # Cloth as Blender's glTF exporter reads it (io_scene_gltf2 3.4): a Principled
+    # BSDF for the base (dielectric, roughness 1) plus a Velvet BSDF, added, whose
+    # colour and sigma the exporter writes as KHR_materials_sheen's sheenColorFactor
+    # and sheenRoughnessFactor, the shape its importer builds from the extension.
+    m = principled(name, base, roughness=1.0)
+    nodes, links = m.node_tree.nodes, m.node_tree.links
+    cloth = nodes.new("ShaderNodeBsdfVelvet")
+    cloth.inputs["Color"].default_value = (*sheen, 1.0)
+    cloth.inputs["Sigma"].default_value = sigma
+    add = nodes.new("ShaderNodeAddShader")
+    links.new(add.inputs[0], nodes["Principled BSDF"].outputs[0])
+    links.new(add.inputs[1], cloth.outputs[0])
+    links.new(nodes["Material Output"].inputs["Surface"], add.outputs[0])
+    return m
+
+
+def velvets():
+    # Three cloth-covered spheres on the checkerboard floor under the lamp: deep red
+    # under a pink sheen of roughness 0.5, navy under a white sheen of 0.3, and a
+    # white base under a narrow gold sheen of 0.15, where the sheen shows at the rims.
+    checker_floor()
+    for x, material in [(-1.3, velvet("red_velvet", (0.3, 0.02, 0.05), (0.8, 0.3, 0.4), 0.5)),
+                        (0.0, velvet("navy_velvet", (0.02, 0.03, 0.15), (1.0, 1.0, 1.0), 0.3)),
+                        (1.3, velvet("white_velvet", (0.8, 0.8, 0.8), (1.0, 0.8, 0.3), 0.15))]:
+        bpy.ops.mesh.primitive_uv_sphere_add(segments=48, ring_count=24, radius=0.55, location=(x, 0.2, 0.55))
+        bpy.ops.object.shade_smooth()
+        give(bpy.context.object, material)
+    lamp_and_camera()
+
+
+def without_specular():
+    # Specular 0 on every Principled BSDF that is neither metal nor glass.
+    for m in bpy.data.materials:
+        if not m.use_nodes:
+            continue
+        for node in m.node_tree.nodes:
+            if node.type == "BSDF_PRINCIPLED" and node.inputs["Metallic"].default_value == 0.0 and \
+                    node.inputs["Transmission"].default_value == 0.0:
+                node.inputs["Specular"].default_value = 0.0
+
+
 def cylinder(radius, depth, bottom, open_top=False):
     # A smooth-shaded cylinder of 64 sides standing on z = bottom, its rims sharp
     # (auto smooth: the exporter writes the split normals), its top face removed when
@@ -343,7 +389,9 @@ def main():
     world.node_tree.nodes["Background"].inputs["Strength"].default_value = 1.0
     scene.world = world
     {"still_life": still_life, "metals": metals, "leaves": leaves, "glass": glasses, "layers": layers,
-     "water_glass": water_glass}[args.scene]()
+     "water_glass": water_glass, "velvet": velvets}[args.scene]()
+    if args.no_specular:
+        without_specular()
     bpy.ops.export_scene.gltf(filepath=args.out, export_format="GLB", export_cameras=True, export_lights=True,
                               export_apply=True, export_yup=True)
     if args.render:
