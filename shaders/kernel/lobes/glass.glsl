@@ -58,6 +58,13 @@ struct GlassSplit {
     vec3 tint;
 };
 
+// The reflectance at normal incidence of an interface of index ratio eta,
+// ((1 - eta) / (1 + eta))^2, the same from either side.
+float interface_f0(float eta) {
+    float r0 = (1.0f - eta) / (1.0f + eta);
+    return r0 * r0;
+}
+
 // glTF's specular layer on glass (KHR_materials_specular over _transmission;
 // HAS_DIELECTRIC_SPECULAR, decision 0052). The extension writes the reflectance as
 // F0 + (F90 - F0) w per channel, with F0 = min(f0 colour, 1) factor, F90 the factor
@@ -75,8 +82,7 @@ struct GlassSplit {
 GlassSplit glass_split(GlassLobe glass, float reflectance, float eta) {
     GlassSplit s = GlassSplit(reflectance, vec3(1.0f));
     if (HAS_DIELECTRIC_SPECULAR && glass.layered && reflectance < 1.0f) {
-        float r0 = (1.0f - eta) / (1.0f + eta);
-        float f0 = r0 * r0;
+        float f0 = interface_f0(eta);
         vec3 layer = glass.layer_f90 * (reflectance + (glass.layer_tint - 1.0f) * (f0 * (1.0f - reflectance) / (1.0f - f0)));
         layer = clamp(layer, vec3(0.0f), vec3(1.0f));
         s.p_reflect = max3(layer);

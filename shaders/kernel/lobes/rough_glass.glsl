@@ -90,8 +90,7 @@ float rough_glass_albedo(float mu, float alpha, float eta, bool thin) {
 // (rough_glass_albedo.cpp). (Where the layer is clamped to 1, p is not linear; E is
 // then only near.)
 float rough_glass_layered_albedo(float e, GlassLobe glass, float mu, float eta) {
-    float r0 = (1.0f - eta) / (1.0f + eta);
-    float f0 = r0 * r0;
+    float f0 = interface_f0(eta);
     float lift = (max3(glass.layer_tint) - 1.0f) * (f0 / (1.0f - f0));
     float a = glass.layer_f90 * lift;
     float b = glass.layer_f90 * (1.0f - lift);
