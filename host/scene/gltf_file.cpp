@@ -19,11 +19,12 @@ namespace {
 
 // The extensions read (docs/gltf.md); any other the file uses is named in a
 // warning, and any other it requires refuses the file.
-constexpr std::array<std::string_view, 13> kExtensionsRead = {
+constexpr std::array<std::string_view, 14> kExtensionsRead = {
     "KHR_lights_punctual",     "KHR_materials_emissive_strength", "KHR_texture_transform",
     "KHR_mesh_quantization",   "KHR_draco_mesh_compression",      "EXT_meshopt_compression",
     "KHR_materials_pbrSpecularGlossiness", "KHR_materials_transmission", "KHR_materials_ior",
-    "KHR_materials_volume", "KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_materials_specular"};
+    "KHR_materials_volume", "KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_materials_specular",
+    "EXT_mesh_gpu_instancing"};
 
 constexpr std::size_t kGlbHeader = 12;  // magic, version, length
 constexpr std::size_t kChunkHeader = 8;  // length, type

@@ -22,6 +22,7 @@
 
 #include "scene/gltf_accessor.hpp"
 #include "scene/gltf_file.hpp"
+#include "scene/gltf_instancing.hpp"
 #include "scene/gltf_spec_gloss.hpp"
 #include "scene/gltf_spec_gloss_textures.hpp"
 #include "scene/gltf_textures.hpp"
@@ -42,6 +43,19 @@ constexpr double kLumensPerWatt = 683.0;
 
 // The sky behind a file that brings its own lights: Blender's default world.
 constexpr double kLitSceneSky = 0.05;
+
+// A primitive as its mesh holds it, before any node places it.
+struct PrimitiveMesh {
+    std::string element;  // "meshes[m].primitives[p]", for messages
+    IndexedMesh mesh;
+    MeshOptions options;
+};
+
+// EXT_mesh_gpu_instancing's instances in one file, and the triangles their copies
+// hold in all: a scene's triangle takes about half a kilobyte on the host until it
+// is flattened, so 2^25 of them take about 16 GiB.
+constexpr std::size_t kMaxInstances = 1'000'000;
+constexpr std::size_t kMaxInstancedTriangles = std::size_t(1) << 25;
 
 // Node placements (a node under each of its parents counts once per path): far more
 // than any asset has, few enough to walk in a moment.
@@ -545,7 +559,21 @@ private:
         }
         const tinygltf::Node& n = model_.nodes[static_cast<std::size_t>(index)];
         const dmat4 world = parent * local_matrix(n, element);
-        if (n.mesh >= 0) add_mesh_instance(n.mesh, world, element);
+        if (n.mesh >= 0) {
+            // EXT_mesh_gpu_instancing places the node's mesh once per instance, each
+            // instance's own transform applied before the node's.
+            if (auto e = n.extensions.find("EXT_mesh_gpu_instancing"); e != n.extensions.end()) {
+                const std::vector<dmat4> instances =
+                    gltf::read_gpu_instances(model_, e->second, {file_.string(), element + ".extensions.EXT_mesh_gpu_instancing"},
+                                             quantized_);
+                count_instances(n.mesh, instances.size(), element);
+                for (std::size_t i = 0; i < instances.size(); ++i) {
+                    add_mesh_instance(n.mesh, world * instances[i], fmt::format("{} (instance {})", element, i));
+                }
+            } else {
+                add_mesh_instance(n.mesh, world, element);
+            }
+        }
         if (n.skin >= 0 || !n.weights.empty()) note_unsupported("skins and morph targets (the mesh is used at rest)");
         if (n.camera >= 0 && want_camera_ && !camera_found_) read_camera(n.camera, world, element);
         if (auto light = n.extensions.find("KHR_lights_punctual"); light != n.extensions.end()) {
@@ -554,22 +582,57 @@ private:
         for (int child : n.children) visit(child, world, depth + 1);
     }
 
+    // EXT_mesh_gpu_instancing's instances become copies of their mesh (docs/gltf.md),
+    // so what they add up to is bounded before any copy is made.
+    void count_instances(int mesh_index, std::size_t count, const std::string& node) {
+        std::size_t faces = 0;
+        for (const std::optional<PrimitiveMesh>& p : mesh_primitives(mesh_index, node)) {
+            if (p) faces += p->mesh.faces.size();
+        }
+        instances_ += count;
+        instanced_triangles_ += count * faces;
+        if (instances_ > kMaxInstances || instanced_triangles_ > kMaxInstancedTriangles) {
+            fail_at(node + ".extensions.EXT_mesh_gpu_instancing",
+                    fmt::format("the file's instances add up to {} copies holding {} triangles; vkrt copies each "
+                                "instance's mesh, and takes at most {} instances and {} triangles in them",
+                                instances_, instanced_triangles_, kMaxInstances, kMaxInstancedTriangles));
+        }
+    }
+
+    // The mesh's primitives in its own space, read (and decompressed) on first use;
+    // none for those that are not triangles.
+    const std::vector<std::optional<PrimitiveMesh>>& mesh_primitives(int mesh_index, const std::string& node) {
+        if (static_cast<std::size_t>(mesh_index) >= model_.meshes.size()) {
+            fail_at(node + ".mesh", fmt::format("mesh {} does not exist (the file has {})", mesh_index, model_.meshes.size()));
+        }
+        const auto [found, first] = primitives_.try_emplace(mesh_index);
+        if (!first) return found->second;
+        const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(mesh_index)];
+        for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+            const tinygltf::Primitive& prim = mesh.primitives[p];
+            const bool triangles = prim.mode == TINYGLTF_MODE_TRIANGLES || prim.mode == -1;
+            found->second.push_back(triangles ? std::optional(read_primitive(
+                                                    prim, fmt::format("meshes[{}].primitives[{}]", mesh_index, p)))
+                                              : std::nullopt);
+        }
+        return found->second;
+    }
+
     void add_mesh_instance(int mesh_index, const dmat4& world, const std::string& node) {
         if (static_cast<std::size_t>(mesh_index) >= model_.meshes.size()) {
             fail_at(node + ".mesh", fmt::format("mesh {} does not exist (the file has {})", mesh_index, model_.meshes.size()));
         }
-        const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(mesh_index)];
         const std::optional<Transform> t = affine_transform(glm::dmat3(world), dvec3(world[3]));
         if (!t) fail_at(node, "the node's transform flattens its mesh (determinant 0)");
-        for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
-            const tinygltf::Primitive& prim = mesh.primitives[p];
-            const std::string element = fmt::format("meshes[{}].primitives[{}]", mesh_index, p);
-            if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) {
+        const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(mesh_index)];
+        const std::vector<std::optional<PrimitiveMesh>>& primitives = mesh_primitives(mesh_index, node);
+        for (std::size_t p = 0; p < primitives.size(); ++p) {
+            if (!primitives[p]) {
                 note_unsupported("primitives that are not TRIANGLES (points, lines, strips, fans)");
                 continue;
             }
-            if (!prim.targets.empty()) note_unsupported("skins and morph targets (the mesh is used at rest)");
-            add_primitive(prim, *t, element);
+            if (!mesh.primitives[p].targets.empty()) note_unsupported("skins and morph targets (the mesh is used at rest)");
+            place_primitive(*primitives[p], *t);
         }
     }
 
@@ -588,7 +651,8 @@ private:
         return values;
     }
 
-    void add_primitive(const tinygltf::Primitive& prim, const Transform& t, const std::string& element) {
+    // The primitive in its mesh's own space, with the options its triangles take.
+    PrimitiveMesh read_primitive(const tinygltf::Primitive& prim, const std::string& element) {
         const auto position = prim.attributes.find("POSITION");
         if (position == prim.attributes.end()) fail_at(element + ".attributes", "no POSITION attribute");
         IndexedMesh mesh;
@@ -640,12 +704,6 @@ private:
             if (!mesh.tangents.empty()) f.tangent = f.position;
             mesh.faces.push_back(f);
         }
-        transform_mesh(mesh, t);
-        if (const std::optional<dvec3> p = vertex_beyond_limit(mesh)) {
-            fail_at(element, fmt::format("a vertex, placed by its nodes, lies at {}, beyond the largest coordinate "
-                                         "allowed ({})",
-                                         json::format_vec3(*p), json::kMaxMagnitude));
-        }
         MeshOptions options;
         options.smooth = smooth;
         if (prim.material >= 0) {
@@ -657,8 +715,20 @@ private:
         } else {
             options.material = default_material();
         }
+        return {element, std::move(mesh), std::move(options)};
+    }
+
+    // A copy of the primitive, moved by `t`, added to the scene.
+    void place_primitive(const PrimitiveMesh& primitive, const Transform& t) {
+        IndexedMesh mesh = primitive.mesh;
+        transform_mesh(mesh, t);
+        if (const std::optional<dvec3> p = vertex_beyond_limit(mesh)) {
+            fail_at(primitive.element, fmt::format("a vertex, placed by its nodes, lies at {}, beyond the largest "
+                                                   "coordinate allowed ({})",
+                                                   json::format_vec3(*p), json::kMaxMagnitude));
+        }
         triangles_read_ += mesh.faces.size();
-        degenerate_ += append_mesh(mesh, options, scene_);
+        degenerate_ += append_mesh(mesh, primitive.options, scene_);
     }
 
     void read_camera(int index, const dmat4& world, const std::string& node) {
@@ -758,6 +828,11 @@ private:
     std::optional<std::uint32_t> default_material_;
     std::map<std::string, std::size_t> unsupported_;  // what the image will not show -> how many, said once
     std::size_t visits_ = 0;
+    std::size_t instances_ = 0;  // EXT_mesh_gpu_instancing's, and the triangles they copy
+    std::size_t instanced_triangles_ = 0;
+    // Each mesh's primitives as read, by primitive index, so that a mesh placed many
+    // times is read (and decompressed) once.
+    std::map<int, std::vector<std::optional<PrimitiveMesh>>> primitives_;
     std::size_t degenerate_ = 0;
     std::size_t triangles_read_ = 0;
     bool want_camera_ = true;
