@@ -6,6 +6,7 @@
 #include <fstream>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <map>
 #include <optional>
@@ -28,6 +29,7 @@
 #include "scene/gltf_textures.hpp"
 #include "scene/indexed_mesh.hpp"
 #include "scene/json_reader.hpp"
+#include "scene/limits.hpp"
 #include "scene/scene_error.hpp"
 #include "scene/vec_math.hpp"
 
@@ -50,12 +52,6 @@ struct PrimitiveMesh {
     IndexedMesh mesh;
     MeshOptions options;
 };
-
-// EXT_mesh_gpu_instancing's instances in one file, and the triangles their copies
-// hold in all: a scene's triangle takes about half a kilobyte on the host until it
-// is flattened, so 2^25 of them take about 16 GiB.
-constexpr std::size_t kMaxInstances = 1'000'000;
-constexpr std::size_t kMaxInstancedTriangles = std::size_t(1) << 25;
 
 // Node placements (a node under each of its parents counts once per path): far more
 // than any asset has, few enough to walk in a moment.
@@ -156,13 +152,20 @@ public:
           want_camera_(want_camera),
           textures_(model_, file_, scene_, [this](const std::string& what) { note_unsupported(what); }) {}
 
-    // Everything under the default scene's roots, placed by `root`.
-    void read(const dmat4& root) {
+    // Everything under the default scene's roots, placed by each of `roots` in turn
+    // (materials and textures once for all).
+    // `after_first`, if any, is told how many triangles the first placement added
+    // before any other is made.
+    void read(const std::vector<dmat4>& roots, const std::function<void(std::size_t)>& after_first = {}) {
         check_extensions();
         read_materials();
         const std::size_t before = scene_.triangles.size();
-        for (int node : scene_roots()) visit(node, root, 0);
-        if (scene_.triangles.size() == before) fail("the file's scene has no triangles to render");
+        for (const dmat4& root : roots) {
+            visits_ = 0;
+            for (int node : scene_roots()) visit(node, root, 0);
+            if (scene_.triangles.size() == before) fail("the file's scene has no triangles to render");
+            if (after_first && &root == &roots.front()) after_first(scene_.triangles.size() - before);
+        }
         if (degenerate_ > 0) {
             warn(fmt::format("skipped {} of {} triangles that have zero area", degenerate_, triangles_read_));
         }
@@ -591,11 +594,11 @@ private:
         }
         instances_ += count;
         instanced_triangles_ += count * faces;
-        if (instances_ > kMaxInstances || instanced_triangles_ > kMaxInstancedTriangles) {
+        if (instances_ > limits::kMaxInstances || instanced_triangles_ > limits::kMaxInstancedTriangles) {
             fail_at(node + ".extensions.EXT_mesh_gpu_instancing",
                     fmt::format("the file's instances add up to {} copies holding {} triangles; vkrt copies each "
                                 "instance's mesh, and takes at most {} instances and {} triangles in them",
-                                instances_, instanced_triangles_, kMaxInstances, kMaxInstancedTriangles));
+                                instances_, instanced_triangles_, limits::kMaxInstances, limits::kMaxInstancedTriangles));
         }
     }
 
@@ -879,7 +882,7 @@ Scene load_gltf_scene(const std::filesystem::path& file) {
     scene.camera.height = 600;
     tinygltf::Model model = read_model(file, scene.warnings);
     GltfReader reader(file, std::move(model), scene, true);
-    reader.read(dmat4(1.0));
+    reader.read({dmat4(1.0)});
     if (!reader.has_camera()) frame_scene(scene);
     // Global mode with its defaults (docs/gltf.md): 64 samples a pixel, and a uniform
     // sky as the environment: white, as viewers light a model, when the file brings no
@@ -892,11 +895,16 @@ Scene load_gltf_scene(const std::filesystem::path& file) {
     return scene;
 }
 
-void add_gltf(const std::filesystem::path& file, const Transform& placement, Scene& scene) {
-    dmat4 root(placement.linear);
-    root[3] = glm::dvec4(placement.translate, 1.0);
+void add_gltf(const std::filesystem::path& file, const std::vector<Transform>& placements, Scene& scene,
+              const std::function<void(std::size_t triangles)>& after_first) {
+    std::vector<dmat4> roots;
+    for (const Transform& t : placements) {
+        dmat4 root(t.linear);
+        root[3] = glm::dvec4(t.translate, 1.0);
+        roots.push_back(root);
+    }
     GltfReader reader(file, read_model(file, scene.warnings), scene, false);
-    reader.read(root);
+    reader.read(roots, after_first);
 }
 
 }  // namespace vkrt

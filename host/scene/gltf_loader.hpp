@@ -4,6 +4,8 @@
 // first camera and its KHR_lights_punctual lights, rendered in global mode
 // (docs/gltf.md has what is read, what is not, and the defaults).
 #include <filesystem>
+#include <functional>
+#include <vector>
 
 #include "scene/scene.hpp"
 #include "scene/transform.hpp"
@@ -22,9 +24,12 @@ Scene load_gltf_scene(const std::filesystem::path& file);
 // height, whatever the model's size or offset. Sets camera.framed.
 void frame_scene(Scene& scene);
 
-// The file's meshes with their materials, and its lights, placed by
-// `placement` and appended to `scene` (a JSON scene's "gltf" object); its camera
-// and the render defaults are not taken.
-void add_gltf(const std::filesystem::path& file, const Transform& placement, Scene& scene);
+// The file's meshes with their materials, and its lights, placed by each of
+// `placements` (at least one) and appended to `scene` (a JSON scene's "gltf" and
+// "instance" objects); its camera and the render defaults are not taken. The file
+// is read, and its materials and textures made, once. `after_first`, if given, is
+// told how many triangles the first placement added before the others are made.
+void add_gltf(const std::filesystem::path& file, const std::vector<Transform>& placements, Scene& scene,
+              const std::function<void(std::size_t triangles)>& after_first = {});
 
 }  // namespace vkrt

@@ -25,6 +25,7 @@
 #include "scene/estimator_spec.hpp"
 #include "scene/generators.hpp"
 #include "scene/gltf_loader.hpp"
+#include "scene/instance_object.hpp"
 #include "scene/json_reader.hpp"
 #include "scene/limits.hpp"
 #include "scene/material_lookup.hpp"
@@ -548,14 +549,14 @@ void read_gltf_object(const Node& n, Scene& scene) {
     const std::optional<Node> transform = n.find("transform");
     const Transform t = transform ? read_transform(*transform) : Transform{};
     try {
-        add_gltf(path, t, scene);
+        add_gltf(path, {t}, scene);
     } catch (const SceneError& e) {
         file.fail(e.what());  // the glTF's own message after the scene's path to it
     }
 }
 
 // The object types besides the kinds of primitive, each read by its own function.
-constexpr const char* kOtherObjects = "quad, mesh, gltf, random_spheres, sphereflake, torus_knot";
+constexpr const char* kOtherObjects = "quad, mesh, gltf, instance, random_spheres, sphereflake, torus_knot";
 
 void read_objects(const Node& n, const MaterialIndex& materials, Scene& scene) {
     const MaterialLookup lookup = [&materials](const Node& name) { return material_named(name, materials); };
@@ -594,6 +595,8 @@ void read_objects(const Node& n, const MaterialIndex& materials, Scene& scene) {
             read_torus_knot(object, lookup, scene);
         } else if (t == "gltf") {
             read_gltf_object(object, scene);
+        } else if (t == "instance") {
+            read_instance(object, lookup, scene);
         } else {
             const std::vector<std::string> kinds{
 #define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) #name,

@@ -49,4 +49,11 @@ inline constexpr std::uint32_t kMaxLightSamples = 1024;
 // the device's buffers hold (host/accel/grid.cpp).
 inline constexpr std::uint32_t kMaxGridAxisCells = 1u << 16;
 
+// Instances (glTF's EXT_mesh_gpu_instancing, the scene format's "instance") are
+// copies of their mesh's triangles: at most this many in one file or object, and
+// at most 2^25 triangles in their copies. A scene's triangle takes about half a
+// kilobyte on the host until it is flattened, so those take about 16 GiB.
+inline constexpr std::uint64_t kMaxInstances = 1'000'000;
+inline constexpr std::uint64_t kMaxInstancedTriangles = std::uint64_t(1) << 25;
+
 }  // namespace vkrt::limits

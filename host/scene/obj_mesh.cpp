@@ -494,20 +494,19 @@ IndexedMesh load_obj_with_materials(const std::filesystem::path& file, std::vect
     return read_obj(file, &warnings);
 }
 
-void read_mesh(const json::Node& n, const MaterialLookup& material, Scene& scene) {
+MeshObject read_mesh_object(const json::Node& n, const MaterialLookup& material, Scene& scene) {
     n.allow_only({"type", "file", "material", "smooth", "transform"});
     const json::Node file = n.required("file");
     const std::string relative = file.string();  // names the file's materials
     const std::filesystem::path path = file.file_path();
 
-    MeshOptions options;
+    MeshObject out;
+    MeshOptions& options = out.options;
     const std::optional<json::Node> given = n.find("material");
     if (given) options.material = material(*given);
     if (auto smooth = n.find("smooth")) options.smooth = smooth->boolean();
-    const std::optional<json::Node> transform = n.find("transform");
-    const Transform t = transform ? read_transform(*transform) : Transform{};
 
-    IndexedMesh mesh;
+    IndexedMesh& mesh = out.mesh;
     std::vector<std::string> warnings;
     try {
         mesh = given ? load_obj(path) : load_obj_with_materials(path, warnings);
@@ -530,7 +529,15 @@ void read_mesh(const json::Node& n, const MaterialLookup& material, Scene& scene
         scene.materials.push_back(std::move(named));
     }
     for (const std::string& w : warnings) scene.warnings.push_back(fmt::format("{}: {}: {}", n.file(), n.path(), w));
-    add_mesh(n, std::move(mesh), t, transform, options, scene);
+    return out;
+}
+
+void read_mesh(const json::Node& n, const MaterialLookup& material, Scene& scene) {
+    n.allow_only({"type", "file", "material", "smooth", "transform"});
+    const std::optional<json::Node> transform = n.find("transform");
+    const Transform t = transform ? read_transform(*transform) : Transform{};
+    MeshObject object = read_mesh_object(n, material, scene);
+    add_mesh(n, std::move(object.mesh), t, transform, object.options, scene);
 }
 
 }  // namespace vkrt

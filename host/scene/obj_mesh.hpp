@@ -31,4 +31,13 @@ IndexedMesh load_obj_with_materials(const std::filesystem::path& file, std::vect
 // triangles to scene.triangles. "file" is relative to the scene file's directory.
 void read_mesh(const json::Node& n, const MaterialLookup& material, Scene& scene);
 
+// Such an object's OBJ file, read, with its materials added to the scene, ready to
+// be placed by add_mesh (indexed_mesh.hpp) once or many times; "transform" is left
+// to the caller.
+struct MeshObject {
+    IndexedMesh mesh;
+    MeshOptions options;
+};
+MeshObject read_mesh_object(const json::Node& n, const MaterialLookup& material, Scene& scene);
+
 }  // namespace vkrt

@@ -737,7 +737,7 @@ TEST_F(SceneLoaderTest, UnknownMaterial) {
 
 TEST_F(SceneLoaderTest, UnknownTypes) {
     expect_error(Parts{.objects = R"([{"type": "cube", "material": "chalk"}])"},
-                 {": objects[0].type: unknown object type 'cube' (expected one of: sphere, triangle, ring, cylinder, quad, mesh, gltf, random_spheres, sphereflake, torus_knot)"});
+                 {": objects[0].type: unknown object type 'cube' (expected one of: sphere, triangle, ring, cylinder, quad, mesh, gltf, instance, random_spheres, sphereflake, torus_knot)"});
     expect_error(Parts{.lights = R"([{"type": "sun", "direction": [0, -1, 0]}])"},
                  {": lights[0].type: unknown light type 'sun' (expected one of: point, spot, directional)"});
 }

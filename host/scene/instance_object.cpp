@@ -1,0 +1,117 @@
+#include "scene/instance_object.hpp"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "scene/gltf_loader.hpp"
+#include "scene/indexed_mesh.hpp"
+#include "scene/limits.hpp"
+#include "scene/obj_mesh.hpp"
+#include "scene/scene_error.hpp"
+#include "scene/transform.hpp"
+
+namespace vkrt {
+namespace {
+
+// Thrown when the copies would hold too many triangles, out of add_gltf (whose
+// errors are otherwise the file's own, reported at the object's "file").
+struct TooManyTriangles {
+    std::uint64_t triangles;
+};
+
+void check_triangles(std::uint64_t placements, std::uint64_t triangles) {
+    if (placements * triangles > limits::kMaxInstancedTriangles) throw TooManyTriangles{placements * triangles};
+}
+
+// Each placement `t` after the object's own transform `own`.
+std::vector<Transform> placements(const std::vector<json::Node>& transforms, const std::optional<Transform>& own) {
+    std::vector<Transform> out;
+    out.reserve(transforms.size());
+    for (const json::Node& node : transforms) {
+        const Transform t = read_transform(node);
+        if (!own) {
+            out.push_back(t);
+            continue;
+        }
+        const std::optional<Transform> both =
+            affine_transform(t.linear * own->linear, t.linear * own->translate + t.translate);
+        if (!both) node.fail("after the object's own \"transform\", this one flattens it (determinant 0)");
+        out.push_back(*both);
+    }
+    return out;
+}
+
+// The OBJ mesh placed by each transform: as a "mesh" object with that transform,
+// but read once, and its skipped triangles said in one warning.
+void place_mesh(const json::Node& n, const json::Node& object, const std::vector<json::Node>& transforms,
+                const std::vector<Transform>& at, const MaterialLookup& material, Scene& scene) {
+    const MeshObject mesh = read_mesh_object(object, material, scene);
+    check_triangles(at.size(), mesh.mesh.faces.size());
+    std::size_t skipped = 0;
+    for (std::size_t i = 0; i < at.size(); ++i) {
+        IndexedMesh placed = mesh.mesh;
+        transform_mesh(placed, at[i]);
+        if (const std::optional<glm::dvec3> p = vertex_beyond_limit(placed)) {
+            transforms[i].fail(fmt::format("the placed mesh has a vertex at {}, beyond the largest coordinate "
+                                           "allowed ({})",
+                                           json::format_vec3(*p), json::kMaxMagnitude));
+        }
+        const std::size_t zero = append_mesh(placed, mesh.options, scene);
+        if (zero == placed.faces.size()) {
+            transforms[i].fail(fmt::format("all {} triangles of the mesh have zero area once placed", zero));
+        }
+        skipped += zero;
+    }
+    if (skipped > 0) {
+        scene.warnings.push_back(fmt::format(
+            "{}: {}: skipped {} of {} triangles that have zero area (coinciding vertices or all on one line)",
+            n.file(), n.path(), skipped, at.size() * mesh.mesh.faces.size()));
+    }
+}
+
+}  // namespace
+
+void read_instance(const json::Node& n, const MaterialLookup& material, Scene& scene) {
+    n.allow_only({"type", "object", "transforms"});
+    const json::Node object = n.required("object");
+    object.expect_object();
+    const json::Node type = object.required("type");
+    const std::string kind = type.string();
+    if (kind != "mesh" && kind != "gltf") {
+        type.fail(fmt::format("an instance places a \"mesh\" or a \"gltf\" object, not {}", json::quote_user(kind)));
+    }
+    const json::Node list = n.required("transforms");
+    const std::vector<json::Node> transforms = list.elements();
+    if (transforms.empty()) list.fail("expected at least one transform");
+    if (transforms.size() > limits::kMaxInstances) {
+        list.fail(fmt::format("{} transforms, more than the {} an instance may have", transforms.size(),
+                              limits::kMaxInstances));
+    }
+    const std::optional<json::Node> own_node = object.find("transform");
+    const std::optional<Transform> own = own_node ? std::optional(read_transform(*own_node)) : std::nullopt;
+    const std::vector<Transform> at = placements(transforms, own);
+    try {
+        if (kind == "mesh") {
+            place_mesh(n, object, transforms, at, material, scene);
+            return;
+        }
+        object.allow_only({"type", "file", "transform"});
+        const json::Node file = object.required("file");
+        const std::filesystem::path path = file.file_path();
+        try {
+            add_gltf(path, at, scene, [&](std::size_t triangles) { check_triangles(at.size(), triangles); });
+        } catch (const SceneError& e) {
+            file.fail(e.what());  // the glTF's own message after the scene's path to it
+        }
+    } catch (const TooManyTriangles& too_many) {
+        list.fail(fmt::format("{} placements copy {} triangles, more than the {} that instances may hold (each "
+                              "placement is a copy of the object's triangles)",
+                              at.size(), too_many.triangles, limits::kMaxInstancedTriangles));
+    }
+}
+
+}  // namespace vkrt
