@@ -8,6 +8,7 @@ layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 
 #include "kernel/constants.glsl"
 #define INOUT(T) inout T
+uint offset_shrink() { return 0u; }  // ray.glsl's one parameter (kernel/params.glsl), unused here
 #include "kernel/ray.glsl"  // unit_vector, measured as the kernel uses it
 #include "kernel/rng.glsl"  // rng_next, compared bit for bit with the CPU's
 #include "probe/float_op_ids.glsl"

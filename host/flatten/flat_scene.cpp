@@ -529,6 +529,28 @@ void add_grid(const Scene& scene, const AccelPolicy& policy, FlatScene& g) {
     g.grid.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The kernel's params.glsl offset_shrink(): 2^-shrink is the smallest power of two
+// that is at least every kernel coordinate of the primitives' boxes and of the eye
+// (the rays' origins), when that is below 1, so that the offsets of ray.glsl
+// (offset_coordinate) shrink with a scene smaller than 1; else 0. Capped at 100,
+// 2^-100 ~ 8e-31, which keeps the kernel's exponent arithmetic within floats.
+std::uint32_t offset_shrink(const FlatScene& g, const dvec3& eye) {
+    constexpr std::uint32_t kMostShrink = 100;
+    double most = std::max({std::abs(eye.x), std::abs(eye.y), std::abs(eye.z)});
+    if (most >= 0.5) return 0;  // the usual case: no pass over the primitives
+    const auto take = [&](const Aabb& b) {
+        most = std::max({most, std::abs(b.lo.x), std::abs(b.lo.y), std::abs(b.lo.z), std::abs(b.hi.x),
+                         std::abs(b.hi.y), std::abs(b.hi.z)});
+    };
+#define PRIMITIVE_KIND(ID, name, Name, names, NAME, NAMES, PARTS) \
+    for (const kernel::Name& primitive : g.names) take(bounds(primitive));
+#include "kernel/shapes/kinds.glsl"
+    if (most >= 0.5 || !(most > 0.0)) return 0;
+    int exponent = 0;
+    std::frexp(most, &exponent);  // most = f 2^exponent, f in [0.5, 1): 2^exponent > most
+    return std::min(kMostShrink, static_cast<std::uint32_t>(-exponent));
+}
+
 }  // namespace
 
 std::vector<BufferSize> FlatScene::built_buffers() const {
@@ -583,6 +605,7 @@ FlatScene flatten_scene(const Scene& scene, const AccelPolicy& policy) {
     if (g.features.has(Feature::HAS_POINT_LIGHTS)) {
         for (const Light& l : scene.lights) g.lights.push_back(flatten(l, o));
     }
+    kernel::set_offset_shrink(p, offset_shrink(g, scene.camera.eye - o));
     kernel::set_light_count(p, static_cast<std::uint32_t>(g.lights.size()));
     kernel::set_material_count(p, static_cast<std::uint32_t>(g.materials.size()));
     if (g.features.has(Feature::HAS_ALPHA)) mark_coverage_tested(scene, g);

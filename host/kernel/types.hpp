@@ -61,7 +61,7 @@ static_assert(sizeof(PassSums) == 16 * PASS_TEXELS);
     inline void set_##name(Params& p, T value) { p.texels[texel].lane = TO_BITS_##T(value); }
 #define PARAM3(T, name, texel)                                                                        \
     inline T name(const Params& p) { return FROM_BITS_##T(uvec3(p.texels[texel])); }             \
-    inline void set_##name(Params& p, T value) { p.texels[texel] = uvec4(TO_BITS_##T(value), 0u); }
+    inline void set_##name(Params& p, T value) { p.texels[texel] = uvec4(TO_BITS_##T(value), p.texels[texel].w); }
 #include "kernel/params.glsl"
 
 // No two values of params.glsl share a lane, and every lane lies inside Params.

@@ -5,7 +5,7 @@
 // share a lane (host/kernel/types.hpp checks it when it compiles).
 //
 //   PARAM(type, name, texel, lane)   a uint or float in lane x, y, z or w of a texel
-//   PARAM3(type, name, texel)        a vec3 or uvec3 in lanes xyz of a texel, w unused
+//   PARAM3(type, name, texel)        a vec3 or uvec3 in lanes xyz of a texel (w may hold a PARAM)
 //
 // The file that includes this one defines the two macros; they are undefined at the end.
 
@@ -14,6 +14,10 @@
 // camera_corner() + x * camera_right() + y * camera_down(). Positions are relative to
 // the flattened scene's origin (docs/decisions/0008-eye-centred-coordinates.md).
 PARAM3(vec3, camera_eye, 0)
+// The scale 2^-offset_shrink() of a scene smaller than 1 (its primitives and eye within
+// 1/2 of the origin; 0 for any other): ray.glsl's offsets off a surface shrink with it
+// (docs/decisions/0053-ray-offsets-at-small-scales.md).
+PARAM(uint, offset_shrink, 0, w)
 PARAM3(vec3, camera_corner, 1)
 PARAM3(vec3, camera_right, 2)
 PARAM3(vec3, camera_down, 3)

@@ -52,10 +52,14 @@ Hit no_hit() {
 // the point's own magnitude, in integer ULPs, so the offset is right at any scale
 // (Wächter & Binder, "A Fast and Robust Method for Avoiding Self-Intersection",
 // Ray Tracing Gems ch. 6). Near the origin, where ULPs get tiny, a fixed float offset
-// takes over.
+// takes over: within 1/32 of it, by 2^-16, both times the scale 2^-offset_shrink() of
+// a scene smaller than 1 (params.glsl), so that such a scene is offset as it would be
+// at size 1 (decision 0053). Powers of two, built from their exponent bits: at shrink
+// 0 these are 1/32 and 1/65536 exactly.
 float offset_coordinate(float p, float n) {
-    const float ORIGIN_REGION = 1.0f / 32.0f;
-    const float FLOAT_SCALE = 1.0f / 65536.0f;
+    uint shrink = offset_shrink();
+    float ORIGIN_REGION = uintBitsToFloat((122u - shrink) << 23);  // 2^-5 2^-shrink
+    float FLOAT_SCALE = uintBitsToFloat((111u - shrink) << 23);    // 2^-16 2^-shrink
     const float INT_SCALE = 256.0f;
     int ulps = int(INT_SCALE * n);
     float moved = intBitsToFloat(floatBitsToInt(p) + (p < 0.0f ? -ulps : ulps));

@@ -3,6 +3,9 @@
 // every intermediate is exact in float, so the checks are equalities.
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cstdint>
+
 #include <algorithm>
 #include <limits>
 
@@ -108,6 +111,23 @@ TEST(TriangleNormals, OpposingNormalsFallBackToFace) {
     EXPECT_EQ(k.interpolate_normal(vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), 0.5f, 0.0f, face), face);
     const float nan = std::numeric_limits<float>::quiet_NaN();
     EXPECT_EQ(k.interpolate_normal(vec3(nan), vec3(0, 1, 0), vec3(0, 1, 0), 0.2f, 0.2f, face), face);
+}
+
+// Near the origin the offset is fixed: 2^-16 of the normal within 1/32 of it, both
+// times 2^-offset_shrink() (decision 0053), exactly.
+TEST(RayOffset, NearTheOriginMovesByTheScenesScale) {
+    Kernel k;
+    const vec3 n(0.0f, 0.0f, 1.0f);
+    EXPECT_EQ(k.offset_ray_origin(vec3(0.0f, 0.0f, 0.01f), n).z, 0.01f + 0x1p-16f);
+    vkrt::kernel::set_offset_shrink(k.params, 17u);
+    // 2^-22 is the origin region now: 1e-7 lies inside, 1e-6 outside.
+    EXPECT_EQ(k.offset_ray_origin(vec3(0.0f, 0.0f, 1e-7f), n).z, 1e-7f + 0x1p-33f);
+    const float outside = 1e-6f;
+    EXPECT_EQ(k.offset_ray_origin(vec3(0.0f, 0.0f, outside), n).z,
+              std::bit_cast<float>(std::bit_cast<std::int32_t>(outside) + 256));
+    // 0.01 was inside the origin region at shrink 0 and is outside it now: 256 ULPs.
+    EXPECT_EQ(k.offset_ray_origin(vec3(0.0f, 0.0f, 0.01f), n).z,
+              std::bit_cast<float>(std::bit_cast<std::int32_t>(0.01f) + 256));
 }
 
 TEST(RayOffset, MovesAlongTheNormalAtEveryScale) {
