@@ -567,6 +567,7 @@ FlatScene flatten_scene(const Scene& scene, const AccelPolicy& policy) {
     g.features = analyze_features(scene);
     const RenderSettings& r = scene.render;
     g.samples_per_pixel = r.corners ? 1 : r.samples_per_pixel();
+    g.instances = scene.instances;
     g.corners = r.corners;
 
     kernel::Params& p = g.params;

@@ -45,6 +45,7 @@ struct FlatScene {
 #define SCENE_ARRAY(id, name, Element, load, format) FlatArray<kernel::Element, ArrayId::name> name;
 #include "kernel/arrays.glsl"
     GridStats grid;
+    InstanceCounts instances;  // Scene::instances, for the stats
     std::uint32_t samples_per_pixel = 1;
     // The SPD rule (render.corners): the kernel traces one ray through each pixel
     // corner, a (width + 1) x (height + 1) grid, and each output pixel averages its

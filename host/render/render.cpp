@@ -158,6 +158,8 @@ RenderStats collect_stats(const FlatScene& scene, const Backend& backend, const 
     s.emitters = scene.emitters.size();
     s.textures = scene.textures.size();
     s.texture_bytes = scene.texture_words.size() * sizeof(std::uint32_t);
+    s.instanced_meshes = scene.instances.meshes;
+    s.instances = scene.instances.placements;
     s.features = scene.features;
     s.buffers = scene.built_buffers();
     s.validation_messages = backend.validation_messages();

@@ -59,6 +59,8 @@ struct RenderStats {
     // What the kernel was given: triangles (and quads), the area lights among all
     // primitives, texture records and the bytes of their texels.
     std::size_t triangles = 0, emitters = 0, textures = 0, texture_bytes = 0;
+    // Meshes placed more than once, and their placements (copies) in all.
+    std::size_t instanced_meshes = 0, instances = 0;
     FeatureSet features;
     std::vector<BufferSize> buffers;
     std::uint32_t validation_messages = 0;

@@ -170,6 +170,12 @@ public:
             warn(fmt::format("skipped {} of {} triangles that have zero area", degenerate_, triangles_read_));
         }
         for (const auto& [what, count] : unsupported_) warn(fmt::format("{} ({}): ignored", what, count));
+        for (const auto& [mesh, count] : placements_) {
+            if (count > 1) {
+                scene_.instances.meshes += 1;
+                scene_.instances.placements += count;
+            }
+        }
     }
 
     bool has_camera() const { return camera_found_; }
@@ -627,6 +633,7 @@ private:
         }
         const std::optional<Transform> t = affine_transform(glm::dmat3(world), dvec3(world[3]));
         if (!t) fail_at(node, "the node's transform flattens its mesh (determinant 0)");
+        ++placements_[mesh_index];
         const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(mesh_index)];
         const std::vector<std::optional<PrimitiveMesh>>& primitives = mesh_primitives(mesh_index, node);
         for (std::size_t p = 0; p < primitives.size(); ++p) {
@@ -831,6 +838,7 @@ private:
     std::optional<std::uint32_t> default_material_;
     std::map<std::string, std::size_t> unsupported_;  // what the image will not show -> how many, said once
     std::size_t visits_ = 0;
+    std::map<int, std::size_t> placements_;  // of each mesh, by any node or instance
     std::size_t instances_ = 0;  // EXT_mesh_gpu_instancing's, and the triangles they copy
     std::size_t instanced_triangles_ = 0;
     // Each mesh's primitives as read, by primitive index, so that a mesh placed many

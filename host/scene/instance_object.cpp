@@ -66,6 +66,10 @@ void place_mesh(const json::Node& n, const json::Node& object, const std::vector
         }
         skipped += zero;
     }
+    if (at.size() > 1) {
+        scene.instances.meshes += 1;
+        scene.instances.placements += at.size();
+    }
     if (skipped > 0) {
         scene.warnings.push_back(fmt::format(
             "{}: {}: skipped {} of {} triangles that have zero area (coinciding vertices or all on one line)",

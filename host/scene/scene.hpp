@@ -251,6 +251,11 @@ struct Light {
     double outer_angle = 0.25 * 3.14159265358979323846;
 };
 
+struct InstanceCounts {
+    std::size_t meshes = 0;
+    std::size_t placements = 0;
+};
+
 struct Scene {
     std::filesystem::path source;  // the file it came from, for messages
     Camera camera;
@@ -267,6 +272,10 @@ struct Scene {
     std::optional<Environment> environment;
     // Wall-clock seconds the loader spent decoding texture images (for the stats).
     double texture_decode_seconds = 0.0;
+    // Meshes placed more than once (glTF nodes sharing a mesh, EXT_mesh_gpu_instancing,
+    // the scene format's "instance"): how many, and their placements in all, each a
+    // copy of the mesh's triangles (for the stats).
+    InstanceCounts instances;
     // What the loader accepted but the renderer will not show as the file means it
     // (e.g. an NFF mirror before mirrors exist); printed as warnings before rendering.
     std::vector<std::string> warnings;

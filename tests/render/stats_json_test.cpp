@@ -64,6 +64,8 @@ RenderStats distinct_stats() {
     s.emitters = 19;
     s.textures = 20;
     s.texture_bytes = 21;
+    s.instanced_meshes = 3;
+    s.instances = 17;
     s.features.set(Feature::HAS_SPHERES, true);
     s.features.set(Feature::HAS_SHADOWS, true);
     s.buffers = {{"spheres", 96}, {"materials", 720}};
@@ -121,7 +123,8 @@ TEST(StatsJson, EachFieldFromItsMember) {
     EXPECT_EQ(j["seconds"], json::parse(R"({"load": 0.5, "decode": 0.25, "flatten": 0.125, "setup": 0.75,
                                             "first_pass": 1.5, "render": 2.0, "passes": 2.5,
                                             "longest_submission": 0.0625, "total": 4.0})"));
-    EXPECT_EQ(j["scene"], json::parse(R"({"triangles": 18, "emitters": 19, "textures": 20, "texture_bytes": 21})"));
+    EXPECT_EQ(j["scene"], json::parse(R"({"triangles": 18, "emitters": 19, "textures": 20, "texture_bytes": 21,
+                                          "instanced_meshes": 3, "instances": 17})"));
     EXPECT_EQ(j["memory"], json::parse(R"({"peak_resident_bytes": 123456789})"));
     EXPECT_EQ(j["buffers"], json::parse(R"({"spheres": 96, "materials": 720})"));
     EXPECT_EQ(j["validation_messages"], 22);

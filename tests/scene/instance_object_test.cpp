@@ -50,6 +50,9 @@ TEST(InstanceObject, EachPlacementIsTheMeshObjectItStandsFor) {
     const Scene separate = vkrt::test::scene_from_text("separate_meshes", scene_text(meshes));
     ASSERT_EQ(separate.triangles.size(), 60u);
     expect_same_triangles(instanced, separate);
+    EXPECT_EQ(instanced.instances.meshes, 1u);
+    EXPECT_EQ(instanced.instances.placements, 3u);
+    EXPECT_EQ(separate.instances.placements, 0u);
 }
 
 TEST(InstanceObject, TheObjectsOwnTransformComesFirst) {
@@ -77,6 +80,10 @@ TEST(InstanceObject, AGltfFileIsReadOnceForAllItsPlacements) {
     // The file's materials (and their textures) once, not once a placement.
     EXPECT_EQ(separate.materials.size() - 1, 3 * (instanced.materials.size() - 1));
     EXPECT_EQ(separate.textures.size(), 3 * instanced.textures.size());
+    // Each of the radio's 7 meshes is placed three times, on its 11 mesh nodes (two
+    // knobs share one mesh, four feet another).
+    EXPECT_EQ(instanced.instances.meshes, 7u);
+    EXPECT_EQ(instanced.instances.placements, 3u * 11u);
     // Its power light is emissive in every copy.
     std::size_t emissive = 0;
     for (const auto& t : instanced.triangles) emissive += instanced.materials[t.material].emission != glm::dvec3(0.0);
