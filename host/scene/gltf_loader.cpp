@@ -152,10 +152,9 @@ public:
           want_camera_(want_camera),
           textures_(model_, file_, scene_, [this](const std::string& what) { note_unsupported(what); }) {}
 
-    // Everything under the default scene's roots, placed by each of `roots` in turn
-    // (materials and textures once for all).
-    // `after_first`, if any, is told how many triangles the first placement added
-    // before any other is made.
+    // Everything under the default scene's roots, placed by each of `roots` in turn,
+    // with the materials and textures made once for all; `after_first`, if any, is
+    // told how many triangles the first placement added before any other is made.
     void read(const std::vector<dmat4>& roots, const std::function<void(std::size_t)>& after_first = {}) {
         check_extensions();
         read_materials();
