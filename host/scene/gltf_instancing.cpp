@@ -6,8 +6,8 @@
 #include <string>
 
 #include <fmt/format.h>
-#include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <tiny_gltf.h>
 
 #include "scene/scene_error.hpp"
@@ -28,6 +28,15 @@ std::optional<int> attribute(const tinygltf::Value& attributes, const std::strin
 }
 
 }  // namespace
+
+std::optional<glm::dmat4> compose_trs(const glm::dvec3& t, const glm::dvec4& q, const glm::dvec3& s) {
+    const glm::dquat rotation(q.w, q.x, q.y, q.z);
+    const double length = glm::length(rotation);
+    if (!(length > 0.0) || !std::isfinite(length)) return std::nullopt;
+    glm::dmat4 translate(1.0);
+    translate[3] = glm::dvec4(t, 1.0);
+    return translate * glm::mat4_cast(rotation / length) * glm::scale(glm::dmat4(1.0), s);
+}
 
 std::vector<glm::dmat4> read_gpu_instances(const tinygltf::Model& model, const tinygltf::Value& extension,
                                            const Origin& origin, bool quantized) {
@@ -60,25 +69,13 @@ std::vector<glm::dmat4> read_gpu_instances(const tinygltf::Model& model, const t
     }
     if (!count) fail(origin, "no TRANSLATION, ROTATION or SCALE attribute");
 
-    std::vector<glm::dmat4> instances(*count, glm::dmat4(1.0));
+    std::vector<glm::dmat4> instances(*count);
     for (std::size_t i = 0; i < *count; ++i) {
-        glm::dmat4 m(1.0);
-        if (!translations.empty()) m = glm::translate(m, translations[i]);
-        if (!rotations.empty()) {
-            const glm::dvec4 r = rotations[i];
-            const glm::dquat q(r.w, r.x, r.y, r.z);
-            const double length = glm::length(q);
-            if (!(length > 0.0)) fail(at("ROTATION"), fmt::format("instance {} has a zero quaternion", i));
-            m = m * glm::mat4_cast(q / length);
-        }
-        if (!scales.empty()) {
-            const glm::dvec3 s = scales[i];
-            if (s.x == 0.0 || s.y == 0.0 || s.z == 0.0) {
-                fail(at("SCALE"), fmt::format("instance {} has a scale of zero, which flattens its mesh", i));
-            }
-            m = glm::scale(m, s);
-        }
-        instances[i] = m;
+        const glm::dvec4 r = rotations.empty() ? glm::dvec4(0.0, 0.0, 0.0, 1.0) : rotations[i];
+        const std::optional<glm::dmat4> m = compose_trs(translations.empty() ? glm::dvec3(0.0) : translations[i], r,
+                                                        scales.empty() ? glm::dvec3(1.0) : scales[i]);
+        if (!m) fail(at("ROTATION"), fmt::format("instance {} has a zero quaternion", i));
+        instances[i] = *m;
     }
     return instances;
 }

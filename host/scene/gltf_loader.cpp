@@ -17,7 +17,6 @@
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
-#include <glm/gtc/quaternion.hpp>
 #include <glm/mat4x4.hpp>
 #include <tiny_gltf.h>
 
@@ -532,16 +531,18 @@ private:
                 for (int r = 0; r < 4; ++r) m[c][r] = n.matrix[static_cast<std::size_t>(4 * c + r)];
             }
         } else {
-            dmat4 t(1.0), r(1.0), s(1.0);
-            if (n.translation.size() == 3) t[3] = glm::dvec4(n.translation[0], n.translation[1], n.translation[2], 1.0);
-            if (n.rotation.size() == 4) {
-                const glm::dquat q(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
-                const double len = glm::length(q);
-                if (!(len > 0.0) || !std::isfinite(len)) fail_at(element + ".rotation", "expected a non-zero quaternion");
-                r = glm::mat4_cast(q / len);
-            }
-            if (n.scale.size() == 3) s = glm::scale(dmat4(1.0), dvec3(n.scale[0], n.scale[1], n.scale[2]));
-            m = t * r * s;
+            const auto given = [](const std::vector<double>& v, auto none) {
+                decltype(none) out = none;
+                if (v.size() == std::size_t(out.length())) {
+                    for (int i = 0; i < out.length(); ++i) out[i] = v[std::size_t(i)];
+                }
+                return out;
+            };
+            const std::optional<dmat4> trs = gltf::compose_trs(given(n.translation, dvec3(0.0)),
+                                                               given(n.rotation, glm::dvec4(0.0, 0.0, 0.0, 1.0)),
+                                                               given(n.scale, dvec3(1.0)));
+            if (!trs) fail_at(element + ".rotation", "expected a non-zero quaternion");
+            m = *trs;
         }
         for (int c = 0; c < 4; ++c) {
             for (int r = 0; r < 4; ++r) {
@@ -610,12 +611,9 @@ private:
     // The mesh's primitives in its own space, read (and decompressed) on first use;
     // none for those that are not triangles.
     const std::vector<std::optional<PrimitiveMesh>>& mesh_primitives(int mesh_index, const std::string& node) {
-        if (static_cast<std::size_t>(mesh_index) >= model_.meshes.size()) {
-            fail_at(node + ".mesh", fmt::format("mesh {} does not exist (the file has {})", mesh_index, model_.meshes.size()));
-        }
+        const tinygltf::Mesh& mesh = mesh_at(mesh_index, node);
         const auto [found, first] = primitives_.try_emplace(mesh_index);
         if (!first) return found->second;
-        const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(mesh_index)];
         for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
             const tinygltf::Primitive& prim = mesh.primitives[p];
             const bool triangles = prim.mode == TINYGLTF_MODE_TRIANGLES || prim.mode == -1;
@@ -626,14 +624,19 @@ private:
         return found->second;
     }
 
-    void add_mesh_instance(int mesh_index, const dmat4& world, const std::string& node) {
-        if (static_cast<std::size_t>(mesh_index) >= model_.meshes.size()) {
+    // The node's mesh `mesh_index`, which must exist.
+    const tinygltf::Mesh& mesh_at(int mesh_index, const std::string& node) const {
+        if (mesh_index < 0 || static_cast<std::size_t>(mesh_index) >= model_.meshes.size()) {
             fail_at(node + ".mesh", fmt::format("mesh {} does not exist (the file has {})", mesh_index, model_.meshes.size()));
         }
+        return model_.meshes[static_cast<std::size_t>(mesh_index)];
+    }
+
+    void add_mesh_instance(int mesh_index, const dmat4& world, const std::string& node) {
+        const tinygltf::Mesh& mesh = mesh_at(mesh_index, node);
         const std::optional<Transform> t = affine_transform(glm::dmat3(world), dvec3(world[3]));
         if (!t) fail_at(node, "the node's transform flattens its mesh (determinant 0)");
         ++placements_[mesh_index];
-        const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(mesh_index)];
         const std::vector<std::optional<PrimitiveMesh>>& primitives = mesh_primitives(mesh_index, node);
         for (std::size_t p = 0; p < primitives.size(); ++p) {
             if (!primitives[p]) {

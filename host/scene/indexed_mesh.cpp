@@ -165,8 +165,8 @@ std::size_t append_mesh(const IndexedMesh& mesh, const MeshOptions& options, Sce
     return skipped;
 }
 
-void add_mesh(const json::Node& object, IndexedMesh mesh, const Transform& t,
-              const std::optional<json::Node>& transform, const MeshOptions& options, Scene& scene) {
+std::size_t place_mesh(const json::Node& object, IndexedMesh mesh, const Transform& t,
+                       const std::optional<json::Node>& transform, const MeshOptions& options, Scene& scene) {
     transform_mesh(mesh, t);
     if (const std::optional<dvec3> p = vertex_beyond_limit(mesh)) {
         const std::string message =
@@ -180,11 +180,20 @@ void add_mesh(const json::Node& object, IndexedMesh mesh, const Transform& t,
         object.fail(fmt::format("all {} triangles of the mesh have zero area{}", skipped,
                                 transform ? " after the transform" : ""));
     }
-    if (skipped > 0) {
-        scene.warnings.push_back(fmt::format(
-            "{}: {}: skipped {} of {} triangles that have zero area (coinciding vertices or all on one line)",
-            object.file(), object.path(), skipped, mesh.faces.size()));
-    }
+    return skipped;
+}
+
+void warn_skipped(const json::Node& object, std::size_t skipped, std::size_t triangles, Scene& scene) {
+    if (skipped == 0) return;
+    scene.warnings.push_back(
+        fmt::format("{}: {}: skipped {} of {} triangles that have zero area (coinciding vertices or all on one line)",
+                    object.file(), object.path(), skipped, triangles));
+}
+
+void add_mesh(const json::Node& object, IndexedMesh mesh, const Transform& t,
+              const std::optional<json::Node>& transform, const MeshOptions& options, Scene& scene) {
+    const std::size_t triangles = mesh.faces.size();
+    warn_skipped(object, place_mesh(object, std::move(mesh), t, transform, options, scene), triangles, scene);
 }
 
 }  // namespace vkrt

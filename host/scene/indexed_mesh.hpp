@@ -92,4 +92,11 @@ std::size_t append_mesh(const IndexedMesh& mesh, const MeshOptions& options, Sce
 void add_mesh(const json::Node& object, IndexedMesh mesh, const Transform& t,
               const std::optional<json::Node>& transform, const MeshOptions& options, Scene& scene);
 
+// add_mesh without its warning, for a mesh placed many times (an "instance"):
+// returns how many triangles it skipped, which warn_skipped then reports once for
+// the object's `triangles` in all.
+std::size_t place_mesh(const json::Node& object, IndexedMesh mesh, const Transform& t,
+                       const std::optional<json::Node>& transform, const MeshOptions& options, Scene& scene);
+void warn_skipped(const json::Node& object, std::size_t skipped, std::size_t triangles, Scene& scene);
+
 }  // namespace vkrt

@@ -47,33 +47,18 @@ std::vector<Transform> placements(const std::vector<json::Node>& transforms, con
 
 // The OBJ mesh placed by each transform: as a "mesh" object with that transform,
 // but read once, and its skipped triangles said in one warning.
-void place_mesh(const json::Node& n, const json::Node& object, const std::vector<json::Node>& transforms,
-                const std::vector<Transform>& at, const MaterialLookup& material, Scene& scene) {
+void place_mesh_object(const json::Node& object, const std::vector<json::Node>& transforms,
+                       const std::vector<Transform>& at, const MaterialLookup& material, Scene& scene) {
     const MeshObject mesh = read_mesh_object(object, material, scene);
     check_triangles(at.size(), mesh.mesh.faces.size());
     std::size_t skipped = 0;
     for (std::size_t i = 0; i < at.size(); ++i) {
-        IndexedMesh placed = mesh.mesh;
-        transform_mesh(placed, at[i]);
-        if (const std::optional<glm::dvec3> p = vertex_beyond_limit(placed)) {
-            transforms[i].fail(fmt::format("the placed mesh has a vertex at {}, beyond the largest coordinate "
-                                           "allowed ({})",
-                                           json::format_vec3(*p), json::kMaxMagnitude));
-        }
-        const std::size_t zero = append_mesh(placed, mesh.options, scene);
-        if (zero == placed.faces.size()) {
-            transforms[i].fail(fmt::format("all {} triangles of the mesh have zero area once placed", zero));
-        }
-        skipped += zero;
+        skipped += place_mesh(object, mesh.mesh, at[i], transforms[i], mesh.options, scene);
     }
+    warn_skipped(object, skipped, at.size() * mesh.mesh.faces.size(), scene);
     if (at.size() > 1) {
         scene.instances.meshes += 1;
         scene.instances.placements += at.size();
-    }
-    if (skipped > 0) {
-        scene.warnings.push_back(fmt::format(
-            "{}: {}: skipped {} of {} triangles that have zero area (coinciding vertices or all on one line)",
-            n.file(), n.path(), skipped, at.size() * mesh.mesh.faces.size()));
     }
 }
 
@@ -100,7 +85,7 @@ void read_instance(const json::Node& n, const MaterialLookup& material, Scene& s
     const std::vector<Transform> at = placements(transforms, own);
     try {
         if (kind == "mesh") {
-            place_mesh(n, object, transforms, at, material, scene);
+            place_mesh_object(object, transforms, at, material, scene);
             return;
         }
         object.allow_only({"type", "file", "transform"});

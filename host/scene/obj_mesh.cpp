@@ -533,7 +533,6 @@ MeshObject read_mesh_object(const json::Node& n, const MaterialLookup& material,
 }
 
 void read_mesh(const json::Node& n, const MaterialLookup& material, Scene& scene) {
-    n.allow_only({"type", "file", "material", "smooth", "transform"});
     const std::optional<json::Node> transform = n.find("transform");
     const Transform t = transform ? read_transform(*transform) : Transform{};
     MeshObject object = read_mesh_object(n, material, scene);
